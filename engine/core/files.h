@@ -1,0 +1,27 @@
+#pragma once
+// File helpers shared by every module that touches the disk.
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace sky {
+
+// Reads a whole file; a missing or unreadable file is an input error naming the path.
+std::string readTextFile(const std::filesystem::path& path);
+std::vector<uint8_t> readBinaryFile(const std::filesystem::path& path);
+
+// Writes through a temporary file in the same folder and renames it over `path`, so a
+// failure (exception in `write`, full disk) never leaves a partial file behind.
+// `write` receives the temporary path and must create it.
+void writeFileAtomic(const std::filesystem::path& path,
+                     const std::function<void(const std::filesystem::path& tmp)>& write);
+void writeFileAtomic(const std::filesystem::path& path, std::string_view bytes);
+
+// 64-bit FNV-1a, used for cache keys (not for security).
+uint64_t hash64(std::string_view bytes, uint64_t seed = 0xcbf29ce484222325ull);
+std::string hex64(uint64_t value);
+
+}  // namespace sky

@@ -1,0 +1,38 @@
+#include "engine/core/paths.h"
+
+#include <cstdlib>
+
+namespace sky {
+namespace fs = std::filesystem;
+
+namespace {
+const char* env(const char* name) {
+  const char* v = std::getenv(name);
+  return (v && *v) ? v : nullptr;
+}
+}  // namespace
+
+fs::path dataRoot() {
+  if (const char* v = env("SKY_DATA_DIR")) return v;
+  return SKY_DATA_DIR_DEFAULT;
+}
+
+fs::path shaderDir() {
+  if (const char* v = env("SKY_SHADER_DIR")) return v;
+  return dataRoot() / "shaders";
+}
+
+fs::path configDir() { return dataRoot() / "configs"; }
+
+fs::path cacheDir() {
+  fs::path dir;
+  if (const char* v = env("SKY_CACHE_DIR")) dir = v;
+  else if (const char* x = env("XDG_CACHE_HOME")) dir = fs::path(x) / "skylayers";
+  else if (const char* h = env("HOME")) dir = fs::path(h) / ".cache" / "skylayers";
+  else dir = fs::temp_directory_path() / "skylayers-cache";
+  std::error_code ec;
+  fs::create_directories(dir, ec);  // a failure shows up later as a cache miss, not an error
+  return dir;
+}
+
+}  // namespace sky

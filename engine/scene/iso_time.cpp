@@ -1,0 +1,153 @@
+#include "engine/scene/iso_time.h"
+
+#include <cmath>
+#include <cstdio>
+
+namespace sky {
+namespace {
+
+// Days from 1970-01-01 to y-m-d in the proleptic Gregorian calendar (Howard Hinnant's
+// days_from_civil), valid for every year we accept.
+int64_t daysFromCivil(int64_t y, unsigned m, unsigned d) {
+  y -= m <= 2;
+  const int64_t era = (y >= 0 ? y : y - 399) / 400;
+  const unsigned yoe = static_cast<unsigned>(y - era * 400);
+  const unsigned doy = (153 * (m + (m > 2 ? -3 : 9)) + 2) / 5 + d - 1;
+  const unsigned doe = yoe * 365 + yoe / 4 - yoe / 100 + doy;
+  return era * 146097 + static_cast<int64_t>(doe) - 719468;
+}
+
+void civilFromDays(int64_t z, int& y, unsigned& m, unsigned& d) {
+  z += 719468;
+  const int64_t era = (z >= 0 ? z : z - 146096) / 146097;
+  const unsigned doe = static_cast<unsigned>(z - era * 146097);
+  const unsigned yoe = (doe - doe / 1460 + doe / 36524 - doe / 146096) / 365;
+  const int64_t yy = static_cast<int64_t>(yoe) + era * 400;
+  const unsigned doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
+  const unsigned mp = (5 * doy + 2) / 153;
+  d = doy - (153 * mp + 2) / 5 + 1;
+  m = mp < 10 ? mp + 3 : mp - 9;
+  y = static_cast<int>(yy + (m <= 2));
+}
+
+bool isLeap(int y) { return (y % 4 == 0 && y % 100 != 0) || y % 400 == 0; }
+
+int daysInMonth(int y, int m) {
+  static const int kDays[] = {31, 28, 31, 30, 31, 30, 31, 31, 30, 31, 30, 31};
+  return m == 2 && isLeap(y) ? 29 : kDays[m - 1];
+}
+
+// Reads exactly n digits at text[pos...]; advances pos.
+bool digits(std::string_view t, size_t& pos, int n, int& out) {
+  if (pos + static_cast<size_t>(n) > t.size()) return false;
+  out = 0;
+  for (int i = 0; i < n; ++i) {
+    char c = t[pos + static_cast<size_t>(i)];
+    if (c < '0' || c > '9') return false;
+    out = out * 10 + (c - '0');
+  }
+  pos += static_cast<size_t>(n);
+  return true;
+}
+
+bool expect(std::string_view t, size_t& pos, char c) {
+  if (pos < t.size() && t[pos] == c) { ++pos; return true; }
+  return false;
+}
+
+std::optional<IsoTime> fail(std::string* why, const char* reason) {
+  if (why) *why = reason;
+  return std::nullopt;
+}
+
+}  // namespace
+
+std::optional<IsoTime> IsoTime::parse(std::string_view t, std::string* why) {
+  constexpr const char* kForm = "expected YYYY-MM-DDTHH:MM[:SS[.fff]] followed by Z or +HH:MM";
+  size_t p = 0;
+  int year, month, day, hour, minute, second = 0;
+  if (!digits(t, p, 4, year) || !expect(t, p, '-') || !digits(t, p, 2, month) ||
+      !expect(t, p, '-') || !digits(t, p, 2, day))
+    return fail(why, kForm);
+  if (!(expect(t, p, 'T') || expect(t, p, 't') || expect(t, p, ' '))) return fail(why, kForm);
+  if (!digits(t, p, 2, hour) || !expect(t, p, ':') || !digits(t, p, 2, minute))
+    return fail(why, kForm);
+  double frac = 0.0;
+  if (expect(t, p, ':')) {
+    if (!digits(t, p, 2, second)) return fail(why, kForm);
+    if (expect(t, p, '.') || expect(t, p, ',')) {
+      double scale = 0.1;
+      size_t start = p;
+      while (p < t.size() && t[p] >= '0' && t[p] <= '9') {
+        frac += (t[p] - '0') * scale;
+        scale *= 0.1;
+        ++p;
+      }
+      if (p == start) return fail(why, kForm);
+    }
+  }
+  int offset = 0;
+  if (expect(t, p, 'Z') || expect(t, p, 'z')) {
+    offset = 0;
+  } else if (p < t.size() && (t[p] == '+' || t[p] == '-')) {
+    int sign = t[p] == '-' ? -1 : 1;
+    ++p;
+    int oh, om = 0;
+    if (!digits(t, p, 2, oh)) return fail(why, kForm);
+    if (expect(t, p, ':')) {
+      if (!digits(t, p, 2, om)) return fail(why, kForm);
+    } else if (p < t.size()) {
+      if (!digits(t, p, 2, om)) return fail(why, kForm);
+    }
+    if (oh > 18 || om > 59) return fail(why, "time zone offset out of range (at most +-18:00)");
+    offset = sign * (oh * 60 + om);
+  } else {
+    return fail(why, "missing time zone: add Z (UTC) or an offset such as +02:00");
+  }
+  if (p != t.size()) return fail(why, kForm);
+  if (year < 1 || month < 1 || month > 12) return fail(why, "month out of range");
+  if (day < 1 || day > daysInMonth(year, month)) return fail(why, "day out of range for the month");
+  if (hour > 23 || minute > 59 || second > 59) return fail(why, "hour, minute or second out of range");
+
+  IsoTime r;
+  r.unixSeconds = daysFromCivil(year, static_cast<unsigned>(month), static_cast<unsigned>(day)) * 86400 +
+                  hour * 3600 + minute * 60 + second - offset * 60;
+  r.subsecond = frac;
+  r.offsetMinutes = offset;
+  return r;
+}
+
+std::string IsoTime::format() const {
+  int64_t local = unixSeconds + offsetMinutes * 60;
+  int64_t days = local >= 0 ? local / 86400 : (local - 86399) / 86400;
+  int64_t secs = local - days * 86400;
+  int y;
+  unsigned m, d;
+  civilFromDays(days, y, m, d);
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%04d-%02u-%02uT%02d:%02d:%02d", y, m, d,
+                static_cast<int>(secs / 3600), static_cast<int>(secs / 60 % 60),
+                static_cast<int>(secs % 60));
+  std::string s = buf;
+  if (subsecond > 0.0) {
+    char f[32];
+    std::snprintf(f, sizeof f, "%.9f", subsecond);  // "0.xxxxxxxxx"
+    std::string frac = f + 1;
+    while (frac.size() > 2 && frac.back() == '0') frac.pop_back();
+    s += frac;
+  }
+  if (offsetMinutes == 0) {
+    s += "Z";
+  } else {
+    int o = offsetMinutes < 0 ? -offsetMinutes : offsetMinutes;
+    std::snprintf(buf, sizeof buf, "%c%02d:%02d", offsetMinutes < 0 ? '-' : '+', o / 60, o % 60);
+    s += buf;
+  }
+  return s;
+}
+
+double IsoTime::julianDateUtc() const {
+  return 2440587.5 + (static_cast<double>(unixSeconds) + subsecond) / 86400.0;
+}
+
+}  // namespace sky
