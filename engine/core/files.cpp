@@ -26,12 +26,19 @@ std::vector<uint8_t> readBinaryFile(const fs::path& path) {
   return std::vector<uint8_t>(text.begin(), text.end());
 }
 
-void writeFileAtomic(const fs::path& path, const std::function<void(const fs::path&)>& write) {
+namespace {
+// A unique temporary beside `path`; it keeps the final extension so format libraries that
+// look at it still work.
+fs::path temporaryFor(const fs::path& path) {
   static std::atomic<unsigned> counter{0};
   fs::path dir = path.parent_path().empty() ? fs::path(".") : path.parent_path();
-  // The temporary keeps the final extension so format libraries that look at it still work.
-  fs::path tmp = dir / (".tmp-" + std::to_string(::getpid()) + "-" +
-                        std::to_string(counter++) + "-" + path.filename().string());
+  return dir / (".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++) + "-" +
+                path.filename().string());
+}
+}  // namespace
+
+void writeFileAtomic(const fs::path& path, const std::function<void(const fs::path&)>& write) {
+  fs::path tmp = temporaryFor(path);
   try {
     write(tmp);
     std::error_code ec;
@@ -52,6 +59,27 @@ void writeFileAtomic(const fs::path& path, std::string_view bytes) {
     out.close();
     if (!out) inputError(path.string() + ": write failed (disk full?)");
   });
+}
+
+AtomicFileSet::~AtomicFileSet() {
+  std::error_code ignored;
+  for (const auto& [tmp, final] : mStaged) fs::remove(tmp, ignored);
+}
+
+void AtomicFileSet::stage(const fs::path& path, const std::function<void(const fs::path&)>& write) {
+  fs::path tmp = temporaryFor(path);
+  mStaged.emplace_back(tmp, path);  // registered first so a throwing writer is cleaned up
+  write(tmp);
+  if (!fs::exists(tmp)) internalError(path.string() + ": writer produced no file");
+}
+
+void AtomicFileSet::commit() {
+  for (const auto& [tmp, final] : mStaged) {
+    std::error_code ec;
+    fs::rename(tmp, final, ec);
+    if (ec) inputError(final.string() + ": cannot write file: " + ec.message());
+  }
+  mStaged.clear();
 }
 
 uint64_t hash64(std::string_view bytes, uint64_t seed) {

@@ -20,6 +20,24 @@ void writeFileAtomic(const std::filesystem::path& path,
                      const std::function<void(const std::filesystem::path& tmp)>& write);
 void writeFileAtomic(const std::filesystem::path& path, std::string_view bytes);
 
+// Several files that must appear together or not at all (a render's EXR, PNG and report):
+// stage() writes each to a temporary beside its target, commit() renames them all. Files
+// staged but not committed are removed when the set goes away (an error on the way).
+class AtomicFileSet {
+public:
+  AtomicFileSet() = default;
+  ~AtomicFileSet();
+  AtomicFileSet(const AtomicFileSet&) = delete;
+  AtomicFileSet& operator=(const AtomicFileSet&) = delete;
+
+  void stage(const std::filesystem::path& path,
+             const std::function<void(const std::filesystem::path& tmp)>& write);
+  void commit();
+
+private:
+  std::vector<std::pair<std::filesystem::path, std::filesystem::path>> mStaged;  // (tmp, final)
+};
+
 // 64-bit FNV-1a, used for cache keys (not for security).
 uint64_t hash64(std::string_view bytes, uint64_t seed = 0xcbf29ce484222325ull);
 std::string hex64(uint64_t value);

@@ -1,0 +1,57 @@
+#pragma once
+// A buffer with its own memory: device-local, or host-visible and persistently mapped
+// (uniform uploads, readback). Move-only.
+#include <cstdint>
+#include <string>
+
+#include <vulkan/vulkan.h>
+
+namespace sky {
+
+class Context;
+
+enum class BufferMemory : uint8_t { Device, HostVisible };
+
+struct BufferDesc {
+  std::string name;
+  VkDeviceSize size = 0;
+  VkBufferUsageFlags usage = 0;
+  BufferMemory memory = BufferMemory::Device;
+};
+
+class Buffer {
+public:
+  Buffer() = default;
+  // With `allocate` false the buffer gets memory later through bindMemory (frame-graph
+  // aliasing of transient buffers); only Device buffers can be unallocated.
+  Buffer(const Context& ctx, const BufferDesc& desc, bool allocate = true);
+  ~Buffer();
+  Buffer(Buffer&& o) noexcept { *this = std::move(o); }
+  Buffer& operator=(Buffer&& o) noexcept;
+  Buffer(const Buffer&) = delete;
+  Buffer& operator=(const Buffer&) = delete;
+
+  void bindMemory(VkDeviceMemory memory, VkDeviceSize offset);
+  VkMemoryRequirements memoryRequirements() const;
+
+  const BufferDesc& desc() const { return mDesc; }
+  VkBuffer buffer() const { return mBuffer; }
+  VkDeviceSize size() const { return mDesc.size; }
+  // Host pointer for HostVisible buffers (coherent, mapped for the buffer's lifetime).
+  void* mapped() const { return mMapped; }
+  // Makes device writes visible to the host for non-coherent memory; a no-op when coherent.
+  void invalidate() const;
+  explicit operator bool() const { return mBuffer != VK_NULL_HANDLE; }
+
+private:
+  void reset();
+
+  const Context* mCtx = nullptr;
+  BufferDesc mDesc;
+  VkBuffer mBuffer = VK_NULL_HANDLE;
+  VkDeviceMemory mMemory = VK_NULL_HANDLE;
+  void* mMapped = nullptr;
+  bool mCoherent = true;
+};
+
+}  // namespace sky

@@ -1,0 +1,47 @@
+#pragma once
+// A compute pipeline built from compiled SPIR-V. Its descriptor set layout (set 0) and push
+// constant range come from the shader's own reflection, so C++ never restates bindings.
+#include <string>
+#include <vector>
+
+#include <vulkan/vulkan.h>
+
+#include "engine/shader/spirv_reflect.h"
+
+namespace sky {
+
+class Context;
+
+class ComputePipeline {
+public:
+  // Creates module, set layout, pipeline layout and pipeline. `name` is for debug output.
+  ComputePipeline(const Context& ctx, const std::string& name, const std::vector<uint32_t>& spirv,
+                  const ShaderReflection& reflection);
+  ~ComputePipeline();
+  ComputePipeline(const ComputePipeline&) = delete;
+  ComputePipeline& operator=(const ComputePipeline&) = delete;
+
+  const std::string& name() const { return mName; }
+  VkPipeline pipeline() const { return mPipeline; }
+  VkPipelineLayout layout() const { return mLayout; }
+  VkDescriptorSetLayout setLayout() const { return mSetLayout; }
+  const ShaderReflection& reflection() const { return mReflection; }
+  // The binding reflected at `binding` in set 0, or nullptr.
+  const DescriptorBinding* binding(uint32_t binding) const;
+  // Workgroups needed to cover `size` invocations along each axis.
+  uint32_t groupsX(uint32_t size) const { return (size + mReflection.localSize[0] - 1) / mReflection.localSize[0]; }
+  uint32_t groupsY(uint32_t size) const { return (size + mReflection.localSize[1] - 1) / mReflection.localSize[1]; }
+  uint32_t groupsZ(uint32_t size) const { return (size + mReflection.localSize[2] - 1) / mReflection.localSize[2]; }
+
+private:
+  void destroy();
+
+  const Context& mCtx;
+  std::string mName;
+  ShaderReflection mReflection;
+  VkDescriptorSetLayout mSetLayout = VK_NULL_HANDLE;
+  VkPipelineLayout mLayout = VK_NULL_HANDLE;
+  VkPipeline mPipeline = VK_NULL_HANDLE;
+};
+
+}  // namespace sky

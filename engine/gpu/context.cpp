@@ -1,0 +1,360 @@
+#include "engine/gpu/context.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cstdlib>
+#include <cstring>
+#include <iostream>
+
+#include "engine/gpu/vk_check.h"
+
+namespace sky {
+
+const char* vkResultName(VkResult r) {
+  switch (r) {
+#define SKY_CASE(x) \
+  case x: return #x;
+    SKY_CASE(VK_SUCCESS)
+    SKY_CASE(VK_NOT_READY)
+    SKY_CASE(VK_TIMEOUT)
+    SKY_CASE(VK_INCOMPLETE)
+    SKY_CASE(VK_ERROR_OUT_OF_HOST_MEMORY)
+    SKY_CASE(VK_ERROR_OUT_OF_DEVICE_MEMORY)
+    SKY_CASE(VK_ERROR_INITIALIZATION_FAILED)
+    SKY_CASE(VK_ERROR_DEVICE_LOST)
+    SKY_CASE(VK_ERROR_MEMORY_MAP_FAILED)
+    SKY_CASE(VK_ERROR_LAYER_NOT_PRESENT)
+    SKY_CASE(VK_ERROR_EXTENSION_NOT_PRESENT)
+    SKY_CASE(VK_ERROR_FEATURE_NOT_PRESENT)
+    SKY_CASE(VK_ERROR_INCOMPATIBLE_DRIVER)
+    SKY_CASE(VK_ERROR_TOO_MANY_OBJECTS)
+    SKY_CASE(VK_ERROR_FORMAT_NOT_SUPPORTED)
+    SKY_CASE(VK_ERROR_FRAGMENTED_POOL)
+    SKY_CASE(VK_ERROR_OUT_OF_POOL_MEMORY)
+    SKY_CASE(VK_ERROR_SURFACE_LOST_KHR)
+    SKY_CASE(VK_ERROR_OUT_OF_DATE_KHR)
+    SKY_CASE(VK_SUBOPTIMAL_KHR)
+#undef SKY_CASE
+    default: return "VkResult error";
+  }
+}
+
+namespace {
+
+constexpr const char* kValidationLayer = "VK_LAYER_KHRONOS_validation";
+constexpr const char* kNoDevice =
+    "no Vulkan 1.3 device found (install mesa-vulkan-drivers for the CPU device lavapipe)";
+
+bool hasLayer(const char* name) {
+  uint32_t count = 0;
+  vkEnumerateInstanceLayerProperties(&count, nullptr);
+  std::vector<VkLayerProperties> layers(count);
+  vkEnumerateInstanceLayerProperties(&count, layers.data());
+  return std::any_of(layers.begin(), layers.end(),
+                     [&](const VkLayerProperties& l) { return std::strcmp(l.layerName, name) == 0; });
+}
+
+bool hasInstanceExtension(const char* name) {
+  uint32_t count = 0;
+  vkEnumerateInstanceExtensionProperties(nullptr, &count, nullptr);
+  std::vector<VkExtensionProperties> exts(count);
+  vkEnumerateInstanceExtensionProperties(nullptr, &count, exts.data());
+  return std::any_of(exts.begin(), exts.end(), [&](const VkExtensionProperties& e) {
+    return std::strcmp(e.extensionName, name) == 0;
+  });
+}
+
+std::string lower(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+int typeScore(VkPhysicalDeviceType t) {
+  switch (t) {
+    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return 4;
+    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return 3;
+    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return 2;
+    case VK_PHYSICAL_DEVICE_TYPE_CPU: return 1;
+    default: return 0;
+  }
+}
+
+std::string describeDevices(const std::vector<PhysicalDeviceInfo>& devices) {
+  std::string s;
+  for (const auto& d : devices) {
+    if (!s.empty()) s += "; ";
+    s += std::to_string(d.index) + ": " + d.name;
+  }
+  return s.empty() ? "none" : s;
+}
+
+}  // namespace
+
+VKAPI_ATTR VkBool32 VKAPI_CALL debugCallback(VkDebugUtilsMessageSeverityFlagBitsEXT,
+                                             VkDebugUtilsMessageTypeFlagsEXT,
+                                             const VkDebugUtilsMessengerCallbackDataEXT* data,
+                                             void* user) {
+  auto* ctx = static_cast<Context*>(user);
+  ctx->mValidationMessages.fetch_add(1);
+  std::string message = data && data->pMessage ? data->pMessage : "(no message)";
+  if (ctx->mOnValidation) ctx->mOnValidation(message);
+  else std::cerr << "Vulkan validation: " << message << "\n";
+  return VK_FALSE;
+}
+
+ContextOptions ContextOptions::fromEnvironment() {
+  ContextOptions o;
+  const char* v = std::getenv("SKY_VALIDATION");
+  o.validation = v && std::strcmp(v, "0") != 0 && *v;
+  return o;
+}
+
+Context::Context(const ContextOptions& options) : mOnValidation(options.onValidationMessage) {
+  try {
+    createInstance(options);
+    pickDevice(options.gpu);
+    createDevice();
+  } catch (...) {
+    destroy();  // members are destroyed by unwinding; only the Vulkan objects need freeing
+    throw;
+  }
+}
+
+Context::~Context() { destroy(); }
+
+void Context::destroy() {
+  if (mDevice) {
+    vkDeviceWaitIdle(mDevice);
+    if (mUploadPool) vkDestroyCommandPool(mDevice, mUploadPool, nullptr);
+    vkDestroyDevice(mDevice, nullptr);
+    mDevice = VK_NULL_HANDLE;
+  }
+  if (mMessenger) {
+    auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
+        vkGetInstanceProcAddr(mInstance, "vkDestroyDebugUtilsMessengerEXT"));
+    if (destroy) destroy(mInstance, mMessenger, nullptr);
+    mMessenger = VK_NULL_HANDLE;
+  }
+  if (mInstance) {
+    vkDestroyInstance(mInstance, nullptr);
+    mInstance = VK_NULL_HANDLE;
+  }
+}
+
+void Context::createInstance(const ContextOptions& options) {
+  uint32_t loaderVersion = 0;
+  if (vkEnumerateInstanceVersion(&loaderVersion) != VK_SUCCESS ||
+      loaderVersion < VK_API_VERSION_1_3)
+    internalError("the Vulkan loader is older than 1.3 (install libvulkan1 from Debian 12)");
+
+  std::vector<const char*> layers, extensions;
+  mValidation = options.validation;
+  if (mValidation) {
+    if (!hasLayer(kValidationLayer))
+      internalError(std::string("validation requested (SKY_VALIDATION=1) but ") + kValidationLayer +
+                    " is not installed (apt-get install vulkan-validationlayers)");
+    layers.push_back(kValidationLayer);
+  }
+  mDebugUtils = hasInstanceExtension(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+  if (mValidation && !mDebugUtils)
+    internalError("validation needs VK_EXT_debug_utils, which this Vulkan loader lacks");
+  if (mDebugUtils) extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+
+  VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
+  app.pApplicationName = "skylayers";
+  app.pEngineName = "skylayers";
+  app.apiVersion = VK_API_VERSION_1_3;
+
+  VkDebugUtilsMessengerCreateInfoEXT messenger{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
+  messenger.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT |
+                              VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+  messenger.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+                          VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT;
+  messenger.pfnUserCallback = debugCallback;
+  messenger.pUserData = this;
+
+  VkInstanceCreateInfo info{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
+  info.pApplicationInfo = &app;
+  info.enabledLayerCount = static_cast<uint32_t>(layers.size());
+  info.ppEnabledLayerNames = layers.data();
+  info.enabledExtensionCount = static_cast<uint32_t>(extensions.size());
+  info.ppEnabledExtensionNames = extensions.data();
+  // Chained so messages from vkCreateInstance/vkDestroyInstance are caught too.
+  if (mValidation) info.pNext = &messenger;
+
+  VkResult r = vkCreateInstance(&info, nullptr, &mInstance);
+  if (r == VK_ERROR_INCOMPATIBLE_DRIVER) internalError(kNoDevice);
+  SKY_VK(r);
+
+  if (mValidation) {
+    auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
+        vkGetInstanceProcAddr(mInstance, "vkCreateDebugUtilsMessengerEXT"));
+    SKY_VK(create(mInstance, &messenger, nullptr, &mMessenger));
+  }
+  if (mDebugUtils)
+    mSetObjectName = reinterpret_cast<PFN_vkSetDebugUtilsObjectNameEXT>(
+        vkGetInstanceProcAddr(mInstance, "vkSetDebugUtilsObjectNameEXT"));
+}
+
+std::vector<PhysicalDeviceInfo> Context::enumerate(VkInstance instance) {
+  uint32_t count = 0;
+  vkEnumeratePhysicalDevices(instance, &count, nullptr);
+  std::vector<VkPhysicalDevice> devices(count);
+  vkEnumeratePhysicalDevices(instance, &count, devices.data());
+  std::vector<PhysicalDeviceInfo> out;
+  for (uint32_t i = 0; i < count; ++i) {
+    VkPhysicalDeviceProperties p;
+    vkGetPhysicalDeviceProperties(devices[i], &p);
+    out.push_back({i, p.deviceName, p.deviceType, p.apiVersion});
+  }
+  return out;
+}
+
+void Context::pickDevice(const std::string& request) {
+  uint32_t count = 0;
+  vkEnumeratePhysicalDevices(mInstance, &count, nullptr);
+  std::vector<VkPhysicalDevice> devices(count);
+  vkEnumeratePhysicalDevices(mInstance, &count, devices.data());
+  std::vector<PhysicalDeviceInfo> infos = enumerate(mInstance);
+  if (devices.empty()) internalError(kNoDevice);
+
+  auto usable = [&](uint32_t i) {
+    if (infos[i].apiVersion < VK_API_VERSION_1_3) return false;
+    uint32_t n = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(devices[i], &n, nullptr);
+    std::vector<VkQueueFamilyProperties> families(n);
+    vkGetPhysicalDeviceQueueFamilyProperties(devices[i], &n, families.data());
+    return std::any_of(families.begin(), families.end(), [](const VkQueueFamilyProperties& f) {
+      return (f.queueFlags & VK_QUEUE_COMPUTE_BIT) != 0;
+    });
+  };
+
+  int chosen = -1;
+  if (request.empty()) {
+    int best = 0;
+    for (uint32_t i = 0; i < devices.size(); ++i) {
+      int score = usable(i) ? typeScore(infos[i].type) + 1 : 0;
+      if (score > best) best = score, chosen = static_cast<int>(i);
+    }
+    if (chosen < 0) internalError(kNoDevice);
+  } else {
+    bool numeric = std::all_of(request.begin(), request.end(),
+                               [](char c) { return std::isdigit(static_cast<unsigned char>(c)); });
+    for (uint32_t i = 0; i < devices.size() && chosen < 0; ++i) {
+      if (numeric ? std::to_string(i) == request
+                  : lower(infos[i].name).find(lower(request)) != std::string::npos)
+        chosen = static_cast<int>(i);
+    }
+    if (chosen < 0)
+      inputError("--gpu " + request + ": no such Vulkan device (available: " +
+                 describeDevices(infos) + ")");
+    if (!usable(static_cast<uint32_t>(chosen)))
+      inputError("--gpu " + request + ": " + infos[static_cast<size_t>(chosen)].name +
+                 " does not support Vulkan 1.3 compute");
+  }
+  mPhysicalDevice = devices[static_cast<size_t>(chosen)];
+  vkGetPhysicalDeviceProperties(mPhysicalDevice, &mProperties);
+}
+
+void Context::createDevice() {
+  uint32_t n = 0;
+  vkGetPhysicalDeviceQueueFamilyProperties(mPhysicalDevice, &n, nullptr);
+  std::vector<VkQueueFamilyProperties> families(n);
+  vkGetPhysicalDeviceQueueFamilyProperties(mPhysicalDevice, &n, families.data());
+  // Prefer a family with graphics too: the window presents from the same queue.
+  int family = -1;
+  for (uint32_t i = 0; i < n; ++i) {
+    if (!(families[i].queueFlags & VK_QUEUE_COMPUTE_BIT)) continue;
+    if (family < 0 || (families[i].queueFlags & VK_QUEUE_GRAPHICS_BIT)) family = static_cast<int>(i);
+    if (families[i].queueFlags & VK_QUEUE_GRAPHICS_BIT) break;
+  }
+  mQueueFamily = static_cast<uint32_t>(family);
+  mTimestampValidBits = families[mQueueFamily].timestampValidBits;
+
+  float priority = 1.0f;
+  VkDeviceQueueCreateInfo queue{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
+  queue.queueFamilyIndex = mQueueFamily;
+  queue.queueCount = 1;
+  queue.pQueuePriorities = &priority;
+
+  VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+  VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
+  VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
+  features.pNext = &f13;
+  f13.pNext = &f12;
+  vkGetPhysicalDeviceFeatures2(mPhysicalDevice, &features);
+  if (!f13.synchronization2) internalError(std::string(mProperties.deviceName) + " lacks synchronization2");
+
+  // Enable only what the engine relies on, so a real GPU and lavapipe behave alike.
+  VkPhysicalDeviceVulkan13Features want13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+  want13.synchronization2 = VK_TRUE;
+  want13.maintenance4 = f13.maintenance4;
+  VkPhysicalDeviceVulkan12Features want12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
+  want12.hostQueryReset = f12.hostQueryReset;
+  want12.pNext = &want13;
+  VkPhysicalDeviceFeatures2 want{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
+  want.pNext = &want12;
+
+  VkDeviceCreateInfo info{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
+  info.pNext = &want;
+  info.queueCreateInfoCount = 1;
+  info.pQueueCreateInfos = &queue;
+  SKY_VK(vkCreateDevice(mPhysicalDevice, &info, nullptr, &mDevice));
+  vkGetDeviceQueue(mDevice, mQueueFamily, 0, &mQueue);
+
+  VkCommandPoolCreateInfo pool{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+  pool.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
+  pool.queueFamilyIndex = mQueueFamily;
+  SKY_VK(vkCreateCommandPool(mDevice, &pool, nullptr, &mUploadPool));
+}
+
+uint32_t Context::memoryType(uint32_t typeBits, VkMemoryPropertyFlags flags) const {
+  VkPhysicalDeviceMemoryProperties mem;
+  vkGetPhysicalDeviceMemoryProperties(mPhysicalDevice, &mem);
+  for (uint32_t i = 0; i < mem.memoryTypeCount; ++i)
+    if ((typeBits & (1u << i)) && (mem.memoryTypes[i].propertyFlags & flags) == flags) return i;
+  internalError("no Vulkan memory type with the required properties on " + deviceName());
+}
+
+void Context::submitAndWait(const std::function<void(VkCommandBuffer)>& record) const {
+  VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+  alloc.commandPool = mUploadPool;
+  alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+  alloc.commandBufferCount = 1;
+  VkCommandBuffer cmd;
+  SKY_VK(vkAllocateCommandBuffers(mDevice, &alloc, &cmd));
+  VkFence fence = VK_NULL_HANDLE;
+  try {
+    VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    SKY_VK(vkBeginCommandBuffer(cmd, &begin));
+    record(cmd);
+    SKY_VK(vkEndCommandBuffer(cmd));
+    VkFenceCreateInfo fi{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    SKY_VK(vkCreateFence(mDevice, &fi, nullptr, &fence));
+    VkCommandBufferSubmitInfo cb{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
+    cb.commandBuffer = cmd;
+    VkSubmitInfo2 submit{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
+    submit.commandBufferInfoCount = 1;
+    submit.pCommandBufferInfos = &cb;
+    SKY_VK(vkQueueSubmit2(mQueue, 1, &submit, fence));
+    SKY_VK(vkWaitForFences(mDevice, 1, &fence, VK_TRUE, UINT64_MAX));
+  } catch (...) {
+    if (fence) vkDestroyFence(mDevice, fence, nullptr);
+    vkFreeCommandBuffers(mDevice, mUploadPool, 1, &cmd);
+    throw;
+  }
+  vkDestroyFence(mDevice, fence, nullptr);
+  vkFreeCommandBuffers(mDevice, mUploadPool, 1, &cmd);
+}
+
+void Context::setName(VkObjectType type, uint64_t handle, const std::string& name) const {
+  if (!mSetObjectName || name.empty()) return;
+  VkDebugUtilsObjectNameInfoEXT info{VK_STRUCTURE_TYPE_DEBUG_UTILS_OBJECT_NAME_INFO_EXT};
+  info.objectType = type;
+  info.objectHandle = handle;
+  info.pObjectName = name.c_str();
+  mSetObjectName(mDevice, &info);
+}
+
+}  // namespace sky

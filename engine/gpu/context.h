@@ -1,0 +1,92 @@
+#pragma once
+// The Vulkan 1.3 instance, device and compute queue every other GPU object hangs off.
+// One Context per process is the normal case; it must outlive everything created from it.
+#include <atomic>
+#include <functional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <vulkan/vulkan.h>
+
+namespace sky {
+
+struct ContextOptions {
+  // "" picks automatically (a discrete GPU, then integrated, virtual, and finally the CPU device
+  // lavapipe); a decimal number picks by index, anything else by case-insensitive name substring.
+  std::string gpu;
+  // Khronos validation layers; defaults to $SKY_VALIDATION=1.
+  bool validation = false;
+  // Receives every validation message (warnings and errors). Default: print to stderr with the
+  // prefix "Vulkan validation: ".
+  std::function<void(std::string_view)> onValidationMessage;
+
+  static ContextOptions fromEnvironment();  // validation from $SKY_VALIDATION
+};
+
+struct PhysicalDeviceInfo {
+  uint32_t index;
+  std::string name;
+  VkPhysicalDeviceType type;
+  uint32_t apiVersion;
+};
+
+class Context {
+public:
+  explicit Context(const ContextOptions& options = ContextOptions::fromEnvironment());
+  ~Context();
+  Context(const Context&) = delete;
+  Context& operator=(const Context&) = delete;
+
+  VkInstance instance() const { return mInstance; }
+  VkPhysicalDevice physicalDevice() const { return mPhysicalDevice; }
+  VkDevice device() const { return mDevice; }
+  VkQueue queue() const { return mQueue; }
+  uint32_t queueFamily() const { return mQueueFamily; }
+  const VkPhysicalDeviceProperties& properties() const { return mProperties; }
+  std::string deviceName() const { return mProperties.deviceName; }
+  bool validationEnabled() const { return mValidation; }
+  // Number of validation messages seen so far (tests fail when it moves).
+  uint64_t validationMessageCount() const { return mValidationMessages.load(); }
+  // Nanoseconds per timestamp tick, and whether the compute queue has timestamps at all.
+  double timestampPeriodNs() const { return mProperties.limits.timestampPeriod; }
+  bool hasTimestamps() const { return mTimestampValidBits > 0; }
+
+  // A memory type index with all of `flags` among `typeBits`; Internal error if none.
+  uint32_t memoryType(uint32_t typeBits, VkMemoryPropertyFlags flags) const;
+  // Records with `record`, submits on the compute queue and waits. For uploads and tests.
+  void submitAndWait(const std::function<void(VkCommandBuffer)>& record) const;
+  // Gives a Vulkan object a debug name (shown in validation messages) when debug utils exist.
+  void setName(VkObjectType type, uint64_t handle, const std::string& name) const;
+
+  // Every physical device the loader sees, for --gpu and error messages.
+  static std::vector<PhysicalDeviceInfo> enumerate(VkInstance instance);
+
+private:
+  void createInstance(const ContextOptions& options);
+  void pickDevice(const std::string& request);
+  void createDevice();
+  void destroy();
+
+  VkInstance mInstance = VK_NULL_HANDLE;
+  VkDebugUtilsMessengerEXT mMessenger = VK_NULL_HANDLE;
+  VkPhysicalDevice mPhysicalDevice = VK_NULL_HANDLE;
+  VkPhysicalDeviceProperties mProperties{};
+  VkDevice mDevice = VK_NULL_HANDLE;
+  VkQueue mQueue = VK_NULL_HANDLE;
+  uint32_t mQueueFamily = 0;
+  uint32_t mTimestampValidBits = 0;
+  VkCommandPool mUploadPool = VK_NULL_HANDLE;
+  bool mValidation = false;
+  bool mDebugUtils = false;
+  PFN_vkSetDebugUtilsObjectNameEXT mSetObjectName = nullptr;
+  std::function<void(std::string_view)> mOnValidation;
+  std::atomic<uint64_t> mValidationMessages{0};
+
+  friend VKAPI_ATTR VkBool32 VKAPI_CALL debugCallback(VkDebugUtilsMessageSeverityFlagBitsEXT,
+                                                      VkDebugUtilsMessageTypeFlagsEXT,
+                                                      const VkDebugUtilsMessengerCallbackDataEXT*,
+                                                      void*);
+};
+
+}  // namespace sky

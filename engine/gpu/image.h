@@ -1,0 +1,69 @@
+#pragma once
+// 2D and 3D images with one view. Either owns its memory (standalone) or is bound by the
+// frame graph into a shared memory slot (transient images that alias). Move-only.
+#include <cstdint>
+#include <string>
+
+#include <vulkan/vulkan.h>
+
+namespace sky {
+
+class Context;
+
+enum class ImageDim : uint8_t { Tex2D, Tex3D };
+
+struct ImageDesc {
+  std::string name;  // debug output only
+  ImageDim dim = ImageDim::Tex2D;
+  VkFormat format = VK_FORMAT_R16G16B16A16_SFLOAT;
+  uint32_t width = 1, height = 1, depth = 1;
+  VkImageUsageFlags usage = 0;  // the frame graph derives this from declared accesses
+
+  bool sameShape(const ImageDesc& o) const {
+    return dim == o.dim && format == o.format && width == o.width && height == o.height &&
+           depth == o.depth && usage == o.usage;
+  }
+};
+
+// Bytes per texel of the formats the engine uses; 0 for anything else.
+uint32_t formatTexelSize(VkFormat format);
+uint32_t formatChannelCount(VkFormat format);
+const char* formatName(VkFormat format);
+// Input error naming the image when `desc` is impossible on this device (size limits).
+void checkImageDesc(const Context& ctx, const ImageDesc& desc);
+// The create-info for `desc` (also used to ask memory requirements before creating).
+VkImageCreateInfo imageCreateInfo(const ImageDesc& desc);
+
+class Image {
+public:
+  Image() = default;
+  // Creates the image; with `allocate` it also gets dedicated device-local memory and a view.
+  Image(const Context& ctx, const ImageDesc& desc, bool allocate = true);
+  ~Image();
+  Image(Image&& o) noexcept { *this = std::move(o); }
+  Image& operator=(Image&& o) noexcept;
+  Image(const Image&) = delete;
+  Image& operator=(const Image&) = delete;
+
+  // Binds shared memory (frame-graph aliasing) and creates the view. Only for allocate=false.
+  void bindMemory(VkDeviceMemory memory, VkDeviceSize offset);
+  VkMemoryRequirements memoryRequirements() const;
+
+  const ImageDesc& desc() const { return mDesc; }
+  VkImage image() const { return mImage; }
+  VkImageView view() const { return mView; }
+  VkImageSubresourceRange range() const { return {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1}; }
+  explicit operator bool() const { return mImage != VK_NULL_HANDLE; }
+
+private:
+  void createView();
+  void reset();
+
+  const Context* mCtx = nullptr;
+  ImageDesc mDesc;
+  VkImage mImage = VK_NULL_HANDLE;
+  VkImageView mView = VK_NULL_HANDLE;
+  VkDeviceMemory mOwnedMemory = VK_NULL_HANDLE;
+};
+
+}  // namespace sky
