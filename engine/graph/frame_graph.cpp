@@ -1,0 +1,153 @@
+#include "engine/graph/frame_graph.h"
+
+#include <algorithm>
+
+#include "engine/core/error.h"
+#include "engine/graph/graph_runtime.h"
+
+namespace sky {
+namespace {
+
+const char* kindName(ResourceKind k) { return k == ResourceKind::Image ? "image" : "buffer"; }
+
+}  // namespace
+
+FrameGraph::FrameGraph(GraphRuntime& runtime) : mRuntime(&runtime) {}
+FrameGraph::FrameGraph() = default;
+FrameGraph::~FrameGraph() = default;
+
+uint32_t FrameGraph::addResource(ResourceNode node, ResourceRecord record) {
+  if (mCompiled) internalError("frame graph: resource '" + node.name + "' added after compile()");
+  mDesc.resources.push_back(std::move(node));
+  mResources.push_back(record);
+  return static_cast<uint32_t>(mDesc.resources.size() - 1);
+}
+
+ImageId FrameGraph::importImage(PersistentImage& image) {
+  if (!image.image) internalError("frame graph: importing an empty image");
+  ResourceNode node;
+  node.name = image.image.desc().name;
+  node.kind = ResourceKind::Image;
+  node.imported = true;
+  node.image = image.image.desc();
+  node.initial = image.state;
+  return {addResource(std::move(node), {&image, nullptr, -1}), 0};
+}
+
+BufferId FrameGraph::importBuffer(PersistentBuffer& buffer) {
+  if (!buffer.buffer) internalError("frame graph: importing an empty buffer");
+  ResourceNode node;
+  node.name = buffer.buffer.desc().name;
+  node.kind = ResourceKind::Buffer;
+  node.imported = true;
+  node.buffer = buffer.buffer.desc();
+  node.initial = buffer.state;
+  return {addResource(std::move(node), {nullptr, &buffer, -1}), 0};
+}
+
+GraphBuilder FrameGraph::addPass(std::string name, std::function<void(PassContext&)> execute) {
+  if (mCompiled) internalError("frame graph: pass '" + name + "' added after compile()");
+  mDesc.passes.push_back({std::move(name), {}, false});
+  mPasses.push_back({std::move(execute)});
+  return GraphBuilder(*this, static_cast<uint32_t>(mDesc.passes.size() - 1));
+}
+
+uint32_t FrameGraph::declare(uint32_t pass, uint32_t resource, uint32_t version, Access access,
+                             ResourceKind kind) {
+  const std::string& passName = mDesc.passes[pass].name;
+  if (resource >= mDesc.resources.size())
+    internalError("pass '" + passName + "' uses an invalid " + kindName(kind) + " handle");
+  ResourceNode& res = mDesc.resources[resource];
+  if (res.kind != kind) internalError("pass '" + passName + "': '" + res.name + "' is not a " + kindName(kind));
+  const uint32_t current = res.versions - 1;
+  if (version != current) {
+    int writer = mResources[resource].lastWriter;
+    internalError("pass '" + passName + "' uses a stale handle to '" + res.name + "' (version " +
+                  std::to_string(version) + "; " +
+                  (writer >= 0 ? "pass '" + mDesc.passes[static_cast<size_t>(writer)].name + "'" : "a pass") +
+                  " wrote version " + std::to_string(current) + " since)");
+  }
+  const AccessInfo& info = accessInfo(access);
+  if (kind == ResourceKind::Image && info.imageUsage == 0)
+    internalError("pass '" + passName + "': access '" + info.name + "' is not valid for image '" + res.name + "'");
+  if (kind == ResourceKind::Buffer && info.bufferUsage == 0)
+    internalError("pass '" + passName + "': access '" + info.name + "' is not valid for buffer '" + res.name + "'");
+  if (!res.imported && version == 0 && access != Access::StorageWriteCompute && access != Access::TransferDst)
+    internalError("pass '" + passName + "' reads '" + res.name + "' before any pass wrote it");
+  for (const ResourceAccess& a : mDesc.passes[pass].accesses)
+    if (a.resource == resource)
+      internalError("pass '" + passName + "' declares '" + res.name + "' twice; use one access kind");
+  if (res.imported) {
+    VkFlags have = kind == ResourceKind::Image ? res.image.usage : res.buffer.usage;
+    VkFlags need = kind == ResourceKind::Image ? info.imageUsage : info.bufferUsage;
+    if ((have & need) != need)
+      internalError("pass '" + passName + "': imported '" + res.name + "' was created without the usage '" +
+                    info.name + "' needs");
+  } else if (kind == ResourceKind::Image) {
+    res.image.usage |= info.imageUsage;  // transient usage is exactly what the passes declare
+  } else {
+    res.buffer.usage |= info.bufferUsage;
+  }
+  mDesc.passes[pass].accesses.push_back({resource, version, access});
+  if (info.write) {
+    ++res.versions;
+    mResources[resource].lastWriter = static_cast<int>(pass);
+    return version + 1;
+  }
+  return version;
+}
+
+ImageId GraphBuilder::create(const ImageDesc& desc) {
+  ResourceNode node;
+  node.name = desc.name;
+  node.kind = ResourceKind::Image;
+  node.image = desc;
+  node.image.usage = 0;
+  return {mGraph.addResource(std::move(node), {}), 0};
+}
+
+BufferId GraphBuilder::create(const BufferDesc& desc) {
+  if (desc.memory != BufferMemory::Device)
+    internalError("transient buffer '" + desc.name + "' must be device memory; use uniform() for uploads");
+  ResourceNode node;
+  node.name = desc.name;
+  node.kind = ResourceKind::Buffer;
+  node.buffer = desc;
+  node.buffer.usage = 0;
+  return {mGraph.addResource(std::move(node), {}), 0};
+}
+
+ImageId GraphBuilder::read(ImageId h, Access a) {
+  if (accessInfo(a).write) internalError("read() with write access '" + std::string(accessInfo(a).name) + "'");
+  return {h.id, mGraph.declare(mPass, h.id, h.version, a, ResourceKind::Image)};
+}
+BufferId GraphBuilder::read(BufferId h, Access a) {
+  if (accessInfo(a).write) internalError("read() with write access '" + std::string(accessInfo(a).name) + "'");
+  return {h.id, mGraph.declare(mPass, h.id, h.version, a, ResourceKind::Buffer)};
+}
+ImageId GraphBuilder::write(ImageId h, Access a) {
+  if (!accessInfo(a).write) internalError("write() with read access '" + std::string(accessInfo(a).name) + "'");
+  return {h.id, mGraph.declare(mPass, h.id, h.version, a, ResourceKind::Image)};
+}
+BufferId GraphBuilder::write(BufferId h, Access a) {
+  if (!accessInfo(a).write) internalError("write() with read access '" + std::string(accessInfo(a).name) + "'");
+  return {h.id, mGraph.declare(mPass, h.id, h.version, a, ResourceKind::Buffer)};
+}
+void GraphBuilder::sideEffect() { mGraph.mDesc.passes[mPass].sideEffect = true; }
+
+void FrameGraph::requestOutput(ImageId image, std::string label) {
+  if (mCompiled) internalError("frame graph: output '" + label + "' requested after compile()");
+  if (image.id >= mDesc.resources.size() || mDesc.resources[image.id].kind != ResourceKind::Image)
+    internalError("frame graph: output '" + label + "' is not an image");
+  for (const auto& o : mOutputs)
+    if (o.second == label) internalError("frame graph: output '" + label + "' requested twice");
+  mOutputs.emplace_back(image, std::move(label));
+}
+
+const ReadbackImage& FrameResult::output(std::string_view label) const {
+  for (const ReadbackImage& o : outputs)
+    if (o.label == label) return o;
+  internalError("frame result has no output '" + std::string(label) + "'");
+}
+
+}  // namespace sky

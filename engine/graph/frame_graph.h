@@ -1,0 +1,139 @@
+#pragma once
+// The frame graph: passes declare what they read and write in setup; the graph culls,
+// orders, allocates transient memory (aliasing where lifetimes allow), derives every
+// barrier, records, submits, times each pass and reads requested outputs back.
+// A FrameGraph is built for one frame and executed once; GraphRuntime persists.
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "engine/graph/compile.h"
+#include "engine/graph/graph_desc.h"
+#include "engine/graph/handle.h"
+
+namespace sky {
+
+class Context;
+class FrameGraph;
+class GraphRuntime;
+class PassContext;
+
+// A resource that outlives frames (baked noise, weather map, LUTs): imported into each
+// frame's graph, which keeps `state` current so the next frame synchronises correctly.
+struct PersistentImage {
+  Image image;
+  ResourceState state;
+};
+struct PersistentBuffer {
+  Buffer buffer;
+  ResourceState state;
+};
+
+// Handed to a pass's setup; every declaration is attributed to that pass.
+class GraphBuilder {
+public:
+  // A transient image/buffer, created by this pass (its first access must be a write).
+  ImageId create(const ImageDesc& desc);
+  BufferId create(const BufferDesc& desc);
+  // Declares a read; returns the same handle. A stale handle is an error.
+  ImageId read(ImageId image, Access access);
+  BufferId read(BufferId buffer, Access access);
+  // Declares a write (or read-write); returns the new version, the only valid handle after.
+  [[nodiscard]] ImageId write(ImageId image, Access access);
+  [[nodiscard]] BufferId write(BufferId buffer, Access access);
+  // Keeps the pass even when nothing reads its results.
+  void sideEffect();
+
+private:
+  friend class FrameGraph;
+  GraphBuilder(FrameGraph& graph, uint32_t pass) : mGraph(graph), mPass(pass) {}
+  FrameGraph& mGraph;
+  uint32_t mPass;
+};
+
+struct PassTiming {
+  std::string name;
+  double gpuMs = 0.0;
+};
+
+struct ReadbackImage {
+  std::string label;
+  uint32_t width = 0, height = 0, depth = 1, channels = 0;
+  VkFormat format = VK_FORMAT_UNDEFINED;
+  std::vector<float> pixels;  // interleaved, row 0 = top
+};
+
+struct FrameResult {
+  std::vector<PassTiming> passes;  // in execution order, culled passes absent
+  double gpuMs = 0.0;              // sum of the passes' GPU time
+  double wallMs = 0.0;             // record + submit + wait + readback, on the CPU clock
+  std::vector<ReadbackImage> outputs;
+  // The output requested under `label`; Internal error if there is none.
+  const ReadbackImage& output(std::string_view label) const;
+};
+
+struct CompiledGraph {
+  std::vector<bool> alive;
+  std::vector<uint32_t> order;
+  std::vector<Lifetime> lifetimes;
+  MemoryPlan memory;
+  BarrierPlan barriers;
+};
+
+class FrameGraph {
+public:
+  explicit FrameGraph(GraphRuntime& runtime);
+  // A graph without a GPU: it can be built, compiled (memory sizes estimated from texel
+  // counts) and dumped, but not executed. For tests and tools.
+  FrameGraph();
+  ~FrameGraph();
+
+  ImageId importImage(PersistentImage& image);
+  BufferId importBuffer(PersistentBuffer& buffer);
+  // Adds a pass; declare its resources through the returned builder before adding the next.
+  GraphBuilder addPass(std::string name, std::function<void(PassContext&)> execute);
+  // Adds a pass object (see STYLE.md): P::kName, P::Inputs, P::Outputs, setup(), execute().
+  // The pass object must outlive execute().
+  template <class P>
+  typename P::Outputs add(P& pass, const typename P::Inputs& inputs) {
+    GraphBuilder b = addPass(P::kName, [&pass](PassContext& ctx) { pass.execute(ctx); });
+    return pass.setup(b, inputs);
+  }
+  // Reads `image` back to the host after the frame under `label` (main image, AOVs, debug).
+  void requestOutput(ImageId image, std::string label);
+
+  const GraphDesc& desc() const { return mDesc; }
+  // Runs the compile stages; idempotent. Nothing may be added afterwards.
+  const CompiledGraph& compile();
+  // Compiles if needed, records, submits, waits and reads back. Once per graph.
+  FrameResult execute();
+  // Graphviz text of the graph (compiled: order, culled passes, memory slots, timings).
+  std::string toDot(const FrameResult* timings = nullptr) const;
+
+private:
+  friend class GraphBuilder;
+  friend class PassContext;
+  struct PassRecord {
+    std::function<void(PassContext&)> execute;
+  };
+  struct ResourceRecord {
+    PersistentImage* image = nullptr;  // imported
+    PersistentBuffer* buffer = nullptr;
+    int lastWriter = -1;  // pass that wrote the current version (for stale-handle messages)
+  };
+  uint32_t declare(uint32_t pass, uint32_t resource, uint32_t version, Access access, ResourceKind kind);
+  uint32_t addResource(ResourceNode node, ResourceRecord record);
+
+  GraphRuntime* mRuntime = nullptr;
+  GraphDesc mDesc;
+  std::vector<PassRecord> mPasses;
+  std::vector<ResourceRecord> mResources;
+  std::vector<std::pair<ImageId, std::string>> mOutputs;
+  std::optional<CompiledGraph> mCompiled;
+  bool mExecuted = false;
+};
+
+}  // namespace sky

@@ -1,0 +1,241 @@
+// FrameGraph::compile and FrameGraph::execute: the GPU side of the frame graph.
+#include <chrono>
+#include <set>
+
+#include "engine/core/error.h"
+#include "engine/gpu/context.h"
+#include "engine/gpu/texel_convert.h"
+#include "engine/gpu/timestamp_pool.h"
+#include "engine/gpu/vk_check.h"
+#include "engine/graph/frame_graph.h"
+#include "engine/graph/graph_runtime.h"
+#include "engine/graph/pass_context.h"
+
+namespace sky {
+namespace {
+
+VkDeviceSize texelBytes(const ImageDesc& d) {
+  return VkDeviceSize(d.width) * d.height * (d.dim == ImageDim::Tex3D ? d.depth : 1) *
+         formatTexelSize(d.format);
+}
+
+MemoryRequirement requirementOf(const Context& ctx, const ResourceNode& r) {
+  VkMemoryRequirements2 req{VK_STRUCTURE_TYPE_MEMORY_REQUIREMENTS_2};
+  if (r.kind == ResourceKind::Image) {
+    checkImageDesc(ctx, r.image);
+    VkImageCreateInfo info = imageCreateInfo(r.image);
+    VkDeviceImageMemoryRequirements q{VK_STRUCTURE_TYPE_DEVICE_IMAGE_MEMORY_REQUIREMENTS};
+    q.pCreateInfo = &info;
+    vkGetDeviceImageMemoryRequirements(ctx.device(), &q, &req);
+  } else {
+    VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+    info.size = r.buffer.size;
+    info.usage = r.buffer.usage;
+    VkDeviceBufferMemoryRequirements q{VK_STRUCTURE_TYPE_DEVICE_BUFFER_MEMORY_REQUIREMENTS};
+    q.pCreateInfo = &info;
+    vkGetDeviceBufferMemoryRequirements(ctx.device(), &q, &req);
+  }
+  return {req.memoryRequirements.size, req.memoryRequirements.alignment,
+          req.memoryRequirements.memoryTypeBits};
+}
+
+// Without a device: the texel bytes, as if every resource could share every slot.
+MemoryRequirement estimatedRequirement(const ResourceNode& r) {
+  return {r.kind == ResourceKind::Image ? texelBytes(r.image) : r.buffer.size, 256, ~0u};
+}
+
+}  // namespace
+
+const CompiledGraph& FrameGraph::compile() {
+  if (mCompiled) return *mCompiled;
+  if (!mOutputs.empty()) {
+    // Readback is an ordinary side-effect pass, so its barriers come from the same rules.
+    GraphBuilder b = addPass("readback", [this](PassContext& ctx) {
+      for (size_t i = 0; i < mOutputs.size(); ++i) {
+        const Image& image = ctx.image(mOutputs[i].first);
+        const ImageDesc& d = image.desc();
+        VkBufferImageCopy region{};
+        region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+        region.imageExtent = {d.width, d.height, d.dim == ImageDim::Tex3D ? d.depth : 1};
+        vkCmdCopyImageToBuffer(ctx.cmd(), image.image(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                               mRuntime->mReadback[i].buffer(), 1, &region);
+      }
+    });
+    b.sideEffect();
+    std::set<uint32_t> declared;
+    for (const auto& [handle, label] : mOutputs)
+      if (declared.insert(handle.id).second) b.read(handle, Access::TransferSrc);
+  }
+  CompiledGraph c;
+  c.alive = cull(mDesc);
+  c.order = order(mDesc, c.alive);
+  c.lifetimes = computeLifetimes(mDesc, c.order);
+  std::vector<MemoryRequirement> req(mDesc.resources.size());
+  for (uint32_t r = 0; r < mDesc.resources.size(); ++r)
+    if (!mDesc.resources[r].imported && c.lifetimes[r].used())
+      req[r] = mRuntime ? requirementOf(mRuntime->gpu(), mDesc.resources[r])
+                        : estimatedRequirement(mDesc.resources[r]);
+  c.memory = assignMemory(mDesc, c.lifetimes, req);
+  c.barriers = buildBarriers(mDesc, c.order, c.memory);
+  mCompiled = std::move(c);
+  return *mCompiled;
+}
+
+FrameResult FrameGraph::execute() {
+  if (mExecuted) internalError("frame graph executed twice; build a new graph per frame");
+  mExecuted = true;
+  if (!mRuntime) internalError("frame graph built without a GPU runtime cannot execute");
+  GraphRuntime& runtime = *mRuntime;
+  const auto start = std::chrono::steady_clock::now();
+  const CompiledGraph& c = compile();
+  const Context& ctx = runtime.gpu();
+  GraphRuntime::Transients& t = runtime.mTransients;
+
+  // Transient memory: reuse last frame's allocation while the graph keeps its shape.
+  std::string key;
+  for (uint32_t r = 0; r < mDesc.resources.size(); ++r) {
+    const ResourceNode& n = mDesc.resources[r];
+    if (n.imported || c.memory.slotOf[r] < 0) continue;
+    key += std::to_string(r) + ":" + n.name + ":" + std::to_string(c.memory.slotOf[r]) + ":";
+    key += n.kind == ResourceKind::Image
+               ? std::to_string(n.image.format) + "," + std::to_string(n.image.width) + "," +
+                     std::to_string(n.image.height) + "," + std::to_string(n.image.depth) + "," +
+                     std::to_string(static_cast<int>(n.image.dim)) + "," + std::to_string(n.image.usage)
+               : std::to_string(n.buffer.size) + "," + std::to_string(n.buffer.usage);
+    key += ";";
+  }
+  if (key != t.key || t.images.size() != mDesc.resources.size()) {
+    runtime.releaseTransients();
+    for (const MemorySlot& slot : c.memory.slots) {
+      VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+      alloc.allocationSize = slot.size;
+      alloc.memoryTypeIndex = ctx.memoryType(slot.typeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+      VkDeviceMemory memory;
+      VkResult r = vkAllocateMemory(ctx.device(), &alloc, nullptr, &memory);
+      if (r == VK_ERROR_OUT_OF_DEVICE_MEMORY || r == VK_ERROR_OUT_OF_HOST_MEMORY)
+        inputError("frame graph: " + std::to_string(slot.size >> 20) +
+                   " MiB of transient memory do not fit on " + ctx.deviceName() +
+                   " (lower output.width/height)");
+      SKY_VK(r);
+      t.memory.push_back(memory);
+      t.bytes += slot.size;
+    }
+    t.images.resize(mDesc.resources.size());
+    t.buffers.resize(mDesc.resources.size());
+    for (uint32_t r = 0; r < mDesc.resources.size(); ++r) {
+      const ResourceNode& n = mDesc.resources[r];
+      int slot = c.memory.slotOf[r];
+      if (n.imported || slot < 0) continue;
+      if (n.kind == ResourceKind::Image) {
+        t.images[r] = Image(ctx, n.image, false);
+        t.images[r].bindMemory(t.memory[static_cast<size_t>(slot)], 0);
+      } else {
+        t.buffers[r] = Buffer(ctx, n.buffer, false);
+        t.buffers[r].bindMemory(t.memory[static_cast<size_t>(slot)], 0);
+      }
+    }
+    t.key = key;
+  }
+
+  // Host-visible buffers for the requested outputs.
+  runtime.mReadback.resize(mOutputs.size());
+  for (size_t i = 0; i < mOutputs.size(); ++i) {
+    const ImageDesc& d = mDesc.resources[mOutputs[i].first.id].image;
+    VkDeviceSize bytes = texelBytes(d);
+    if (!runtime.mReadback[i] || runtime.mReadback[i].size() != bytes)
+      runtime.mReadback[i] = Buffer(ctx, {"readback " + mOutputs[i].second, bytes,
+                                           VK_BUFFER_USAGE_TRANSFER_DST_BIT, BufferMemory::HostVisible});
+  }
+
+  VkCommandBuffer cmd = runtime.beginFrame();
+  TimestampPool timestamps(ctx, static_cast<uint32_t>(c.order.size()));
+  timestamps.reset(cmd);
+  for (size_t pos = 0; pos < c.order.size(); ++pos) {
+    const uint32_t pass = c.order[pos];
+    timestamps.begin(cmd, static_cast<uint32_t>(pos));
+    std::vector<VkImageMemoryBarrier2> images;
+    std::vector<VkBufferMemoryBarrier2> buffers;
+    for (const Barrier& b : c.barriers.before[pos]) {
+      const ResourceNode& n = mDesc.resources[b.resource];
+      if (n.kind == ResourceKind::Image) {
+        VkImageMemoryBarrier2 ib{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
+        ib.srcStageMask = b.srcStage;
+        ib.srcAccessMask = b.srcAccess;
+        ib.dstStageMask = b.dstStage;
+        ib.dstAccessMask = b.dstAccess;
+        ib.oldLayout = b.oldLayout;
+        ib.newLayout = b.newLayout;
+        ib.srcQueueFamilyIndex = ib.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+        ib.image = n.imported ? mResources[b.resource].image->image.image() : t.images[b.resource].image();
+        ib.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+        images.push_back(ib);
+      } else {
+        VkBufferMemoryBarrier2 bb{VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER_2};
+        bb.srcStageMask = b.srcStage;
+        bb.srcAccessMask = b.srcAccess;
+        bb.dstStageMask = b.dstStage;
+        bb.dstAccessMask = b.dstAccess;
+        bb.srcQueueFamilyIndex = bb.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+        bb.buffer = n.imported ? mResources[b.resource].buffer->buffer.buffer() : t.buffers[b.resource].buffer();
+        bb.size = VK_WHOLE_SIZE;
+        buffers.push_back(bb);
+      }
+    }
+    if (!images.empty() || !buffers.empty()) {
+      VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+      dep.imageMemoryBarrierCount = static_cast<uint32_t>(images.size());
+      dep.pImageMemoryBarriers = images.data();
+      dep.bufferMemoryBarrierCount = static_cast<uint32_t>(buffers.size());
+      dep.pBufferMemoryBarriers = buffers.data();
+      vkCmdPipelineBarrier2(cmd, &dep);
+    }
+    PassContext pc(*this, pass, cmd);
+    mPasses[pass].execute(pc);
+    timestamps.end(cmd, static_cast<uint32_t>(pos));
+  }
+  if (!mOutputs.empty()) {
+    // The copies must be visible to the host reading the mapped buffers after the fence.
+    VkMemoryBarrier2 host{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+    host.srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
+    host.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
+    host.dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT;
+    host.dstAccessMask = VK_ACCESS_2_HOST_READ_BIT;
+    VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+    dep.memoryBarrierCount = 1;
+    dep.pMemoryBarriers = &host;
+    vkCmdPipelineBarrier2(cmd, &dep);
+  }
+  runtime.submitAndWait();
+
+  FrameResult result;
+  std::vector<double> ms = timestamps.resultsMs();
+  for (size_t pos = 0; pos < c.order.size(); ++pos) {
+    double passMs = pos < ms.size() ? ms[pos] : 0.0;
+    result.passes.push_back({mDesc.passes[c.order[pos]].name, passMs});
+    result.gpuMs += passMs;
+  }
+  for (size_t i = 0; i < mOutputs.size(); ++i) {
+    const ImageDesc& d = mDesc.resources[mOutputs[i].first.id].image;
+    const Buffer& buf = runtime.mReadback[i];
+    buf.invalidate();
+    ReadbackImage out;
+    out.label = mOutputs[i].second;
+    out.width = d.width;
+    out.height = d.height;
+    out.depth = d.dim == ImageDim::Tex3D ? d.depth : 1;
+    out.channels = formatChannelCount(d.format);
+    out.format = d.format;
+    out.pixels = texelsToFloat(d.format, {static_cast<const uint8_t*>(buf.mapped()), buf.size()});
+    result.outputs.push_back(std::move(out));
+  }
+  for (uint32_t r = 0; r < mDesc.resources.size(); ++r) {
+    if (!mDesc.resources[r].imported || !c.lifetimes[r].used()) continue;
+    if (mResources[r].image) mResources[r].image->state = c.barriers.finalState[r];
+    if (mResources[r].buffer) mResources[r].buffer->state = c.barriers.finalState[r];
+  }
+  result.wallMs =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace sky

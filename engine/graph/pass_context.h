@@ -1,0 +1,69 @@
+#pragma once
+// What a pass's execute() gets: the command buffer, the resources it declared, uniform
+// uploads and one call that binds a pipeline's descriptors and dispatches. Passes record
+// commands only; a resource that setup() did not declare is an error here.
+#include <cstdint>
+#include <initializer_list>
+
+#include <vulkan/vulkan.h>
+
+#include "engine/graph/graph_runtime.h"
+#include "engine/graph/handle.h"
+
+namespace sky {
+
+class ComputePipeline;
+class Context;
+class FrameGraph;
+class Sampler;
+
+// One descriptor for PassContext::dispatch. The descriptor type comes from the shader's
+// reflection; the image layout from the access the pass declared.
+struct Binding {
+  enum class Kind : uint8_t { Image, Buffer, Uniform };
+  uint32_t binding = 0;
+  Kind kind = Kind::Image;
+  ImageId image;
+  BufferId buffer;
+  UniformRange uniform;
+  const Sampler* sampler = nullptr;
+
+  static Binding of(uint32_t b, ImageId h, const Sampler* s = nullptr) {
+    Binding r; r.binding = b; r.kind = Kind::Image; r.image = h; r.sampler = s; return r;
+  }
+  static Binding of(uint32_t b, BufferId h) {
+    Binding r; r.binding = b; r.kind = Kind::Buffer; r.buffer = h; return r;
+  }
+  static Binding of(uint32_t b, UniformRange u) {
+    Binding r; r.binding = b; r.kind = Kind::Uniform; r.uniform = u; return r;
+  }
+};
+
+class PassContext {
+public:
+  VkCommandBuffer cmd() const { return mCmd; }
+  const Context& gpu() const;
+  const Image& image(ImageId handle) const;
+  const Buffer& buffer(BufferId handle) const;
+  // Copies `data` into this frame's uniform arena.
+  UniformRange uniform(const void* data, VkDeviceSize size) const;
+  template <class T>
+  UniformRange uniform(const T& value) const { return uniform(&value, sizeof(T)); }
+  // Binds `pipeline`, writes every binding its shader declares (all must be given, types
+  // must match the reflection), pushes constants and dispatches `groups`.
+  void dispatch(const ComputePipeline& pipeline, std::initializer_list<Binding> bindings,
+                uint32_t groupsX, uint32_t groupsY, uint32_t groupsZ = 1,
+                const void* pushConstants = nullptr, uint32_t pushSize = 0) const;
+
+private:
+  friend class FrameGraph;
+  PassContext(FrameGraph& graph, uint32_t pass, VkCommandBuffer cmd)
+      : mGraph(graph), mPass(pass), mCmd(cmd) {}
+  const struct ResourceAccess* declared(uint32_t resource) const;
+
+  FrameGraph& mGraph;
+  uint32_t mPass;
+  VkCommandBuffer mCmd;
+};
+
+}  // namespace sky
