@@ -1,7 +1,9 @@
 #include "engine/scene/iso_time.h"
 
+#include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <string>
 
 namespace sky {
 namespace {
@@ -76,14 +78,15 @@ std::optional<IsoTime> IsoTime::parse(std::string_view t, std::string* why) {
   if (expect(t, p, ':')) {
     if (!digits(t, p, 2, second)) return fail(why, kForm);
     if (expect(t, p, '.') || expect(t, p, ',')) {
-      double scale = 0.1;
       size_t start = p;
-      while (p < t.size() && t[p] >= '0' && t[p] <= '9') {
-        frac += (t[p] - '0') * scale;
-        scale *= 0.1;
-        ++p;
-      }
+      while (p < t.size() && t[p] >= '0' && t[p] <= '9') ++p;
       if (p == start) return fail(why, kForm);
+      // One correctly rounded conversion of "0.<digits>": summing digit * 0.1^k drifts
+      // (".3" gave 0.30000000000000004), and format() must print back what was read.
+      std::string digitsText = "0." + std::string(t.substr(start, p - start));
+      std::from_chars(digitsText.data(), digitsText.data() + digitsText.size(), frac);
+      // ".99999999999999999999" rounds to 1.0; keep the documented [0, 1).
+      if (frac >= 1.0) frac = std::nextafter(1.0, 0.0);
     }
   }
   int offset = 0;
@@ -99,13 +102,15 @@ std::optional<IsoTime> IsoTime::parse(std::string_view t, std::string* why) {
     } else if (p < t.size()) {
       if (!digits(t, p, 2, om)) return fail(why, kForm);
     }
-    if (oh > 18 || om > 59) return fail(why, "time zone offset out of range (at most +-18:00)");
+    if (om > 59 || oh * 60 + om > 18 * 60)
+      return fail(why, "time zone offset out of range (at most +-18:00)");
     offset = sign * (oh * 60 + om);
   } else {
     return fail(why, "missing time zone: add Z (UTC) or an offset such as +02:00");
   }
   if (p != t.size()) return fail(why, kForm);
-  if (year < 1 || month < 1 || month > 12) return fail(why, "month out of range");
+  if (year < 1) return fail(why, "year out of range (0001 to 9999)");
+  if (month < 1 || month > 12) return fail(why, "month out of range");
   if (day < 1 || day > daysInMonth(year, month)) return fail(why, "day out of range for the month");
   if (hour > 23 || minute > 59 || second > 59) return fail(why, "hour, minute or second out of range");
 
@@ -130,11 +135,11 @@ std::string IsoTime::format() const {
                 static_cast<int>(secs % 60));
   std::string s = buf;
   if (subsecond > 0.0) {
-    char f[32];
-    std::snprintf(f, sizeof f, "%.9f", subsecond);  // "0.xxxxxxxxx"
-    std::string frac = f + 1;
-    while (frac.size() > 2 && frac.back() == '0') frac.pop_back();
-    s += frac;
+    // Shortest fixed-point text that reads back as the same double ("0.25" -> ".25").
+    // A fixed 9 digits lost precision and printed 0.9999999999 as ".0".
+    char f[400];
+    auto [end, ec] = std::to_chars(f, f + sizeof f, subsecond, std::chars_format::fixed);
+    if (ec == std::errc() && end - f > 2) s.append(f + 1, end);  // skip the leading '0'
   }
   if (offsetMinutes == 0) {
     s += "Z";

@@ -2,6 +2,8 @@
 // The scene: plain settings structs, filled from YAML or JSON (engine/scene/scene_io.h).
 // Defaults here are the defaults of the file format; `skyrender validate` prints them back.
 // File keys are snake_case versions of the member names (exposureEv -> exposure_ev).
+// Keys, ranges and descriptions are written once, in engine/scene/scene_fields.h: a new
+// member here needs one line there to be read, printed and put in the JSON Schema.
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -26,7 +28,7 @@ struct CameraSettings {
   double longitude = 8.54;     // degrees, -180..180
   double altitudeM = 500.0;    // metres above sea level, -500..100000
   double heading = 180.0;      // degrees clockwise from north, -360..360
-  double pitch = 12.0;         // degrees above the horizon, -90..90
+  double pitch = 15.0;         // degrees above the horizon, -90..90
   double verticalFov = 60.0;   // degrees, 1..179
 };
 
@@ -45,11 +47,11 @@ struct SunSettings {
 
 // Kozlov 3.1 clear sky: C = (Csky h + Cfog (1 - h)) (1 - l) + Csun l.
 struct SkySettings {
-  glm::vec3 skyColor{0.16f, 0.34f, 0.80f};  // Csky, scene-linear, each 0..1e6
-  glm::vec3 fogColor{0.62f, 0.72f, 0.86f};  // Cfog
-  glm::vec3 sunColor{1.00f, 0.88f, 0.70f};  // Csun (glow and disc colour)
-  double glowSize = 0.35;                   // s, 0..1
-  double hazeHeight = 0.35;                 // hmax as a fraction of the dome height, 0.001..1
+  glm::vec3 skyColor{0.07f, 0.20f, 0.65f};  // Csky, scene-linear, each 0..1e6
+  glm::vec3 fogColor{0.50f, 0.62f, 0.80f};  // Cfog
+  glm::vec3 sunColor{1.00f, 0.85f, 0.65f};  // Csun (glow and disc colour)
+  double glowSize = 0.30;                   // s, 0..1
+  double hazeHeight = 0.20;                 // hmax as a fraction of the dome height, 0.001..1
 };
 
 struct Scene {

@@ -1,0 +1,81 @@
+#pragma once
+// Strict typed read of a ConfigNode tree through the field description (scene_fields.h).
+// Any unknown key, wrong type or out-of-range value throws sky::Error(BadInput) as
+// "<file>:<line>:<col>: <key.path>: <what>".
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "engine/scene/config_tree.h"
+#include "engine/scene/field_rules.h"
+#include "engine/scene/iso_time.h"
+
+namespace sky::detail {
+
+// Lists a section's keys (the reader checks a map against them before reading it).
+class KeyCollector {
+ public:
+  std::vector<std::string> keys;
+
+  template <class T, class... Rest>
+  void section(std::string_view key, T&, Rest&&...) {
+    keys.emplace_back(key);
+  }
+  template <class T, class... Rest>
+  void field(std::string_view key, T&, Rest&&...) {
+    keys.emplace_back(key);
+  }
+  void bothOrNeither(std::string_view, std::string_view) {}
+};
+
+class SceneReader {
+ public:
+  // `map` must outlive the reader; `path` is the key path of the map ("" at the top).
+  SceneReader(const ConfigNode& map, std::string path) : mMap(map), mPath(std::move(path)) {}
+
+  // Reads a whole section: unknown keys first (in document order), then every field.
+  template <class T>
+  static void read(const ConfigNode& map, const std::string& path, T& settings) {
+    KeyCollector known;
+    describe(known, settings);
+    checkKeys(map, path, known.keys);
+    SceneReader reader(map, path);
+    describe(reader, settings);
+  }
+
+  template <class T>
+  void section(std::string_view key, T& settings, std::string_view) {
+    const ConfigNode* node = mMap.find(key);
+    if (!node) return;
+    std::string path = childPath(key);
+    if (!node->isMap())
+      fail(*node, path, "expected a map of settings, got " + node->describeKind());
+    read(*node, path, settings);
+  }
+
+  void field(std::string_view key, int& value, NumberRange range, std::string_view);
+  void field(std::string_view key, double& value, NumberRange range, std::string_view);
+  void field(std::string_view key, std::optional<double>& value, NumberRange range,
+             std::string_view);
+  void field(std::string_view key, glm::vec3& value, NumberRange range, std::string_view);
+  void field(std::string_view key, std::string& value, const TextRule& rule, std::string_view);
+  void field(std::string_view key, IsoTime& value, std::string_view);
+  void bothOrNeither(std::string_view a, std::string_view b);
+
+ private:
+  static void checkKeys(const ConfigNode& map, const std::string& path,
+                        const std::vector<std::string>& known);
+  [[noreturn]] static void fail(const ConfigNode& node, const std::string& path,
+                                const std::string& what);
+  static double number(const ConfigNode& node, const std::string& path, NumberRange range,
+                       const char* expected);
+  std::string childPath(std::string_view key) const;
+
+  const ConfigNode& mMap;
+  std::string mPath;
+};
+
+}  // namespace sky::detail

@@ -1,0 +1,60 @@
+#pragma once
+// Turns settings back into a ConfigNode tree through the field description, and prints
+// trees as YAML or JSON text. Numbers are printed shortest-round-trip, so reading the text
+// back gives identical settings.
+#include <optional>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include <glm/vec3.hpp>
+#include <nlohmann/json.hpp>
+
+#include "engine/scene/config_tree.h"
+#include "engine/scene/field_rules.h"
+#include "engine/scene/iso_time.h"
+
+namespace sky::detail {
+
+class SceneWriter {
+ public:
+  // Appends the fields of `settings` to `map` (a Map node).
+  template <class T>
+  static void write(ConfigNode& map, T& settings) {
+    SceneWriter writer(map);
+    describe(writer, settings);
+    writer.checkPairs();
+  }
+
+  template <class T>
+  void section(std::string_view key, T& settings, std::string_view) {
+    write(mMap.add(std::string(key), {}, ConfigNode::makeMap({})), settings);
+  }
+
+  void field(std::string_view key, const int& value, NumberRange, std::string_view);
+  void field(std::string_view key, const double& value, NumberRange, std::string_view);
+  void field(std::string_view key, const std::optional<double>& value, NumberRange,
+             std::string_view);
+  void field(std::string_view key, const glm::vec3& value, NumberRange, std::string_view);
+  void field(std::string_view key, const std::string& value, const TextRule&, std::string_view);
+  void field(std::string_view key, const IsoTime& value, std::string_view);
+  // Checked once the section is complete (the pair may be described in any order).
+  void bothOrNeither(std::string_view a, std::string_view b) { mPairs.emplace_back(a, b); }
+
+ private:
+  explicit SceneWriter(ConfigNode& map) : mMap(map) {}
+  void checkPairs() const;
+
+  ConfigNode& mMap;
+  std::vector<std::pair<std::string, std::string>> mPairs;
+};
+
+// Block-style YAML (flow lists for colours), strings always double-quoted.
+std::string toYamlText(const ConfigNode& root);
+// Two-space indented JSON, lists of scalars on one line.
+std::string toJsonText(const ConfigNode& root);
+// A JSON value (integers stay integers).
+nlohmann::json toJsonValue(const ConfigNode& node);
+
+}  // namespace sky::detail

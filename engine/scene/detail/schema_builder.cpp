@@ -1,0 +1,115 @@
+#include "engine/scene/detail/schema_builder.h"
+
+#include <cmath>
+
+#include "engine/scene/detail/number_text.h"
+
+namespace sky::detail {
+
+const char* const kIsoTimePattern =
+    "^[0-9]{4}-[0-9]{2}-[0-9]{2}[Tt ][0-9]{2}:[0-9]{2}(:[0-9]{2}([.,][0-9]+)?)?"
+    "([Zz]|[+-][0-9]{2}(:?[0-9]{2})?)$";
+
+namespace {
+
+using Json = SchemaBuilder::Json;
+
+// Limits and defaults go through the shortest decimal text, so 0.16f appears as 0.16 and
+// whole numbers as integers rather than 90.0.
+Json numberJson(double v) {
+  if (std::isfinite(v) && v == std::floor(v) && std::fabs(v) < 9.0e15)
+    return static_cast<int64_t>(v);
+  return *parseNumber(formatDouble(v));
+}
+
+Json floatJson(float v) {
+  if (std::isfinite(v) && v == std::floor(v) && std::fabs(v) < 1.0e7f)
+    return static_cast<int64_t>(v);
+  return *parseNumber(formatFloat(v));
+}
+
+Json numberSchema(const char* type, NumberRange range, std::string_view description) {
+  Json s = Json::object();
+  s["description"] = std::string(description);
+  s["type"] = type;
+  s["minimum"] = numberJson(range.min);
+  s["maximum"] = numberJson(range.max);
+  return s;
+}
+
+}  // namespace
+
+Json SchemaBuilder::emptyObject(std::string_view description) {
+  Json s = Json::object();
+  s["description"] = std::string(description);
+  s["type"] = "object";
+  s["additionalProperties"] = false;
+  s["properties"] = Json::object();
+  return s;
+}
+
+void SchemaBuilder::field(std::string_view key, const int& value, NumberRange range,
+                          std::string_view description) {
+  Json s = numberSchema("integer", range, description);
+  s["default"] = value;
+  mSchema["properties"][std::string(key)] = std::move(s);
+}
+
+void SchemaBuilder::field(std::string_view key, const double& value, NumberRange range,
+                          std::string_view description) {
+  Json s = numberSchema("number", range, description);
+  s["default"] = numberJson(value);
+  mSchema["properties"][std::string(key)] = std::move(s);
+}
+
+void SchemaBuilder::field(std::string_view key, const std::optional<double>& value,
+                          NumberRange range, std::string_view description) {
+  Json s = numberSchema("number", range, description);
+  if (value) s["default"] = numberJson(*value);
+  mSchema["properties"][std::string(key)] = std::move(s);
+}
+
+void SchemaBuilder::field(std::string_view key, const glm::vec3& value, NumberRange range,
+                          std::string_view description) {
+  Json s = Json::object();
+  s["description"] = std::string(description);
+  s["type"] = "array";
+  Json item = Json::object();
+  item["type"] = "number";
+  item["minimum"] = numberJson(range.min);
+  item["maximum"] = numberJson(range.max);
+  s["items"] = std::move(item);
+  s["minItems"] = 3;
+  s["maxItems"] = 3;
+  s["default"] = Json::array({floatJson(value.x), floatJson(value.y), floatJson(value.z)});
+  mSchema["properties"][std::string(key)] = std::move(s);
+}
+
+void SchemaBuilder::field(std::string_view key, const std::string& value, const TextRule& rule,
+                          std::string_view description) {
+  Json s = Json::object();
+  s["description"] = std::string(description);
+  s["type"] = "string";
+  if (rule.minLength) s["minLength"] = rule.minLength;
+  if (rule.maxLength) s["maxLength"] = rule.maxLength;
+  if (rule.pattern) s["pattern"] = rule.pattern;
+  s["default"] = value;
+  mSchema["properties"][std::string(key)] = std::move(s);
+}
+
+void SchemaBuilder::field(std::string_view key, const IsoTime& value,
+                          std::string_view description) {
+  Json s = Json::object();
+  s["description"] = std::string(description);
+  s["type"] = "string";
+  s["pattern"] = kIsoTimePattern;
+  s["default"] = value.format();
+  mSchema["properties"][std::string(key)] = std::move(s);
+}
+
+void SchemaBuilder::bothOrNeither(std::string_view a, std::string_view b) {
+  mSchema["dependentRequired"][std::string(a)] = Json::array({std::string(b)});
+  mSchema["dependentRequired"][std::string(b)] = Json::array({std::string(a)});
+}
+
+}  // namespace sky::detail

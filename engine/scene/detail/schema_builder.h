@@ -1,0 +1,58 @@
+#pragma once
+// Builds the JSON Schema (draft 2020-12) of the scene format from the field description,
+// with the defaults taken from the settings it walks.
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include <glm/vec3.hpp>
+#include <nlohmann/json.hpp>
+
+#include "engine/scene/field_rules.h"
+#include "engine/scene/iso_time.h"
+
+namespace sky::detail {
+
+// The pattern the schema gives for times. IsoTime::parse is the real rule; a test checks
+// that the two agree on a list of good and bad times.
+extern const char* const kIsoTimePattern;
+
+class SchemaBuilder {
+ public:
+  using Json = nlohmann::ordered_json;
+
+  // An object schema for `settings`, with its properties described and defaults filled.
+  template <class T>
+  static Json objectSchema(T& settings, std::string_view description) {
+    Json schema = emptyObject(description);
+    SchemaBuilder builder(schema);
+    describe(builder, settings);
+    return schema;
+  }
+
+  template <class T>
+  void section(std::string_view key, T& settings, std::string_view description) {
+    mSchema["properties"][std::string(key)] = objectSchema(settings, description);
+  }
+
+  void field(std::string_view key, const int& value, NumberRange range,
+             std::string_view description);
+  void field(std::string_view key, const double& value, NumberRange range,
+             std::string_view description);
+  void field(std::string_view key, const std::optional<double>& value, NumberRange range,
+             std::string_view description);
+  void field(std::string_view key, const glm::vec3& value, NumberRange range,
+             std::string_view description);
+  void field(std::string_view key, const std::string& value, const TextRule& rule,
+             std::string_view description);
+  void field(std::string_view key, const IsoTime& value, std::string_view description);
+  void bothOrNeither(std::string_view a, std::string_view b);
+
+ private:
+  explicit SchemaBuilder(Json& schema) : mSchema(schema) {}
+  static Json emptyObject(std::string_view description);
+
+  Json& mSchema;
+};
+
+}  // namespace sky::detail

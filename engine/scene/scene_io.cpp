@@ -1,0 +1,76 @@
+#include "engine/scene/scene_io.h"
+
+#include <algorithm>
+#include <cctype>
+
+#include "engine/core/error.h"
+#include "engine/core/files.h"
+#include "engine/scene/config_tree.h"
+#include "engine/scene/detail/overrides.h"
+#include "engine/scene/detail/scene_reader.h"
+#include "engine/scene/detail/scene_writer.h"
+#include "engine/scene/detail/schema_builder.h"
+#include "engine/scene/scene_fields.h"
+
+namespace sky {
+namespace {
+
+ConfigNode sceneTree(const Scene& scene) {
+  Scene copy = scene;  // the description takes mutable references (the reader fills them)
+  ConfigNode root = ConfigNode::makeMap({});
+  detail::SceneWriter::write(root, copy);
+  return root;
+}
+
+}  // namespace
+
+ConfigFormat formatForPath(const std::filesystem::path& path) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (ext == ".yaml" || ext == ".yml") return ConfigFormat::Yaml;
+  if (ext == ".json") return ConfigFormat::Json;
+  inputError(path.string() + ": unsupported scene file extension " +
+             (ext.empty() ? std::string("(none)") : "'" + path.extension().string() + "'") +
+             ": use .yaml, .yml or .json");
+}
+
+Scene loadSceneText(std::string_view text, ConfigFormat format, const std::string& sourceName,
+                    const std::vector<std::string>& overrides) {
+  ConfigNode root = format == ConfigFormat::Yaml ? parseYamlTree(text, sourceName)
+                                                 : parseJsonTree(text, sourceName);
+  for (const std::string& o : overrides) detail::applyOverride(root, o);
+  Scene scene;
+  detail::SceneReader::read(root, "", scene);
+  return scene;
+}
+
+Scene loadSceneFile(const std::filesystem::path& path, const std::vector<std::string>& overrides) {
+  ConfigFormat format = formatForPath(path);
+  return loadSceneText(readTextFile(path), format, path.string(), overrides);
+}
+
+std::string writeScene(const Scene& scene, ConfigFormat format) {
+  ConfigNode root = sceneTree(scene);
+  return format == ConfigFormat::Yaml ? detail::toYamlText(root) : detail::toJsonText(root);
+}
+
+std::string sceneJsonSchema() {
+  Scene defaults;
+  detail::SchemaBuilder::Json schema = detail::SchemaBuilder::Json::object();
+  schema["$schema"] = "https://json-schema.org/draft/2020-12/schema";
+  schema["title"] = "skylayers scene";
+  detail::SchemaBuilder::Json body = detail::SchemaBuilder::objectSchema(
+      defaults,
+      "A skylayers scene file (YAML or JSON). Every key is optional; absent keys take "
+      "the defaults shown.");
+  // Appended after the header keys so "$schema" and "title" come first in the file.
+  for (auto& [key, value] : body.items()) schema[key] = value;
+  return schema.dump(2) + "\n";
+}
+
+nlohmann::json sceneToJson(const Scene& scene) {
+  return detail::toJsonValue(sceneTree(scene));
+}
+
+}  // namespace sky
