@@ -1,0 +1,14 @@
+#pragma once
+// The skyrender sub-commands. Each returns the process exit code or throws sky::Error.
+#include <string>
+#include <vector>
+
+namespace sky {
+
+int renderCommand(const std::vector<std::string>& args);
+int validateCommand(const std::vector<std::string>& args);
+int schemaCommand(const std::vector<std::string>& args);
+int devicesCommand(const std::vector<std::string>& args);
+const char* usageText();
+
+}  // namespace sky

@@ -1,0 +1,3 @@
+#pragma once
+// configs/default.yaml, embedded at build time.
+const char* skyDefaultSceneText();

@@ -1,0 +1,33 @@
+#include "engine/render/camera.h"
+
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+namespace sky {
+namespace {
+constexpr double kDeg = 3.14159265358979323846 / 180.0;
+}
+
+glm::vec3 directionFromAzEl(double az, double el) {
+  const double a = az * kDeg, e = el * kDeg;
+  return glm::vec3(glm::dvec3(std::sin(a) * std::cos(e), std::cos(a) * std::cos(e), std::sin(e)));
+}
+
+shared::ViewState makeViewState(const CameraSettings& cam, uint32_t width, uint32_t height) {
+  const glm::vec3 forward = directionFromAzEl(cam.heading, cam.pitch);
+  // Looking straight up or down the heading still defines "right"; the cross product with
+  // the zenith does not.
+  glm::vec3 right = directionFromAzEl(cam.heading + 90.0, 0.0);
+  const glm::vec3 up = glm::normalize(glm::cross(right, forward));
+  const double tanV = std::tan(0.5 * cam.verticalFov * kDeg);
+  const double tanH = tanV * width / height;
+  shared::ViewState v{};
+  v.right = glm::vec4(right, static_cast<float>(tanH));
+  v.up = glm::vec4(up, static_cast<float>(tanV));
+  v.forward = glm::vec4(forward, static_cast<float>(2.0 * tanV / height));
+  v.size = glm::uvec4(width, height, 0, 0);
+  return v;
+}
+
+}  // namespace sky

@@ -1,0 +1,18 @@
+#pragma once
+// Camera and sky geometry shared by the renderer and the tests: the local east-north-up
+// frame at the camera (x east, y north, z up), azimuth from north through east.
+#include <cstdint>
+
+#include <glm/vec3.hpp>
+
+#include "engine/scene/scene.h"
+#include "shaders/common/view_shared.h"
+
+namespace sky {
+
+// Unit direction for an azimuth/elevation in degrees.
+glm::vec3 directionFromAzEl(double azimuthDeg, double elevationDeg);
+// The view rays of an image of width x height pixels seen by `camera`.
+shared::ViewState makeViewState(const CameraSettings& camera, uint32_t width, uint32_t height);
+
+}  // namespace sky

@@ -1,0 +1,72 @@
+#include "engine/render/render_files.h"
+
+#include <nlohmann/json.hpp>
+
+#include "engine/color/ocio_output.h"
+#include "engine/core/error.h"
+#include "engine/core/files.h"
+#include "engine/io/png.h"
+#include "engine/scene/scene_io.h"
+
+namespace sky {
+
+std::vector<float> displayPixels(const RenderedFrame& frame, const Scene& scene, const OcioOutput& ocio) {
+  const ImageLayer* beauty = frame.image.find("");
+  if (!beauty || beauty->channels.size() != 4) internalError("rendered frame has no RGBA main layer");
+  std::vector<float> rgba = beauty->pixels;
+  ocio.toDisplay(rgba, scene.output.display, scene.output.view, scene.output.exposureEv);
+  return rgba;
+}
+
+RenderFiles writeRenderFiles(const std::filesystem::path& dir, const Scene& scene,
+                             const RenderedFrame& frame, const OcioOutput& ocio,
+                             const std::string& deviceName,
+                             const std::optional<std::filesystem::path>& graphPath) {
+  RenderFiles files;
+  const std::string& name = scene.output.name;
+  files.exr = dir / (name + ".exr");
+  files.png = dir / (name + ".png");
+  files.report = dir / (name + ".json");
+  files.graph = graphPath;
+
+  // Everything that can fail runs before the first rename.
+  std::vector<float> display = displayPixels(frame, scene, ocio);
+
+  nlohmann::json report;
+  report["skylayers_version"] = "0.1.0";
+  report["device"] = deviceName;
+  report["size"] = {frame.image.width, frame.image.height};
+  report["sun"] = {{"azimuth_deg", frame.sun.azimuthDeg},
+                   {"elevation_deg", frame.sun.elevationDeg},
+                   {"source", frame.sunFromTime ? "time_and_place" : "scene_override"}};
+  nlohmann::json passes = nlohmann::json::array();
+  for (const PassTiming& t : frame.frame.passes) passes.push_back({{"name", t.name}, {"gpu_ms", t.gpuMs}});
+  report["passes"] = passes;
+  report["gpu_ms_total"] = frame.frame.gpuMs;
+  report["frame_wall_ms"] = frame.frame.wallMs;
+  report["ocio"] = {{"config", ocio.configPath().string()},
+                    {"display", scene.output.display},
+                    {"view", scene.output.view}};
+  nlohmann::json layers = nlohmann::json::array();
+  for (const ImageLayer& l : frame.image.layers) layers.push_back(l.name.empty() ? "beauty" : l.name);
+  report["exr_layers"] = layers;
+  report["settings"] = sceneToJson(scene);
+
+  LayeredImage exr = frame.image;
+  exr.attributes["skylayers:device"] = deviceName;
+
+  AtomicFileSet set;
+  set.stage(files.exr, [&](const std::filesystem::path& tmp) { writeExr(tmp, exr); });
+  set.stage(files.png, [&](const std::filesystem::path& tmp) {
+    writePng8(tmp, frame.image.width, frame.image.height, display);
+  });
+  set.stage(files.report, [&](const std::filesystem::path& tmp) {
+    writeFileAtomic(tmp, report.dump(2) + "\n");
+  });
+  if (graphPath)
+    set.stage(*graphPath, [&](const std::filesystem::path& tmp) { writeFileAtomic(tmp, frame.graphDot); });
+  set.commit();
+  return files;
+}
+
+}  // namespace sky

@@ -1,0 +1,40 @@
+#include "passes/atmosphere_composite/atmosphere_composite.h"
+
+#include "engine/shader/shader_compiler.h"
+
+namespace sky {
+namespace {
+
+ComputePipeline buildPipeline(const Context& ctx, ShaderCompiler& compiler) {
+  CompiledShader shader = compiler.compile("atmosphere_composite.comp");
+  return ComputePipeline(ctx, AtmosphereCompositePass::kName, shader.spirv, shader.reflection);
+}
+
+}  // namespace
+
+AtmosphereCompositePass::AtmosphereCompositePass(const Context& ctx, ShaderCompiler& compiler)
+    : mPipeline(buildPipeline(ctx, compiler)) {}
+
+AtmosphereCompositePass::Outputs AtmosphereCompositePass::setup(GraphBuilder& b, const Inputs& in) {
+  mInputs = in;
+  ImageDesc desc;
+  desc.format = VK_FORMAT_R16G16B16A16_SFLOAT;
+  desc.width = in.params.view.size.x;
+  desc.height = in.params.view.size.y;
+  desc.name = "beauty";
+  mOutputs.beauty = b.write(b.create(desc), Access::StorageWriteCompute);
+  desc.name = "sky";
+  mOutputs.sky = b.write(b.create(desc), Access::StorageWriteCompute);
+  return mOutputs;
+}
+
+void AtmosphereCompositePass::execute(PassContext& ctx) const {
+  const auto& size = mInputs.params.view.size;
+  ctx.dispatch(mPipeline,
+               {Binding::of(ATMOSPHERE_COMPOSITE_BINDING_PARAMS, ctx.uniform(mInputs.params)),
+                Binding::of(ATMOSPHERE_COMPOSITE_BINDING_BEAUTY, mOutputs.beauty),
+                Binding::of(ATMOSPHERE_COMPOSITE_BINDING_SKY, mOutputs.sky)},
+               mPipeline.groupsX(size.x), mPipeline.groupsY(size.y));
+}
+
+}  // namespace sky

@@ -1,0 +1,37 @@
+#pragma once
+// The atmosphere composite: the final scene-linear image. For now the Kozlov 3.1 clear sky
+// for every pixel's view direction with the sun disc on top; later issues add high clouds,
+// volumetric clouds and aerial perspective here.
+#include "engine/gpu/compute_pipeline.h"
+#include "engine/graph/frame_graph.h"
+#include "engine/graph/pass_context.h"
+#include "shaders/common/atmosphere_composite_shared.h"
+
+namespace sky {
+
+class Context;
+class ShaderCompiler;
+
+class AtmosphereCompositePass {
+public:
+  static constexpr const char* kName = "atmosphere_composite";
+  struct Inputs {
+    shared::AtmosphereCompositeParams params;  // view, sun and Kozlov colours for this frame
+  };
+  struct Outputs {
+    ImageId beauty;  // RGBA16F scene-linear, alpha 1
+    ImageId sky;     // the clear sky alone (no sun disc), an AOV
+  };
+
+  // Compiles the shader and builds the pipeline (once, at renderer start-up).
+  AtmosphereCompositePass(const Context& ctx, ShaderCompiler& compiler);
+  Outputs setup(GraphBuilder& builder, const Inputs& inputs);
+  void execute(PassContext& ctx) const;
+
+private:
+  ComputePipeline mPipeline;
+  Inputs mInputs{};
+  Outputs mOutputs;
+};
+
+}  // namespace sky

@@ -1,0 +1,200 @@
+// skyrender as a user runs it: outputs, exit codes, one-line errors with the key path, and
+// no output file left behind by a failed run. The binary inherits SKY_VALIDATION=1 from
+// ctest; any validation message on its stderr fails the test.
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "engine/core/files.h"
+#include "engine/io/exr.h"
+#include "engine/io/png.h"
+
+namespace sky {
+namespace {
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+using ::testing::Not;
+
+struct CliRun {
+  int rc;
+  std::string out, err;
+};
+
+class SkyrenderCli : public ::testing::Test {
+protected:
+  void SetUp() override {
+    mDir = fs::temp_directory_path() /
+           ("skyrender-cli-" + std::to_string(::getpid()) + "-" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(mDir);
+    fs::create_directories(mDir / "out");
+  }
+  void TearDown() override { fs::remove_all(mDir); }
+
+  CliRun run(const std::string& args) {
+    const char* exe = std::getenv("SKY_SKYRENDER");
+    EXPECT_NE(exe, nullptr) << "ctest sets SKY_SKYRENDER";
+    std::string cmd = std::string(exe) + " " + args + " >" + (mDir / "stdout").string() + " 2>" +
+                      (mDir / "stderr").string();
+    int status = std::system(cmd.c_str());
+    CliRun r{WIFEXITED(status) ? WEXITSTATUS(status) : -1, readTextFile(mDir / "stdout"),
+          readTextFile(mDir / "stderr")};
+    EXPECT_THAT(r.err, Not(HasSubstr("validation"))) << "Vulkan validation messages on stderr";
+    return r;
+  }
+  fs::path write(const std::string& name, const std::string& text) {
+    fs::path p = mDir / name;
+    std::ofstream(p) << text;
+    return p;
+  }
+  std::string out() const { return (mDir / "out").string(); }
+  bool outEmpty() const { return fs::is_empty(mDir / "out"); }
+
+  // Runs a render that must fail with exit code 2, one error line containing every fragment,
+  // and no file in the output folder.
+  void expectBadInput(const std::string& args, std::vector<std::string> fragments) {
+    CliRun r = run("render " + args + " --out " + out());
+    EXPECT_EQ(r.rc, 2) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "one line: " << r.err;
+    EXPECT_THAT(r.err, HasSubstr("error: "));
+    for (const std::string& f : fragments) EXPECT_THAT(r.err, HasSubstr(f));
+    EXPECT_TRUE(outEmpty()) << "a failed render left files behind";
+  }
+
+  fs::path mDir;
+};
+
+TEST_F(SkyrenderCli, RendersTheDefaultSceneIntoExrPngAndReport) {
+  CliRun r = run("render --out " + out() + " --width 64 --height 36 --dump-graph " + (mDir / "graph.dot").string());
+  ASSERT_EQ(r.rc, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("sky.exr"));
+
+  LayeredImage exr = readExr(mDir / "out" / "sky.exr");
+  EXPECT_EQ(exr.width, 64);
+  EXPECT_EQ(exr.height, 36);
+  ASSERT_NE(exr.find(""), nullptr);
+  EXPECT_EQ(exr.find("")->channels, (std::vector<std::string>{"R", "G", "B", "A"}));
+  ASSERT_NE(exr.find("sky"), nullptr);
+
+  Image8 png = readPng(mDir / "out" / "sky.png");
+  EXPECT_EQ(png.width, 64);
+  EXPECT_EQ(png.height, 36);
+
+  nlohmann::json report = nlohmann::json::parse(readTextFile(mDir / "out" / "sky.json"));
+  EXPECT_FALSE(report["device"].get<std::string>().empty());
+  ASSERT_GE(report["passes"].size(), 1u);
+  EXPECT_EQ(report["passes"][0]["name"], "atmosphere_composite");
+  EXPECT_GE(report["passes"][0]["gpu_ms"].get<double>(), 0.0);
+  EXPECT_TRUE(report.contains("gpu_ms_total"));
+  EXPECT_EQ(report["settings"]["output"]["width"], 64);
+
+  std::string dot = readTextFile(mDir / "graph.dot");
+  EXPECT_THAT(dot, HasSubstr("atmosphere_composite"));
+  EXPECT_THAT(dot, HasSubstr("readback"));
+}
+
+TEST_F(SkyrenderCli, NameTimeAndSetOverridesReachTheRender) {
+  CliRun r = run("render --out " + out() + " --name custom --width 32 --height 18 --time 2024-12-21T08:30:00+01:00 "
+              "--set sun.azimuth=90 --set sun.elevation=10 --set output.view=Raw");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  nlohmann::json report = nlohmann::json::parse(readTextFile(mDir / "out" / "custom.json"));
+  EXPECT_EQ(report["settings"]["time"], "2024-12-21T08:30:00+01:00");
+  EXPECT_EQ(report["sun"]["azimuth_deg"], 90.0);
+  EXPECT_EQ(report["ocio"]["view"], "Raw");
+}
+
+TEST_F(SkyrenderCli, SunFollowsTimeAndPlaceWithoutOverride) {
+  fs::path scene = write("noon.yaml",
+                         "output: {width: 16, height: 9}\n"
+                         "camera: {latitude: 0, longitude: 0}\n"
+                         "time: 2024-03-20T12:07:00Z\n");
+  CliRun r = run("render " + scene.string() + " --out " + out());
+  ASSERT_EQ(r.rc, 0) << r.err;
+  nlohmann::json report = nlohmann::json::parse(readTextFile(mDir / "out" / "sky.json"));
+  EXPECT_EQ(report["sun"]["source"], "time_and_place");
+  EXPECT_GT(report["sun"]["elevation_deg"].get<double>(), 89.0);  // equinox noon on the equator
+}
+
+TEST_F(SkyrenderCli, BadConfigsExitTwoWithKeyPathAndWriteNothing) {
+  expectBadInput(write("unknown.yaml", "output:\n  widht: 64\n").string(),
+                 {"unknown.yaml:2:3", "output.widht", "did you mean 'width'"});
+  expectBadInput(write("type.yaml", "camera:\n  latitude: north\n").string(),
+                 {"type.yaml:2:", "camera.latitude", "number"});
+  expectBadInput(write("range.yaml", "camera:\n  latitude: 95\n").string(),
+                 {"range.yaml:2:", "camera.latitude", "95"});
+  expectBadInput(write("broken.yaml", "output:\n  width: [64\n").string(), {"broken.yaml:", "YAML"});
+  expectBadInput(write("broken.json", "{\"output\": {\"width\": 64,}}").string(), {"broken.json:1:", "JSON"});
+  expectBadInput(write("range.json", "{\n  \"output\": {\"width\": 0}\n}").string(),
+                 {"range.json:2:", "output.width"});
+  expectBadInput((mDir / "missing.yaml").string(), {"missing.yaml", "cannot open"});
+  expectBadInput(write("nan.yaml", "sky:\n  glow_size: .nan\n").string(), {"nan.yaml:2:", "sky.glow_size"});
+}
+
+TEST_F(SkyrenderCli, BadArgumentsExitTwo) {
+  expectBadInput("--width 0", {"output.width"});
+  expectBadInput("--width 100000", {"output.width"});
+  expectBadInput("--set camera.pitch=91", {"camera.pitch"});
+  expectBadInput("--frobnicate", {"unknown option '--frobnicate'"});
+  expectBadInput("--time 2024-01-01T00:00:00", {"time", "zone"});
+  expectBadInput("--gpu no-such-device", {"--gpu no-such-device", "available"});
+  expectBadInput("--set output.display=Nope", {"output.display", "Nope", "available: sRGB"});
+  expectBadInput("--set output.view=Nope", {"output.view", "Nope", "ACES 1.0 - SDR Video"});
+  expectBadInput("--ocio " + (mDir / "none.ocio").string(), {"none.ocio"});
+  CliRun r = run("frobnicate");
+  EXPECT_EQ(r.rc, 2);
+  EXPECT_THAT(r.err, HasSubstr("unknown command 'frobnicate'"));
+}
+
+TEST_F(SkyrenderCli, UnwritableOutputFolderIsBadInput) {
+  fs::path file = write("not_a_folder", "x");
+  CliRun r = run("render --width 8 --height 8 --out " + file.string());
+  EXPECT_EQ(r.rc, 2);
+  EXPECT_THAT(r.err, HasSubstr("not_a_folder"));
+}
+
+TEST_F(SkyrenderCli, ValidatePrintsSettingsThatReproduceTheScene) {
+  fs::path scene = write("s.yaml", "output: {width: 64, height: 36}\nsun: {azimuth: 120, elevation: 8.5}\n");
+  CliRun first = run("validate " + scene.string());
+  ASSERT_EQ(first.rc, 0) << first.err;
+  EXPECT_THAT(first.out, HasSubstr("vertical_fov"));  // defaults are filled in
+  fs::path printed = write("printed.yaml", first.out);
+  CliRun second = run("validate " + printed.string());
+  ASSERT_EQ(second.rc, 0) << second.err;
+  EXPECT_EQ(first.out, second.out);
+
+  // And the printed file renders the same image as the original.
+  ASSERT_EQ(run("render " + scene.string() + " --out " + out() + " --name a").rc, 0);
+  ASSERT_EQ(run("render " + printed.string() + " --out " + out() + " --name b").rc, 0);
+  EXPECT_EQ(readTextFile(mDir / "out" / "a.exr"), readTextFile(mDir / "out" / "b.exr"));
+
+  fs::path json = write("s.json", "{\"output\": {\"width\": 64}}");
+  CliRun j = run("validate " + json.string());
+  ASSERT_EQ(j.rc, 0) << j.err;
+  nlohmann::json parsed = nlohmann::json::parse(j.out);
+  EXPECT_EQ(parsed["output"]["width"], 64);
+}
+
+TEST_F(SkyrenderCli, SchemaCommandPrintsTheCheckedInSchema) {
+  CliRun r = run("schema");
+  ASSERT_EQ(r.rc, 0);
+  const fs::path schema = fs::path(std::getenv("SKY_DATA_DIR")) / "configs" / "schema" / "scene.schema.json";
+  EXPECT_EQ(r.out, readTextFile(schema));
+}
+
+TEST_F(SkyrenderCli, HelpDocumentsEveryOption) {
+  CliRun r = run("render --help");
+  EXPECT_EQ(r.rc, 0);
+  for (const char* opt : {"--out", "--name", "--width", "--height", "--time", "--set", "--dump-graph", "--gpu", "--ocio"})
+    EXPECT_THAT(r.out, HasSubstr(opt));
+}
+
+}  // namespace
+}  // namespace sky
