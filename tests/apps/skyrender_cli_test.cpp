@@ -39,10 +39,12 @@ protected:
   }
   void TearDown() override { fs::remove_all(mDir); }
 
-  CliRun run(const std::string& args) {
+  // `env` is prepended to the command line ("NAME=value ..."), for tests that change the
+  // environment of skyrender alone.
+  CliRun run(const std::string& args, const std::string& env = "") {
     const char* exe = std::getenv("SKY_SKYRENDER");
-    EXPECT_NE(exe, nullptr) << "ctest sets SKY_SKYRENDER";
-    std::string cmd = std::string(exe) + " " + args + " >" + (mDir / "stdout").string() + " 2>" +
+    EXPECT_NE(exe, nullptr) << "tests/support sets SKY_SKYRENDER";
+    std::string cmd = env + " " + std::string(exe) + " " + args + " >" + (mDir / "stdout").string() + " 2>" +
                       (mDir / "stderr").string();
     int status = std::system(cmd.c_str());
     CliRun r{WIFEXITED(status) ? WEXITSTATUS(status) : -1, readTextFile(mDir / "stdout"),
@@ -151,6 +153,16 @@ TEST_F(SkyrenderCli, BadArgumentsExitTwo) {
   CliRun r = run("frobnicate");
   EXPECT_EQ(r.rc, 2);
   EXPECT_THAT(r.err, HasSubstr("unknown command 'frobnicate'"));
+}
+
+TEST_F(SkyrenderCli, NoVulkanDeviceIsOneClearError) {
+  // No driver manifest the loader can read: no device at all. Validation is off here because
+  // the layer would report the loader's complaints, which is not what this test is about.
+  CliRun r = run("render --width 8 --height 8 --out " + out(),
+                 "env SKY_VALIDATION=0 VK_ICD_FILENAMES=/nonexistent.json VK_DRIVER_FILES=/nonexistent.json");
+  EXPECT_EQ(r.rc, 1);
+  EXPECT_EQ(r.err, "error: no Vulkan 1.3 device found (install mesa-vulkan-drivers for the CPU device lavapipe)\n");
+  EXPECT_TRUE(outEmpty());
 }
 
 TEST_F(SkyrenderCli, UnwritableOutputFolderIsBadInput) {

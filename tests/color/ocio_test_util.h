@@ -10,6 +10,7 @@
 #include <string>
 
 #include "engine/core/error.h"
+#include "error_capture.h"
 
 namespace sky::test {
 
@@ -37,17 +38,5 @@ private:
   std::optional<std::string> mSavedOcio;
   std::filesystem::path mDir;
 };
-
-// Runs f and returns the sky::Error it throws; a test failure when it throws none.
-template <class F>
-Error catchError(F&& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e;
-  }
-  ADD_FAILURE() << "expected a sky::Error";
-  return Error(ErrorKind::Internal, "<no error thrown>");
-}
 
 }  // namespace sky::test

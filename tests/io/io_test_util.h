@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "engine/core/error.h"
+#include "error_capture.h"
 
 namespace sky::test {
 
@@ -41,18 +42,6 @@ protected:
 private:
   std::filesystem::path mDir;
 };
-
-// Runs f and returns the sky::Error it throws; a test failure when it throws none.
-template <class F>
-Error catchError(F&& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e;
-  }
-  ADD_FAILURE() << "expected a sky::Error";
-  return Error(ErrorKind::Internal, "<no error thrown>");
-}
 
 inline bool mentions(const Error& e, const std::filesystem::path& p) {
   return std::string(e.what()).find(p.string()) != std::string::npos;

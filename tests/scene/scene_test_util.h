@@ -8,19 +8,15 @@
 #include <gtest/gtest.h>
 
 #include "engine/core/error.h"
+#include "error_capture.h"
 
 namespace sky::test {
 
 // Runs `f`, expects a sky::Error of `kind` and returns its message ("" if none was thrown).
 inline std::string errorOf(const std::function<void()>& f, ErrorKind kind = ErrorKind::BadInput) {
-  try {
-    f();
-  } catch (const Error& e) {
-    EXPECT_EQ(e.kind(), kind) << e.what();
-    return e.what();
-  }
-  ADD_FAILURE() << "expected a sky::Error, nothing was thrown";
-  return {};
+  Error e = catchError(f);
+  EXPECT_EQ(e.kind(), kind) << e.what();
+  return e.what();
 }
 
 inline std::filesystem::path sourceDir() {
