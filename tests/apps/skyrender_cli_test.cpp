@@ -165,6 +165,28 @@ TEST_F(SkyrenderCli, NoVulkanDeviceIsOneClearError) {
   EXPECT_TRUE(outEmpty());
 }
 
+TEST_F(SkyrenderCli, BrokenShaderIsOneLineWithFileAndLineAndWritesNothing) {
+  // A copy of shaders/ whose composite shader has an error on line 3.
+  const fs::path shaders = mDir / "shaders";
+  fs::copy(fs::path(std::getenv("SKY_DATA_DIR")) / "shaders", shaders, fs::copy_options::recursive);
+  std::string text = readTextFile(shaders / "atmosphere_composite.comp");
+  size_t secondLine = text.find('\n') + 1;
+  text.insert(text.find('\n', secondLine) + 1, "this is not glsl;\n");
+  std::ofstream(shaders / "atmosphere_composite.comp", std::ios::trunc) << text;
+  CliRun r = run("render --width 8 --height 8 --out " + out(), "env SKY_SHADER_DIR=" + shaders.string());
+  EXPECT_EQ(r.rc, 1);
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("atmosphere_composite.comp:3: error:"));
+  EXPECT_TRUE(outEmpty());
+}
+
+TEST_F(SkyrenderCli, DevicesListsThePickedDevice) {
+  CliRun r = run("devices");
+  EXPECT_EQ(r.rc, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("0: "));
+  EXPECT_THAT(r.out, HasSubstr("<- picked"));
+}
+
 TEST_F(SkyrenderCli, UnwritableOutputFolderIsBadInput) {
   fs::path file = write("not_a_folder", "x");
   CliRun r = run("render --width 8 --height 8 --out " + file.string());
