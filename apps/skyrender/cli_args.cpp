@@ -9,7 +9,8 @@ CliArgs::CliArgs(const std::vector<std::string>& args, const std::set<std::strin
   for (size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
     if (a.size() < 2 || a.rfind("--", 0) != 0) {
-      if (!a.empty() && a[0] == '-' && a != "-") inputError("unknown option '" + a + "' (see --help)");
+      if (!a.empty() && a[0] == '-' && a != "-")
+        inputError("unknown option '" + a + "' (see --help)");
       mPositional.push_back(a);
       continue;
     }

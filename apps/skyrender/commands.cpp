@@ -73,10 +73,12 @@ std::vector<std::string> overridesFrom(const CliArgs& args) {
 }
 
 Scene loadScene(const CliArgs& args, bool required) {
-  if (args.positional().size() > 1) inputError("more than one scene given: '" + args.positional()[1] + "'");
+  if (args.positional().size() > 1)
+    inputError("more than one scene given: '" + args.positional()[1] + "'");
   if (args.positional().empty()) {
     if (required) inputError("no scene given (see --help)");
-    return loadSceneText(skyDefaultSceneText(), ConfigFormat::Yaml, "<default scene>", overridesFrom(args));
+    return loadSceneText(skyDefaultSceneText(), ConfigFormat::Yaml, "<default scene>",
+                         overridesFrom(args));
   }
   return loadSceneFile(args.positional()[0], overridesFrom(args));
 }
@@ -84,7 +86,9 @@ Scene loadScene(const CliArgs& args, bool required) {
 }  // namespace
 
 int renderCommand(const std::vector<std::string>& argv) {
-  CliArgs args(argv, {"--out", "--name", "--width", "--height", "--time", "--set", "--dump-graph", "--gpu", "--ocio"},
+  CliArgs args(argv,
+               {"--out", "--name", "--width", "--height", "--time", "--set", "--dump-graph",
+                "--gpu", "--ocio"},
                {"--set"}, {});
   Scene scene = loadScene(args, false);
 
@@ -98,7 +102,8 @@ int renderCommand(const std::vector<std::string>& argv) {
   std::error_code ec;
   fs::create_directories(outDir, ec);
   if (ec || !fs::is_directory(outDir))
-    inputError("--out " + outDir.string() + ": cannot create folder" + (ec ? ": " + ec.message() : ""));
+    inputError("--out " + outDir.string() + ": cannot create folder" +
+               (ec ? ": " + ec.message() : ""));
   std::optional<fs::path> graphPath;
   if (auto v = args.value("--dump-graph")) graphPath = *v;
 
@@ -141,8 +146,9 @@ int devicesCommand(const std::vector<std::string>& argv) {
   options.gpu = args.value("--gpu").value_or("");
   Context ctx(options);
   for (const PhysicalDeviceInfo& d : Context::enumerate(ctx.instance()))
-    std::printf("%u: %s (Vulkan %u.%u)%s\n", d.index, d.name.c_str(), VK_API_VERSION_MAJOR(d.apiVersion),
-                VK_API_VERSION_MINOR(d.apiVersion), d.name == ctx.deviceName() ? "  <- picked" : "");
+    std::printf("%u: %s (Vulkan %u.%u)%s\n", d.index, d.name.c_str(),
+                VK_API_VERSION_MAJOR(d.apiVersion), VK_API_VERSION_MINOR(d.apiVersion),
+                d.name == ctx.deviceName() ? "  <- picked" : "");
   return 0;
 }
 

@@ -36,7 +36,8 @@ int main(int argc, char** argv) {
     if (command == "validate") return sky::validateCommand(args);
     if (command == "schema") return sky::schemaCommand(args);
     if (command == "devices") return sky::devicesCommand(args);
-    sky::inputError("unknown command '" + command + "' (commands: render, validate, schema, devices; see --help)");
+    sky::inputError("unknown command '" + command +
+                    "' (commands: render, validate, schema, devices; see --help)");
   } catch (const sky::Error& e) {
     std::cerr << "error: " << oneLine(e.what()) << "\n";
     return e.exitCode();

@@ -110,7 +110,9 @@ OcioOutput OcioOutput::load(const std::optional<fs::path>& explicitConfig) {
   return OcioOutput(std::move(impl));
 }
 
-const fs::path& OcioOutput::configPath() const { return mImpl->path; }
+const fs::path& OcioOutput::configPath() const {
+  return mImpl->path;
+}
 
 std::vector<std::string> OcioOutput::displays() const {
   std::vector<std::string> out;
@@ -140,8 +142,8 @@ std::vector<std::string> OcioOutput::views(const std::string& display) const {
 void OcioOutput::checkDisplayView(const std::string& display, const std::string& view) const {
   std::vector<std::string> known = displays();
   if (std::find(known.begin(), known.end(), display) == known.end())
-    inputError("output.display: unknown OCIO display '" + display + "' (available: " +
-               joinNames(known) + ")");
+    inputError("output.display: unknown OCIO display '" + display +
+               "' (available: " + joinNames(known) + ")");
   std::vector<std::string> viewNames = views(display);
   if (std::find(viewNames.begin(), viewNames.end(), view) == viewNames.end())
     inputError("output.view: unknown OCIO view '" + view + "' for display '" + display +

@@ -2,7 +2,11 @@
 
 namespace sky {
 
-void inputError(const std::string& message) { throw Error(ErrorKind::BadInput, message); }
-void internalError(const std::string& message) { throw Error(ErrorKind::Internal, message); }
+void inputError(const std::string& message) {
+  throw Error(ErrorKind::BadInput, message);
+}
+void internalError(const std::string& message) {
+  throw Error(ErrorKind::Internal, message);
+}
 
 }  // namespace sky

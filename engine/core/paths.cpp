@@ -22,14 +22,20 @@ fs::path shaderDir() {
   return dataRoot() / "shaders";
 }
 
-fs::path configDir() { return dataRoot() / "configs"; }
+fs::path configDir() {
+  return dataRoot() / "configs";
+}
 
 fs::path cacheDir() {
   fs::path dir;
-  if (const char* v = env("SKY_CACHE_DIR")) dir = v;
-  else if (const char* x = env("XDG_CACHE_HOME")) dir = fs::path(x) / "skylayers";
-  else if (const char* h = env("HOME")) dir = fs::path(h) / ".cache" / "skylayers";
-  else dir = fs::temp_directory_path() / "skylayers-cache";
+  if (const char* v = env("SKY_CACHE_DIR"))
+    dir = v;
+  else if (const char* x = env("XDG_CACHE_HOME"))
+    dir = fs::path(x) / "skylayers";
+  else if (const char* h = env("HOME"))
+    dir = fs::path(h) / ".cache" / "skylayers";
+  else
+    dir = fs::temp_directory_path() / "skylayers-cache";
   std::error_code ec;
   fs::create_directories(dir, ec);  // a failure shows up later as a cache miss, not an error
   return dir;

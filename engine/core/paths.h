@@ -6,8 +6,8 @@
 namespace sky {
 
 std::filesystem::path dataRoot();
-std::filesystem::path shaderDir();   // $SKY_SHADER_DIR or dataRoot()/shaders
-std::filesystem::path configDir();   // dataRoot()/configs
+std::filesystem::path shaderDir();  // $SKY_SHADER_DIR or dataRoot()/shaders
+std::filesystem::path configDir();  // dataRoot()/configs
 // Caches (SPIR-V, later baked textures): $SKY_CACHE_DIR, else $XDG_CACHE_HOME/skylayers,
 // else ~/.cache/skylayers. Created on first use.
 std::filesystem::path cacheDir();

@@ -7,7 +7,8 @@
 
 namespace sky {
 
-Buffer::Buffer(const Context& ctx, const BufferDesc& desc, bool allocate) : mCtx(&ctx), mDesc(desc) {
+Buffer::Buffer(const Context& ctx, const BufferDesc& desc, bool allocate)
+    : mCtx(&ctx), mDesc(desc) {
   if (desc.size == 0) internalError("buffer '" + desc.name + "' has size 0");
   VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
   info.size = desc.size;
@@ -16,7 +17,8 @@ Buffer::Buffer(const Context& ctx, const BufferDesc& desc, bool allocate) : mCtx
   SKY_VK(vkCreateBuffer(ctx.device(), &info, nullptr, &mBuffer));
   ctx.setName(VK_OBJECT_TYPE_BUFFER, reinterpret_cast<uint64_t>(mBuffer), desc.name);
   if (!allocate) {
-    if (desc.memory != BufferMemory::Device) internalError("buffer '" + desc.name + "': host buffers own their memory");
+    if (desc.memory != BufferMemory::Device)
+      internalError("buffer '" + desc.name + "': host buffers own their memory");
     return;
   }
 
@@ -32,12 +34,14 @@ Buffer::Buffer(const Context& ctx, const BufferDesc& desc, bool allocate) : mCtx
     try {
       alloc.memoryTypeIndex = ctx.memoryType(req.memoryTypeBits, cached);
     } catch (const Error&) {
-      alloc.memoryTypeIndex = ctx.memoryType(
-          req.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+      alloc.memoryTypeIndex =
+          ctx.memoryType(req.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT |
+                                                 VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
     }
     VkPhysicalDeviceMemoryProperties mem;
     vkGetPhysicalDeviceMemoryProperties(ctx.physicalDevice(), &mem);
-    mCoherent = mem.memoryTypes[alloc.memoryTypeIndex].propertyFlags & VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+    mCoherent =
+        mem.memoryTypes[alloc.memoryTypeIndex].propertyFlags & VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
   } else {
     alloc.memoryTypeIndex = ctx.memoryType(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
   }
@@ -67,7 +71,9 @@ Buffer& Buffer::operator=(Buffer&& o) noexcept {
   return *this;
 }
 
-Buffer::~Buffer() { reset(); }
+Buffer::~Buffer() {
+  reset();
+}
 
 void Buffer::reset() {
   if (!mCtx) return;

@@ -6,14 +6,15 @@
 namespace sky {
 
 ComputePipeline::ComputePipeline(const Context& ctx, const std::string& name,
-                                 const std::vector<uint32_t>& spirv, const ShaderReflection& reflection)
+                                 const std::vector<uint32_t>& spirv,
+                                 const ShaderReflection& reflection)
     : mCtx(ctx), mName(name), mReflection(reflection) {
   std::vector<VkDescriptorSetLayoutBinding> bindings;
   for (const DescriptorBinding& b : reflection.bindings) {
     // One set per pass keeps binding numbers meaningful in the shared headers.
     if (b.set != 0)
-      internalError(name + ": binding '" + b.name + "' uses descriptor set " + std::to_string(b.set) +
-                    "; passes use set 0 only");
+      internalError(name + ": binding '" + b.name + "' uses descriptor set " +
+                    std::to_string(b.set) + "; passes use set 0 only");
     bindings.push_back({b.binding, b.type, b.count, VK_SHADER_STAGE_COMPUTE_BIT, nullptr});
   }
   VkDevice d = ctx.device();
@@ -53,7 +54,9 @@ ComputePipeline::ComputePipeline(const Context& ctx, const std::string& name,
   vkDestroyShaderModule(d, module, nullptr);
 }
 
-ComputePipeline::~ComputePipeline() { destroy(); }
+ComputePipeline::~ComputePipeline() {
+  destroy();
+}
 
 void ComputePipeline::destroy() {
   VkDevice d = mCtx.device();

@@ -29,9 +29,15 @@ public:
   // The binding reflected at `binding` in set 0, or nullptr.
   const DescriptorBinding* binding(uint32_t binding) const;
   // Workgroups needed to cover `size` invocations along each axis.
-  uint32_t groupsX(uint32_t size) const { return (size + mReflection.localSize[0] - 1) / mReflection.localSize[0]; }
-  uint32_t groupsY(uint32_t size) const { return (size + mReflection.localSize[1] - 1) / mReflection.localSize[1]; }
-  uint32_t groupsZ(uint32_t size) const { return (size + mReflection.localSize[2] - 1) / mReflection.localSize[2]; }
+  uint32_t groupsX(uint32_t size) const {
+    return (size + mReflection.localSize[0] - 1) / mReflection.localSize[0];
+  }
+  uint32_t groupsY(uint32_t size) const {
+    return (size + mReflection.localSize[1] - 1) / mReflection.localSize[1];
+  }
+  uint32_t groupsZ(uint32_t size) const {
+    return (size + mReflection.localSize[2] - 1) / mReflection.localSize[2];
+  }
 
 private:
   void destroy();

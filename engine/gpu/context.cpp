@@ -13,7 +13,8 @@ namespace sky {
 const char* vkResultName(VkResult r) {
   switch (r) {
 #define SKY_CASE(x) \
-  case x: return #x;
+  case x:           \
+    return #x;
     SKY_CASE(VK_SUCCESS)
     SKY_CASE(VK_NOT_READY)
     SKY_CASE(VK_TIMEOUT)
@@ -35,7 +36,8 @@ const char* vkResultName(VkResult r) {
     SKY_CASE(VK_ERROR_OUT_OF_DATE_KHR)
     SKY_CASE(VK_SUBOPTIMAL_KHR)
 #undef SKY_CASE
-    default: return "VkResult error";
+    default:
+      return "VkResult error";
   }
 }
 
@@ -50,8 +52,9 @@ bool hasLayer(const char* name) {
   vkEnumerateInstanceLayerProperties(&count, nullptr);
   std::vector<VkLayerProperties> layers(count);
   vkEnumerateInstanceLayerProperties(&count, layers.data());
-  return std::any_of(layers.begin(), layers.end(),
-                     [&](const VkLayerProperties& l) { return std::strcmp(l.layerName, name) == 0; });
+  return std::any_of(layers.begin(), layers.end(), [&](const VkLayerProperties& l) {
+    return std::strcmp(l.layerName, name) == 0;
+  });
 }
 
 bool hasInstanceExtension(const char* name) {
@@ -71,11 +74,16 @@ std::string lower(std::string s) {
 
 int typeScore(VkPhysicalDeviceType t) {
   switch (t) {
-    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return 4;
-    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return 3;
-    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return 2;
-    case VK_PHYSICAL_DEVICE_TYPE_CPU: return 1;
-    default: return 0;
+    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU:
+      return 4;
+    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU:
+      return 3;
+    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU:
+      return 2;
+    case VK_PHYSICAL_DEVICE_TYPE_CPU:
+      return 1;
+    default:
+      return 0;
   }
 }
 
@@ -97,8 +105,10 @@ VKAPI_ATTR VkBool32 VKAPI_CALL debugCallback(VkDebugUtilsMessageSeverityFlagBits
   auto* ctx = static_cast<Context*>(user);
   ctx->mValidationMessages.fetch_add(1);
   std::string message = data && data->pMessage ? data->pMessage : "(no message)";
-  if (ctx->mOnValidation) ctx->mOnValidation(message);
-  else std::cerr << "Vulkan validation: " << message << "\n";
+  if (ctx->mOnValidation)
+    ctx->mOnValidation(message);
+  else
+    std::cerr << "Vulkan validation: " << message << "\n";
   return VK_FALSE;
 }
 
@@ -120,7 +130,9 @@ Context::Context(const ContextOptions& options) : mOnValidation(options.onValida
   }
 }
 
-Context::~Context() { destroy(); }
+Context::~Context() {
+  destroy();
+}
 
 void Context::destroy() {
   if (mDevice) {
@@ -165,11 +177,12 @@ void Context::createInstance(const ContextOptions& options) {
   app.pEngineName = "skylayers";
   app.apiVersion = VK_API_VERSION_1_3;
 
-  VkDebugUtilsMessengerCreateInfoEXT messenger{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
+  VkDebugUtilsMessengerCreateInfoEXT messenger{
+      VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
   messenger.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT |
                               VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
-  messenger.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
-                          VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT;
+  messenger.messageType =
+      VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT;
   messenger.pfnUserCallback = debugCallback;
   messenger.pUserData = this;
 
@@ -246,8 +259,8 @@ void Context::pickDevice(const std::string& request) {
         chosen = static_cast<int>(i);
     }
     if (chosen < 0)
-      inputError("--gpu " + request + ": no such Vulkan device (available: " +
-                 describeDevices(infos) + ")");
+      inputError("--gpu " + request +
+                 ": no such Vulkan device (available: " + describeDevices(infos) + ")");
     if (!usable(static_cast<uint32_t>(chosen)))
       inputError("--gpu " + request + ": " + infos[static_cast<size_t>(chosen)].name +
                  " does not support Vulkan 1.3 compute");
@@ -265,7 +278,8 @@ void Context::createDevice() {
   int family = -1;
   for (uint32_t i = 0; i < n; ++i) {
     if (!(families[i].queueFlags & VK_QUEUE_COMPUTE_BIT)) continue;
-    if (family < 0 || (families[i].queueFlags & VK_QUEUE_GRAPHICS_BIT)) family = static_cast<int>(i);
+    if (family < 0 || (families[i].queueFlags & VK_QUEUE_GRAPHICS_BIT))
+      family = static_cast<int>(i);
     if (families[i].queueFlags & VK_QUEUE_GRAPHICS_BIT) break;
   }
   mQueueFamily = static_cast<uint32_t>(family);
@@ -283,7 +297,8 @@ void Context::createDevice() {
   features.pNext = &f13;
   f13.pNext = &f12;
   vkGetPhysicalDeviceFeatures2(mPhysicalDevice, &features);
-  if (!f13.synchronization2) internalError(std::string(mProperties.deviceName) + " lacks synchronization2");
+  if (!f13.synchronization2)
+    internalError(std::string(mProperties.deviceName) + " lacks synchronization2");
 
   // Enable only what the engine relies on, so a real GPU and lavapipe behave alike.
   VkPhysicalDeviceVulkan13Features want13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};

@@ -16,7 +16,7 @@ using uint = uint32_t;
 }  // namespace sky::glsl
 
 // Shared headers wrap their structs in these so C++ sees them as sky::shared::Name.
-#define SKY_SHARED_BEGIN \
-  namespace sky::shared {  \
+#define SKY_SHARED_BEGIN  \
+  namespace sky::shared { \
   using namespace ::sky::glsl;
 #define SKY_SHARED_END }

@@ -9,14 +9,20 @@ namespace sky {
 
 uint32_t formatTexelSize(VkFormat f) {
   switch (f) {
-    case VK_FORMAT_R8_UNORM: return 1;
-    case VK_FORMAT_R16_SFLOAT: return 2;
+    case VK_FORMAT_R8_UNORM:
+      return 1;
+    case VK_FORMAT_R16_SFLOAT:
+      return 2;
     case VK_FORMAT_R32_SFLOAT:
     case VK_FORMAT_R8G8B8A8_UNORM:
-    case VK_FORMAT_R8G8B8A8_SRGB: return 4;
-    case VK_FORMAT_R16G16B16A16_SFLOAT: return 8;
-    case VK_FORMAT_R32G32B32A32_SFLOAT: return 16;
-    default: return 0;
+    case VK_FORMAT_R8G8B8A8_SRGB:
+      return 4;
+    case VK_FORMAT_R16G16B16A16_SFLOAT:
+      return 8;
+    case VK_FORMAT_R32G32B32A32_SFLOAT:
+      return 16;
+    default:
+      return 0;
   }
 }
 
@@ -24,31 +30,43 @@ uint32_t formatChannelCount(VkFormat f) {
   switch (f) {
     case VK_FORMAT_R8_UNORM:
     case VK_FORMAT_R16_SFLOAT:
-    case VK_FORMAT_R32_SFLOAT: return 1;
+    case VK_FORMAT_R32_SFLOAT:
+      return 1;
     case VK_FORMAT_R8G8B8A8_UNORM:
     case VK_FORMAT_R8G8B8A8_SRGB:
     case VK_FORMAT_R16G16B16A16_SFLOAT:
-    case VK_FORMAT_R32G32B32A32_SFLOAT: return 4;
-    default: return 0;
+    case VK_FORMAT_R32G32B32A32_SFLOAT:
+      return 4;
+    default:
+      return 0;
   }
 }
 
 const char* formatName(VkFormat f) {
   switch (f) {
-    case VK_FORMAT_R8_UNORM: return "r8";
-    case VK_FORMAT_R16_SFLOAT: return "r16f";
-    case VK_FORMAT_R32_SFLOAT: return "r32f";
-    case VK_FORMAT_R8G8B8A8_UNORM: return "rgba8";
-    case VK_FORMAT_R8G8B8A8_SRGB: return "rgba8_srgb";
-    case VK_FORMAT_R16G16B16A16_SFLOAT: return "rgba16f";
-    case VK_FORMAT_R32G32B32A32_SFLOAT: return "rgba32f";
-    default: return "format?";
+    case VK_FORMAT_R8_UNORM:
+      return "r8";
+    case VK_FORMAT_R16_SFLOAT:
+      return "r16f";
+    case VK_FORMAT_R32_SFLOAT:
+      return "r32f";
+    case VK_FORMAT_R8G8B8A8_UNORM:
+      return "rgba8";
+    case VK_FORMAT_R8G8B8A8_SRGB:
+      return "rgba8_srgb";
+    case VK_FORMAT_R16G16B16A16_SFLOAT:
+      return "rgba16f";
+    case VK_FORMAT_R32G32B32A32_SFLOAT:
+      return "rgba32f";
+    default:
+      return "format?";
   }
 }
 
 void checkImageDesc(const Context& ctx, const ImageDesc& desc) {
   const auto& limits = ctx.properties().limits;
-  uint32_t maxDim = desc.dim == ImageDim::Tex3D ? limits.maxImageDimension3D : limits.maxImageDimension2D;
+  uint32_t maxDim =
+      desc.dim == ImageDim::Tex3D ? limits.maxImageDimension3D : limits.maxImageDimension2D;
   if (desc.width == 0 || desc.height == 0 || desc.depth == 0 || desc.width > maxDim ||
       desc.height > maxDim || desc.depth > maxDim)
     inputError("image '" + desc.name + "': " + std::to_string(desc.width) + "x" +
@@ -109,7 +127,9 @@ Image& Image::operator=(Image&& o) noexcept {
   return *this;
 }
 
-Image::~Image() { reset(); }
+Image::~Image() {
+  reset();
+}
 
 void Image::reset() {
   if (!mCtx) return;

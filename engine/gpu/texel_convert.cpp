@@ -9,7 +9,9 @@
 
 namespace sky {
 
-float halfToFloat(uint16_t h) { return glm::unpackHalf1x16(h); }
+float halfToFloat(uint16_t h) {
+  return glm::unpackHalf1x16(h);
+}
 
 std::vector<float> texelsToFloat(VkFormat format, std::span<const uint8_t> bytes) {
   std::vector<float> out;

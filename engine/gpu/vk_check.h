@@ -8,12 +8,12 @@ namespace sky {
 
 const char* vkResultName(VkResult result);
 
-#define SKY_VK(call)                                                                     \
-  do {                                                                                   \
-    VkResult skyVkResult_ = (call);                                                      \
-    if (skyVkResult_ != VK_SUCCESS)                                                      \
+#define SKY_VK(call)                                                                    \
+  do {                                                                                  \
+    VkResult skyVkResult_ = (call);                                                     \
+    if (skyVkResult_ != VK_SUCCESS)                                                     \
       ::sky::internalError(std::string(#call).substr(0, std::string(#call).find('(')) + \
-                           " failed: " + ::sky::vkResultName(skyVkResult_));             \
+                           " failed: " + ::sky::vkResultName(skyVkResult_));            \
   } while (0)
 
 }  // namespace sky

@@ -27,9 +27,9 @@ std::map<Version, uint32_t> producers(const GraphDesc& g) {
   return out;
 }
 
-constexpr VkAccessFlags2 kWriteAccesses = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT |
-                                          VK_ACCESS_2_TRANSFER_WRITE_BIT |
-                                          VK_ACCESS_2_SHADER_WRITE_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT;
+constexpr VkAccessFlags2 kWriteAccesses =
+    VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT |
+    VK_ACCESS_2_SHADER_WRITE_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT;
 
 }  // namespace
 
@@ -201,7 +201,8 @@ BarrierPlan buildBarriers(const GraphDesc& g, const std::vector<uint32_t>& ord,
       Track& t = track[a.resource];
       if (!t.started && !res.imported && memory.slotOf[a.resource] >= 0) {
         // An aliased resource must wait for whatever used its memory before it.
-        const auto& residents = memory.slots[static_cast<size_t>(memory.slotOf[a.resource])].residents;
+        const auto& residents =
+            memory.slots[static_cast<size_t>(memory.slotOf[a.resource])].residents;
         auto it = std::find(residents.begin(), residents.end(), a.resource);
         if (it != residents.begin()) {
           const Track& prev = track[*(it - 1)];

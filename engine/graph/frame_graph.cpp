@@ -8,7 +8,9 @@
 namespace sky {
 namespace {
 
-const char* kindName(ResourceKind k) { return k == ResourceKind::Image ? "image" : "buffer"; }
+const char* kindName(ResourceKind k) {
+  return k == ResourceKind::Image ? "image" : "buffer";
+}
 
 }  // namespace
 
@@ -58,31 +60,37 @@ uint32_t FrameGraph::declare(uint32_t pass, uint32_t resource, uint32_t version,
   if (resource >= mDesc.resources.size())
     internalError("pass '" + passName + "' uses an invalid " + kindName(kind) + " handle");
   ResourceNode& res = mDesc.resources[resource];
-  if (res.kind != kind) internalError("pass '" + passName + "': '" + res.name + "' is not a " + kindName(kind));
+  if (res.kind != kind)
+    internalError("pass '" + passName + "': '" + res.name + "' is not a " + kindName(kind));
   const uint32_t current = res.versions - 1;
   if (version != current) {
     int writer = mResources[resource].lastWriter;
-    internalError("pass '" + passName + "' uses a stale handle to '" + res.name + "' (version " +
-                  std::to_string(version) + "; " +
-                  (writer >= 0 ? "pass '" + mDesc.passes[static_cast<size_t>(writer)].name + "'" : "a pass") +
-                  " wrote version " + std::to_string(current) + " since)");
+    internalError(
+        "pass '" + passName + "' uses a stale handle to '" + res.name + "' (version " +
+        std::to_string(version) + "; " +
+        (writer >= 0 ? "pass '" + mDesc.passes[static_cast<size_t>(writer)].name + "'" : "a pass") +
+        " wrote version " + std::to_string(current) + " since)");
   }
   const AccessInfo& info = accessInfo(access);
   if (kind == ResourceKind::Image && info.imageUsage == 0)
-    internalError("pass '" + passName + "': access '" + info.name + "' is not valid for image '" + res.name + "'");
+    internalError("pass '" + passName + "': access '" + info.name + "' is not valid for image '" +
+                  res.name + "'");
   if (kind == ResourceKind::Buffer && info.bufferUsage == 0)
-    internalError("pass '" + passName + "': access '" + info.name + "' is not valid for buffer '" + res.name + "'");
-  if (!res.imported && version == 0 && access != Access::StorageWriteCompute && access != Access::TransferDst)
+    internalError("pass '" + passName + "': access '" + info.name + "' is not valid for buffer '" +
+                  res.name + "'");
+  if (!res.imported && version == 0 && access != Access::StorageWriteCompute &&
+      access != Access::TransferDst)
     internalError("pass '" + passName + "' reads '" + res.name + "' before any pass wrote it");
   for (const ResourceAccess& a : mDesc.passes[pass].accesses)
     if (a.resource == resource)
-      internalError("pass '" + passName + "' declares '" + res.name + "' twice; use one access kind");
+      internalError("pass '" + passName + "' declares '" + res.name +
+                    "' twice; use one access kind");
   if (res.imported) {
     VkFlags have = kind == ResourceKind::Image ? res.image.usage : res.buffer.usage;
     VkFlags need = kind == ResourceKind::Image ? info.imageUsage : info.bufferUsage;
     if ((have & need) != need)
-      internalError("pass '" + passName + "': imported '" + res.name + "' was created without the usage '" +
-                    info.name + "' needs");
+      internalError("pass '" + passName + "': imported '" + res.name +
+                    "' was created without the usage '" + info.name + "' needs");
   } else if (kind == ResourceKind::Image) {
     res.image.usage |= info.imageUsage;  // transient usage is exactly what the passes declare
   } else {
@@ -108,7 +116,8 @@ ImageId GraphBuilder::create(const ImageDesc& desc) {
 
 BufferId GraphBuilder::create(const BufferDesc& desc) {
   if (desc.memory != BufferMemory::Device)
-    internalError("transient buffer '" + desc.name + "' must be device memory; use uniform() for uploads");
+    internalError("transient buffer '" + desc.name +
+                  "' must be device memory; use uniform() for uploads");
   ResourceNode node;
   node.name = desc.name;
   node.kind = ResourceKind::Buffer;
@@ -118,22 +127,28 @@ BufferId GraphBuilder::create(const BufferDesc& desc) {
 }
 
 ImageId GraphBuilder::read(ImageId h, Access a) {
-  if (accessInfo(a).write) internalError("read() with write access '" + std::string(accessInfo(a).name) + "'");
+  if (accessInfo(a).write)
+    internalError("read() with write access '" + std::string(accessInfo(a).name) + "'");
   return {h.id, mGraph.declare(mPass, h.id, h.version, a, ResourceKind::Image)};
 }
 BufferId GraphBuilder::read(BufferId h, Access a) {
-  if (accessInfo(a).write) internalError("read() with write access '" + std::string(accessInfo(a).name) + "'");
+  if (accessInfo(a).write)
+    internalError("read() with write access '" + std::string(accessInfo(a).name) + "'");
   return {h.id, mGraph.declare(mPass, h.id, h.version, a, ResourceKind::Buffer)};
 }
 ImageId GraphBuilder::write(ImageId h, Access a) {
-  if (!accessInfo(a).write) internalError("write() with read access '" + std::string(accessInfo(a).name) + "'");
+  if (!accessInfo(a).write)
+    internalError("write() with read access '" + std::string(accessInfo(a).name) + "'");
   return {h.id, mGraph.declare(mPass, h.id, h.version, a, ResourceKind::Image)};
 }
 BufferId GraphBuilder::write(BufferId h, Access a) {
-  if (!accessInfo(a).write) internalError("write() with read access '" + std::string(accessInfo(a).name) + "'");
+  if (!accessInfo(a).write)
+    internalError("write() with read access '" + std::string(accessInfo(a).name) + "'");
   return {h.id, mGraph.declare(mPass, h.id, h.version, a, ResourceKind::Buffer)};
 }
-void GraphBuilder::sideEffect() { mGraph.mDesc.passes[mPass].sideEffect = true; }
+void GraphBuilder::sideEffect() {
+  mGraph.mDesc.passes[mPass].sideEffect = true;
+}
 
 void FrameGraph::requestOutput(ImageId image, std::string label) {
   if (mCompiled) internalError("frame graph: output '" + label + "' requested after compile()");

@@ -124,7 +124,8 @@ private:
     PersistentBuffer* buffer = nullptr;
     int lastWriter = -1;  // pass that wrote the current version (for stale-handle messages)
   };
-  uint32_t declare(uint32_t pass, uint32_t resource, uint32_t version, Access access, ResourceKind kind);
+  uint32_t declare(uint32_t pass, uint32_t resource, uint32_t version, Access access,
+                   ResourceKind kind);
   uint32_t addResource(ResourceNode node, ResourceRecord record);
 
   GraphRuntime* mRuntime = nullptr;

@@ -100,7 +100,8 @@ FrameResult FrameGraph::execute() {
     key += n.kind == ResourceKind::Image
                ? std::to_string(n.image.format) + "," + std::to_string(n.image.width) + "," +
                      std::to_string(n.image.height) + "," + std::to_string(n.image.depth) + "," +
-                     std::to_string(static_cast<int>(n.image.dim)) + "," + std::to_string(n.image.usage)
+                     std::to_string(static_cast<int>(n.image.dim)) + "," +
+                     std::to_string(n.image.usage)
                : std::to_string(n.buffer.size) + "," + std::to_string(n.buffer.usage);
     key += ";";
   }
@@ -143,8 +144,9 @@ FrameResult FrameGraph::execute() {
     const ImageDesc& d = mDesc.resources[mOutputs[i].first.id].image;
     VkDeviceSize bytes = texelBytes(d);
     if (!runtime.mReadback[i] || runtime.mReadback[i].size() != bytes)
-      runtime.mReadback[i] = Buffer(ctx, {"readback " + mOutputs[i].second, bytes,
-                                           VK_BUFFER_USAGE_TRANSFER_DST_BIT, BufferMemory::HostVisible});
+      runtime.mReadback[i] =
+          Buffer(ctx, {"readback " + mOutputs[i].second, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                       BufferMemory::HostVisible});
   }
 
   VkCommandBuffer cmd = runtime.beginFrame();
@@ -166,7 +168,8 @@ FrameResult FrameGraph::execute() {
         ib.oldLayout = b.oldLayout;
         ib.newLayout = b.newLayout;
         ib.srcQueueFamilyIndex = ib.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-        ib.image = n.imported ? mResources[b.resource].image->image.image() : t.images[b.resource].image();
+        ib.image =
+            n.imported ? mResources[b.resource].image->image.image() : t.images[b.resource].image();
         ib.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
         images.push_back(ib);
       } else {
@@ -176,7 +179,8 @@ FrameResult FrameGraph::execute() {
         bb.dstStageMask = b.dstStage;
         bb.dstAccessMask = b.dstAccess;
         bb.srcQueueFamilyIndex = bb.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-        bb.buffer = n.imported ? mResources[b.resource].buffer->buffer.buffer() : t.buffers[b.resource].buffer();
+        bb.buffer = n.imported ? mResources[b.resource].buffer->buffer.buffer()
+                               : t.buffers[b.resource].buffer();
         bb.size = VK_WHOLE_SIZE;
         buffers.push_back(bb);
       }

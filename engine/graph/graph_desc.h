@@ -28,8 +28,8 @@ struct ResourceNode {
   std::string name;
   ResourceKind kind = ResourceKind::Image;
   bool imported = false;
-  ImageDesc image;    // kind == Image; usage is derived from the accesses for transient images
-  BufferDesc buffer;  // kind == Buffer
+  ImageDesc image;        // kind == Image; usage is derived from the accesses for transient images
+  BufferDesc buffer;      // kind == Buffer
   ResourceState initial;  // imported only
   uint32_t versions = 1;  // how many versions exist (1 + number of writes)
 };

@@ -22,7 +22,8 @@ std::string FrameGraph::toDot(const FrameResult* timings) const {
   o << "digraph frame_graph {\n  rankdir=LR;\n  node [fontname=\"Helvetica\", fontsize=10];\n";
   std::vector<int> position(mDesc.passes.size(), -1);
   if (mCompiled)
-    for (size_t i = 0; i < mCompiled->order.size(); ++i) position[mCompiled->order[i]] = static_cast<int>(i);
+    for (size_t i = 0; i < mCompiled->order.size(); ++i)
+      position[mCompiled->order[i]] = static_cast<int>(i);
 
   for (size_t p = 0; p < mDesc.passes.size(); ++p) {
     const PassNode& pass = mDesc.passes[p];
@@ -39,8 +40,10 @@ std::string FrameGraph::toDot(const FrameResult* timings) const {
             label += "\\n" + ms.str() + " ms";
           }
       if (!mCompiled->barriers.before[static_cast<size_t>(position[p])].empty())
-        label += "\\n" + std::to_string(mCompiled->barriers.before[static_cast<size_t>(position[p])].size()) +
-                 " barrier(s)";
+        label +=
+            "\\n" +
+            std::to_string(mCompiled->barriers.before[static_cast<size_t>(position[p])].size()) +
+            " barrier(s)";
     }
     if (culled) label += "\\n(culled)";
     o << "  p" << p << " [shape=box, style=\"" << (culled ? "dashed" : "rounded,filled")
@@ -51,13 +54,14 @@ std::string FrameGraph::toDot(const FrameResult* timings) const {
     const ResourceNode& res = mDesc.resources[r];
     std::string label = escape(res.name) + "\\n";
     if (res.kind == ResourceKind::Image) {
-      label += std::string(formatName(res.image.format)) + " " + std::to_string(res.image.width) + "x" +
-               std::to_string(res.image.height);
+      label += std::string(formatName(res.image.format)) + " " + std::to_string(res.image.width) +
+               "x" + std::to_string(res.image.height);
       if (res.image.dim == ImageDim::Tex3D) label += "x" + std::to_string(res.image.depth);
     } else {
       label += "buffer " + std::to_string(res.buffer.size) + " B";
     }
-    if (res.imported) label += "\\nimported";
+    if (res.imported)
+      label += "\\nimported";
     else if (mCompiled && mCompiled->memory.slotOf[r] >= 0)
       label += "\\nmemory slot " + std::to_string(mCompiled->memory.slotOf[r]);
     o << "  r" << r << " [shape=" << (res.kind == ResourceKind::Image ? "ellipse" : "cylinder")
@@ -68,10 +72,11 @@ std::string FrameGraph::toDot(const FrameResult* timings) const {
     for (const ResourceAccess& a : mDesc.passes[p].accesses) {
       const AccessInfo& info = accessInfo(a.access);
       if (info.write)
-        o << "  p" << p << " -> r" << a.resource << " [label=\"" << info.name << " v" << a.version + 1
-          << "\", color=\"#b03030\"];\n";
+        o << "  p" << p << " -> r" << a.resource << " [label=\"" << info.name << " v"
+          << a.version + 1 << "\", color=\"#b03030\"];\n";
       else
-        o << "  r" << a.resource << " -> p" << p << " [label=\"" << info.name << " v" << a.version << "\"];\n";
+        o << "  r" << a.resource << " -> p" << p << " [label=\"" << info.name << " v" << a.version
+          << "\"];\n";
     }
   o << "}\n";
   return o.str();

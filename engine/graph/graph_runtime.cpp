@@ -31,7 +31,9 @@ GraphRuntime::~GraphRuntime() {
   vkDestroyCommandPool(mCtx.device(), mPool, nullptr);
 }
 
-uint64_t GraphRuntime::transientBytes() const { return mTransients.bytes; }
+uint64_t GraphRuntime::transientBytes() const {
+  return mTransients.bytes;
+}
 
 void GraphRuntime::releaseTransients() {
   mTransients.images.clear();
@@ -67,16 +69,17 @@ void GraphRuntime::submitAndWait() {
 
 UniformRange GraphRuntime::uploadUniform(const void* data, VkDeviceSize size) {
   const VkDeviceSize align = mCtx.properties().limits.minUniformBufferOffsetAlignment;
-  if (size > kUniformChunk) internalError("uniform block of " + std::to_string(size) + " bytes is too large");
+  if (size > kUniformChunk)
+    internalError("uniform block of " + std::to_string(size) + " bytes is too large");
   mUniformOffset = (mUniformOffset + align - 1) / align * align;
   if (mUniformChunk < mUniformChunks.size() && mUniformOffset + size > kUniformChunk) {
     ++mUniformChunk;
     mUniformOffset = 0;
   }
   if (mUniformChunk >= mUniformChunks.size())
-    mUniformChunks.emplace_back(mCtx, BufferDesc{"uniforms", kUniformChunk,
-                                                 VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
-                                                 BufferMemory::HostVisible});
+    mUniformChunks.emplace_back(
+        mCtx, BufferDesc{"uniforms", kUniformChunk, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+                         BufferMemory::HostVisible});
   Buffer& chunk = mUniformChunks[mUniformChunk];
   std::memcpy(static_cast<uint8_t*>(chunk.mapped()) + mUniformOffset, data, size);
   UniformRange range{chunk.buffer(), mUniformOffset, size};

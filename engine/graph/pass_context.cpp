@@ -10,7 +10,9 @@
 
 namespace sky {
 
-const Context& PassContext::gpu() const { return mGraph.mRuntime->gpu(); }
+const Context& PassContext::gpu() const {
+  return mGraph.mRuntime->gpu();
+}
 
 const ResourceAccess* PassContext::declared(uint32_t resource) const {
   for (const ResourceAccess& a : mGraph.mDesc.passes[mPass].accesses)
@@ -40,18 +42,19 @@ UniformRange PassContext::uniform(const void* data, VkDeviceSize size) const {
 void PassContext::dispatch(const ComputePipeline& pipeline, std::initializer_list<Binding> bindings,
                            uint32_t gx, uint32_t gy, uint32_t gz, const void* push,
                            uint32_t pushSize) const {
-  const std::string where = "pass '" + mGraph.mDesc.passes[mPass].name + "', shader '" + pipeline.name() + "'";
+  const std::string where =
+      "pass '" + mGraph.mDesc.passes[mPass].name + "', shader '" + pipeline.name() + "'";
   const ShaderReflection& refl = pipeline.reflection();
   for (const DescriptorBinding& d : refl.bindings) {
     size_t n = 0;
     for (const Binding& b : bindings) n += b.binding == d.binding;
     if (n != 1)
-      internalError(where + ": binding " + std::to_string(d.binding) + " ('" + d.name + "') given " +
-                    std::to_string(n) + " times; it must be given once");
+      internalError(where + ": binding " + std::to_string(d.binding) + " ('" + d.name +
+                    "') given " + std::to_string(n) + " times; it must be given once");
   }
   if (pushSize != refl.pushConstantSize)
-    internalError(where + ": push constants of " + std::to_string(pushSize) + " bytes, shader wants " +
-                  std::to_string(refl.pushConstantSize));
+    internalError(where + ": push constants of " + std::to_string(pushSize) +
+                  " bytes, shader wants " + std::to_string(refl.pushConstantSize));
 
   std::vector<VkWriteDescriptorSet> writes;
   std::vector<VkDescriptorImageInfo> imageInfos;
@@ -68,7 +71,8 @@ void PassContext::dispatch(const ComputePipeline& pipeline, std::initializer_lis
     w.descriptorCount = 1;
     w.descriptorType = d->type;
     auto mismatch = [&](const char* what) {
-      internalError(where + ": binding " + std::to_string(b.binding) + " ('" + d->name + "') " + what);
+      internalError(where + ": binding " + std::to_string(b.binding) + " ('" + d->name + "') " +
+                    what);
     };
     switch (d->type) {
       case VK_DESCRIPTOR_TYPE_STORAGE_IMAGE:
@@ -77,7 +81,8 @@ void PassContext::dispatch(const ComputePipeline& pipeline, std::initializer_lis
         const ResourceAccess* a = declared(b.image.id);
         const bool storage = d->type == VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
         const bool storageAccess = a->access != Access::SampledCompute;
-        if (storage != storageAccess || a->access == Access::TransferSrc || a->access == Access::TransferDst)
+        if (storage != storageAccess || a->access == Access::TransferSrc ||
+            a->access == Access::TransferDst)
           mismatch(storage ? "is a storage image but setup declared another access"
                            : "is a sampled image but setup declared another access");
         if (!storage && !b.sampler) mismatch("needs a sampler");
@@ -112,9 +117,11 @@ void PassContext::dispatch(const ComputePipeline& pipeline, std::initializer_lis
     writes.push_back(w);
   }
   const Context& ctx = gpu();
-  vkUpdateDescriptorSets(ctx.device(), static_cast<uint32_t>(writes.size()), writes.data(), 0, nullptr);
+  vkUpdateDescriptorSets(ctx.device(), static_cast<uint32_t>(writes.size()), writes.data(), 0,
+                         nullptr);
   vkCmdBindPipeline(mCmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.pipeline());
-  vkCmdBindDescriptorSets(mCmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.layout(), 0, 1, &set, 0, nullptr);
+  vkCmdBindDescriptorSets(mCmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.layout(), 0, 1, &set, 0,
+                          nullptr);
   if (pushSize)
     vkCmdPushConstants(mCmd, pipeline.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, pushSize, push);
   vkCmdDispatch(mCmd, gx, gy, gz);

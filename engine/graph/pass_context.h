@@ -29,13 +29,26 @@ struct Binding {
   const Sampler* sampler = nullptr;
 
   static Binding of(uint32_t b, ImageId h, const Sampler* s = nullptr) {
-    Binding r; r.binding = b; r.kind = Kind::Image; r.image = h; r.sampler = s; return r;
+    Binding r;
+    r.binding = b;
+    r.kind = Kind::Image;
+    r.image = h;
+    r.sampler = s;
+    return r;
   }
   static Binding of(uint32_t b, BufferId h) {
-    Binding r; r.binding = b; r.kind = Kind::Buffer; r.buffer = h; return r;
+    Binding r;
+    r.binding = b;
+    r.kind = Kind::Buffer;
+    r.buffer = h;
+    return r;
   }
   static Binding of(uint32_t b, UniformRange u) {
-    Binding r; r.binding = b; r.kind = Kind::Uniform; r.uniform = u; return r;
+    Binding r;
+    r.binding = b;
+    r.kind = Kind::Uniform;
+    r.uniform = u;
+    return r;
   }
 };
 
@@ -48,7 +61,9 @@ public:
   // Copies `data` into this frame's uniform arena.
   UniformRange uniform(const void* data, VkDeviceSize size) const;
   template <class T>
-  UniformRange uniform(const T& value) const { return uniform(&value, sizeof(T)); }
+  UniformRange uniform(const T& value) const {
+    return uniform(&value, sizeof(T));
+  }
   // Binds `pipeline`, writes every binding its shader declares (all must be given, types
   // must match the reflection), pushes constants and dispatches `groups`.
   void dispatch(const ComputePipeline& pipeline, std::initializer_list<Binding> bindings,

@@ -60,7 +60,8 @@ void checkImage(const LayeredImage& image) {
   std::set<std::string> names;
   if (image.layers.empty()) internalError("writeExr: image has no layers");
   for (const ImageLayer& layer : image.layers) {
-    if (layer.channels.empty()) internalError("writeExr: layer '" + layer.name + "' has no channels");
+    if (layer.channels.empty())
+      internalError("writeExr: layer '" + layer.name + "' has no channels");
     if (layer.pixels.size() != pixels * layer.channels.size())
       internalError("writeExr: layer '" + layer.name + "' has " +
                     std::to_string(layer.pixels.size()) + " values, expected " +

@@ -14,10 +14,11 @@ double wrap360(double a) {
 HorizontalPosition sunPosition(double jd, double latDeg, double lonDeg) {
   // Astronomical Almanac, "Low precision formulas for the Sun" (section C).
   const double n = jd - 2451545.0;
-  const double L = wrap360(280.460 + 0.9856474 * n);        // mean longitude
+  const double L = wrap360(280.460 + 0.9856474 * n);         // mean longitude
   const double g = wrap360(357.528 + 0.9856003 * n) * kDeg;  // mean anomaly
-  const double lambda = (L + 1.915 * std::sin(g) + 0.020 * std::sin(2 * g)) * kDeg;  // ecliptic longitude
-  const double eps = (23.439 - 0.0000004 * n) * kDeg;        // obliquity of the ecliptic
+  const double lambda =
+      (L + 1.915 * std::sin(g) + 0.020 * std::sin(2 * g)) * kDeg;  // ecliptic longitude
+  const double eps = (23.439 - 0.0000004 * n) * kDeg;              // obliquity of the ecliptic
   const double ra = std::atan2(std::cos(eps) * std::sin(lambda), std::cos(lambda));
   const double dec = std::asin(std::sin(eps) * std::sin(lambda));
   // Greenwich mean sidereal time (IAU 1982, linear term) -> local hour angle.
@@ -26,8 +27,9 @@ HorizontalPosition sunPosition(double jd, double latDeg, double lonDeg) {
   const double lat = latDeg * kDeg;
   const double sinEl = std::sin(lat) * std::sin(dec) + std::cos(lat) * std::cos(dec) * std::cos(ha);
   const double el = std::asin(std::fmax(-1.0, std::fmin(1.0, sinEl)));
-  const double az = std::atan2(-std::sin(ha) * std::cos(dec),
-                               std::sin(dec) * std::cos(lat) - std::cos(dec) * std::sin(lat) * std::cos(ha));
+  const double az =
+      std::atan2(-std::sin(ha) * std::cos(dec),
+                 std::sin(dec) * std::cos(lat) - std::cos(dec) * std::sin(lat) * std::cos(ha));
   return {wrap360(az / kDeg), el / kDeg};
 }
 

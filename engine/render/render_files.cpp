@@ -10,9 +10,11 @@
 
 namespace sky {
 
-std::vector<float> displayPixels(const RenderedFrame& frame, const Scene& scene, const OcioOutput& ocio) {
+std::vector<float> displayPixels(const RenderedFrame& frame, const Scene& scene,
+                                 const OcioOutput& ocio) {
   const ImageLayer* beauty = frame.image.find("");
-  if (!beauty || beauty->channels.size() != 4) internalError("rendered frame has no RGBA main layer");
+  if (!beauty || beauty->channels.size() != 4)
+    internalError("rendered frame has no RGBA main layer");
   std::vector<float> rgba = beauty->pixels;
   ocio.toDisplay(rgba, scene.output.display, scene.output.view, scene.output.exposureEv);
   return rgba;
@@ -40,7 +42,8 @@ RenderFiles writeRenderFiles(const std::filesystem::path& dir, const Scene& scen
                    {"elevation_deg", frame.sun.elevationDeg},
                    {"source", frame.sunFromTime ? "time_and_place" : "scene_override"}};
   nlohmann::json passes = nlohmann::json::array();
-  for (const PassTiming& t : frame.frame.passes) passes.push_back({{"name", t.name}, {"gpu_ms", t.gpuMs}});
+  for (const PassTiming& t : frame.frame.passes)
+    passes.push_back({{"name", t.name}, {"gpu_ms", t.gpuMs}});
   report["passes"] = passes;
   report["gpu_ms_total"] = frame.frame.gpuMs;
   report["frame_wall_ms"] = frame.frame.wallMs;
@@ -48,7 +51,8 @@ RenderFiles writeRenderFiles(const std::filesystem::path& dir, const Scene& scen
                     {"display", scene.output.display},
                     {"view", scene.output.view}};
   nlohmann::json layers = nlohmann::json::array();
-  for (const ImageLayer& l : frame.image.layers) layers.push_back(l.name.empty() ? "beauty" : l.name);
+  for (const ImageLayer& l : frame.image.layers)
+    layers.push_back(l.name.empty() ? "beauty" : l.name);
   report["exr_layers"] = layers;
   report["settings"] = sceneToJson(scene);
 
@@ -60,11 +64,11 @@ RenderFiles writeRenderFiles(const std::filesystem::path& dir, const Scene& scen
   set.stage(files.png, [&](const std::filesystem::path& tmp) {
     writePng8(tmp, frame.image.width, frame.image.height, display);
   });
-  set.stage(files.report, [&](const std::filesystem::path& tmp) {
-    writeFileAtomic(tmp, report.dump(2) + "\n");
-  });
+  set.stage(files.report,
+            [&](const std::filesystem::path& tmp) { writeFileAtomic(tmp, report.dump(2) + "\n"); });
   if (graphPath)
-    set.stage(*graphPath, [&](const std::filesystem::path& tmp) { writeFileAtomic(tmp, frame.graphDot); });
+    set.stage(*graphPath,
+              [&](const std::filesystem::path& tmp) { writeFileAtomic(tmp, frame.graphDot); });
   set.commit();
   return files;
 }

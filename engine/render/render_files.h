@@ -25,6 +25,7 @@ RenderFiles writeRenderFiles(const std::filesystem::path& dir, const Scene& scen
                              const std::optional<std::filesystem::path>& graphPath = std::nullopt);
 
 // The display-referred RGBA pixels of the main layer (exposure and OCIO view applied).
-std::vector<float> displayPixels(const RenderedFrame& frame, const Scene& scene, const OcioOutput& ocio);
+std::vector<float> displayPixels(const RenderedFrame& frame, const Scene& scene,
+                                 const OcioOutput& ocio);
 
 }  // namespace sky

@@ -24,7 +24,8 @@ HorizontalPosition resolveSun(const Scene& scene, bool* fromTime) {
   const bool computed = !(scene.sun.azimuth && scene.sun.elevation);
   if (fromTime) *fromTime = computed;
   if (!computed) return {*scene.sun.azimuth, *scene.sun.elevation};
-  return sunPosition(scene.time.instant.julianDateUtc(), scene.camera.latitude, scene.camera.longitude);
+  return sunPosition(scene.time.instant.julianDateUtc(), scene.camera.latitude,
+                     scene.camera.longitude);
 }
 
 Renderer::Renderer(const Context& ctx, ShaderCompiler& compiler)

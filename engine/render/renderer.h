@@ -17,11 +17,11 @@ class Context;
 class ShaderCompiler;
 
 struct RenderedFrame {
-  LayeredImage image;         // layer "" = beauty (R,G,B,A); "sky" = clear sky (R,G,B)
-  FrameResult frame;          // per-pass GPU timings, wall time
-  std::string graphDot;       // the compiled graph with timings (for --dump-graph)
-  HorizontalPosition sun{};   // where the sun was placed
-  bool sunFromTime = false;   // true when computed from time and place, not the override
+  LayeredImage image;        // layer "" = beauty (R,G,B,A); "sky" = clear sky (R,G,B)
+  FrameResult frame;         // per-pass GPU timings, wall time
+  std::string graphDot;      // the compiled graph with timings (for --dump-graph)
+  HorizontalPosition sun{};  // where the sun was placed
+  bool sunFromTime = false;  // true when computed from time and place, not the override
 };
 
 class Renderer {

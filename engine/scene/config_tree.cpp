@@ -129,7 +129,7 @@ constexpr const char* kStrTag = "tag:yaml.org,2002:str";
 // ours is kept and raised only if the document turns out to be valid YAML: a syntax error
 // explains more than whatever the half-parsed events looked like.
 class YamlTreeBuilder : public YAML::EventHandler {
- public:
+public:
   using At = std::function<SourcePos(const YAML::Mark&)>;
 
   explicit YamlTreeBuilder(At at) : mAt(std::move(at)) {}
@@ -178,7 +178,7 @@ class YamlTreeBuilder : public YAML::EventHandler {
   }
   void OnMapEnd() override { close(); }
 
- private:
+private:
   // An open container. Maps alternate key and value events; the key waits here.
   struct Frame {
     ConfigNode* node;

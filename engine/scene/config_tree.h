@@ -19,7 +19,7 @@ struct SourcePos {
 };
 
 class ConfigNode {
- public:
+public:
   enum class Kind { Null, Scalar, Sequence, Map };
   // Plain: an untyped YAML scalar (number, name or word, decided by the reader).
   // String: quoted YAML or a JSON string. Number/Bool: typed JSON values.

@@ -17,7 +17,7 @@ namespace {
 // A const char* that reports every step to a shared counter. nlohmann copies iterators
 // freely, so the counter lives outside them.
 class CountingIterator {
- public:
+public:
   using iterator_category = std::input_iterator_tag;
   using value_type = char;
   using difference_type = std::ptrdiff_t;
@@ -39,7 +39,7 @@ class CountingIterator {
   }
   bool operator==(const CountingIterator& o) const { return mPtr == o.mPtr; }
 
- private:
+private:
   const char* mPtr;
   const char* mBase;
   size_t* mConsumed;
@@ -47,7 +47,7 @@ class CountingIterator {
 
 // Byte offset -> 1-based line and column (columns count UTF-8 code points, like yaml-cpp).
 class LineIndex {
- public:
+public:
   explicit LineIndex(std::string_view text) : mText(text) {
     mStarts.push_back(0);
     for (size_t i = 0; i < text.size(); ++i)
@@ -64,13 +64,13 @@ class LineIndex {
     return SourcePos{file, static_cast<int>(line) + 1, column};
   }
 
- private:
+private:
   std::string_view mText;
   std::vector<size_t> mStarts;
 };
 
 class TreeBuilder {
- public:
+public:
   using json = nlohmann::json;
 
   TreeBuilder(std::string_view text, const std::string& file, const size_t& consumed)
@@ -135,7 +135,7 @@ class TreeBuilder {
                (where.empty() ? "" : " (in " + where + ")"));
   }
 
- private:
+private:
   // Start of the token just lexed: after the previous callback's token, only whitespace
   // and the separators ',' ':' (which have no callback) can come before it.
   size_t tokenStart() {

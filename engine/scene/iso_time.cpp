@@ -32,7 +32,9 @@ void civilFromDays(int64_t z, int& y, unsigned& m, unsigned& d) {
   y = static_cast<int>(yy + (m <= 2));
 }
 
-bool isLeap(int y) { return (y % 4 == 0 && y % 100 != 0) || y % 400 == 0; }
+bool isLeap(int y) {
+  return (y % 4 == 0 && y % 100 != 0) || y % 400 == 0;
+}
 
 int daysInMonth(int y, int m) {
   static const int kDays[] = {31, 28, 31, 30, 31, 30, 31, 31, 30, 31, 30, 31};
@@ -53,7 +55,10 @@ bool digits(std::string_view t, size_t& pos, int n, int& out) {
 }
 
 bool expect(std::string_view t, size_t& pos, char c) {
-  if (pos < t.size() && t[pos] == c) { ++pos; return true; }
+  if (pos < t.size() && t[pos] == c) {
+    ++pos;
+    return true;
+  }
   return false;
 }
 
@@ -112,11 +117,13 @@ std::optional<IsoTime> IsoTime::parse(std::string_view t, std::string* why) {
   if (year < 1) return fail(why, "year out of range (0001 to 9999)");
   if (month < 1 || month > 12) return fail(why, "month out of range");
   if (day < 1 || day > daysInMonth(year, month)) return fail(why, "day out of range for the month");
-  if (hour > 23 || minute > 59 || second > 59) return fail(why, "hour, minute or second out of range");
+  if (hour > 23 || minute > 59 || second > 59)
+    return fail(why, "hour, minute or second out of range");
 
   IsoTime r;
-  r.unixSeconds = daysFromCivil(year, static_cast<unsigned>(month), static_cast<unsigned>(day)) * 86400 +
-                  hour * 3600 + minute * 60 + second - offset * 60;
+  r.unixSeconds =
+      daysFromCivil(year, static_cast<unsigned>(month), static_cast<unsigned>(day)) * 86400 +
+      hour * 3600 + minute * 60 + second - offset * 60;
   r.subsecond = frac;
   r.offsetMinutes = offset;
   return r;

@@ -10,9 +10,9 @@
 namespace sky {
 
 struct IsoTime {
-  int64_t unixSeconds = 0;   // UTC seconds since 1970-01-01T00:00:00Z (whole seconds)
-  double subsecond = 0.0;    // [0, 1)
-  int offsetMinutes = 0;     // the zone the text was written in (UTC offset)
+  int64_t unixSeconds = 0;  // UTC seconds since 1970-01-01T00:00:00Z (whole seconds)
+  double subsecond = 0.0;   // [0, 1)
+  int offsetMinutes = 0;    // the zone the text was written in (UTC offset)
 
   // Parses the text; on failure returns nullopt and, if `why` is given, a short reason.
   static std::optional<IsoTime> parse(std::string_view text, std::string* why = nullptr);

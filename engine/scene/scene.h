@@ -15,21 +15,21 @@
 namespace sky {
 
 struct OutputSettings {
-  int width = 1280;                       // pixels, 1..16384
-  int height = 720;                       // pixels, 1..16384
-  std::string name = "sky";               // file stem: [A-Za-z0-9._-], not starting with '.'
-  double exposureEv = 0.0;                // display exposure in stops, -20..20 (not applied to EXR)
-  std::string display = "sRGB";           // OCIO display
+  int width = 1280;              // pixels, 1..16384
+  int height = 720;              // pixels, 1..16384
+  std::string name = "sky";      // file stem: [A-Za-z0-9._-], not starting with '.'
+  double exposureEv = 0.0;       // display exposure in stops, -20..20 (not applied to EXR)
+  std::string display = "sRGB";  // OCIO display
   std::string view = "ACES 1.0 - SDR Video";  // OCIO view
 };
 
 struct CameraSettings {
-  double latitude = 47.37;     // degrees, -90..90
-  double longitude = 8.54;     // degrees, -180..180
-  double altitudeM = 500.0;    // metres above sea level, -500..100000
-  double heading = 180.0;      // degrees clockwise from north, -360..360
-  double pitch = 15.0;         // degrees above the horizon, -90..90
-  double verticalFov = 60.0;   // degrees, 1..179
+  double latitude = 47.37;    // degrees, -90..90
+  double longitude = 8.54;    // degrees, -180..180
+  double altitudeM = 500.0;   // metres above sea level, -500..100000
+  double heading = 180.0;     // degrees clockwise from north, -360..360
+  double pitch = 15.0;        // degrees above the horizon, -90..90
+  double verticalFov = 60.0;  // degrees, 1..179
 };
 
 struct TimeSettings {

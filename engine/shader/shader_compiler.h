@@ -30,19 +30,19 @@ struct CompiledShader {
 // A shader that does not compile. what() is one line, "<file>:<line>: error: <message>"
 // plus " (and N more errors)"; log() keeps glslang's full output for a debug view.
 class ShaderCompileError : public Error {
- public:
+public:
   ShaderCompileError(const std::string& message, std::string log)
       : Error(ErrorKind::Internal, message), mLog(std::move(log)) {}
   const std::string& log() const { return mLog; }
 
- private:
+private:
   std::string mLog;
 };
 
 // Stateless after construction: compile() may be called from several threads at once
 // (glslang is initialised once per process, thread-safely, and never finalised).
 class ShaderCompiler {
- public:
+public:
   // Cheap, no file access; both paths are copied (the root made absolute). A nullopt
   // `cacheDirectory` disables the SPIR-V cache; the folder is created on first store.
   explicit ShaderCompiler(std::filesystem::path shaderRoot = shaderDir(),
@@ -63,7 +63,7 @@ class ShaderCompiler {
   // Identifies glslang's version and our target/cache settings; part of every cache key.
   static const std::string& compilerVersion();
 
- private:
+private:
   std::filesystem::path mRoot;
   std::string mRootName;  // the root folder's own name, prefix of reported paths
   std::optional<std::filesystem::path> mCacheDir;

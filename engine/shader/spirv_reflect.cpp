@@ -38,7 +38,7 @@ struct Variable {
 // One pass over the instruction stream collects everything reflection needs; the
 // interpretation happens afterwards because SPIR-V allows decorations before their targets.
 class Reflector {
- public:
+public:
   explicit Reflector(std::span<const uint32_t> words) : mWords(words) {}
 
   ShaderReflection run() {
@@ -65,7 +65,7 @@ class Reflector {
     return out;
   }
 
- private:
+private:
   [[noreturn]] void fail(size_t wordOffset, const std::string& what) const {
     internalError("SPIR-V reflection: word " + std::to_string(wordOffset) + ": " + what);
   }

@@ -44,11 +44,11 @@ protected:
   CliRun run(const std::string& args, const std::string& env = "") {
     const char* exe = std::getenv("SKY_SKYRENDER");
     EXPECT_NE(exe, nullptr) << "tests/support sets SKY_SKYRENDER";
-    std::string cmd = env + " " + std::string(exe) + " " + args + " >" + (mDir / "stdout").string() + " 2>" +
-                      (mDir / "stderr").string();
+    std::string cmd = env + " " + std::string(exe) + " " + args + " >" +
+                      (mDir / "stdout").string() + " 2>" + (mDir / "stderr").string();
     int status = std::system(cmd.c_str());
     CliRun r{WIFEXITED(status) ? WEXITSTATUS(status) : -1, readTextFile(mDir / "stdout"),
-          readTextFile(mDir / "stderr")};
+             readTextFile(mDir / "stderr")};
     EXPECT_THAT(r.err, Not(HasSubstr("validation"))) << "Vulkan validation messages on stderr";
     return r;
   }
@@ -75,7 +75,8 @@ protected:
 };
 
 TEST_F(SkyrenderCli, RendersTheDefaultSceneIntoExrPngAndReport) {
-  CliRun r = run("render --out " + out() + " --width 64 --height 36 --dump-graph " + (mDir / "graph.dot").string());
+  CliRun r = run("render --out " + out() + " --width 64 --height 36 --dump-graph " +
+                 (mDir / "graph.dot").string());
   ASSERT_EQ(r.rc, 0) << r.err;
   EXPECT_THAT(r.out, HasSubstr("sky.exr"));
 
@@ -104,8 +105,9 @@ TEST_F(SkyrenderCli, RendersTheDefaultSceneIntoExrPngAndReport) {
 }
 
 TEST_F(SkyrenderCli, NameTimeAndSetOverridesReachTheRender) {
-  CliRun r = run("render --out " + out() + " --name custom --width 32 --height 18 --time 2024-12-21T08:30:00+01:00 "
-              "--set sun.azimuth=90 --set sun.elevation=10 --set output.view=Raw");
+  CliRun r = run("render --out " + out() +
+                 " --name custom --width 32 --height 18 --time 2024-12-21T08:30:00+01:00 "
+                 "--set sun.azimuth=90 --set sun.elevation=10 --set output.view=Raw");
   ASSERT_EQ(r.rc, 0) << r.err;
   nlohmann::json report = nlohmann::json::parse(readTextFile(mDir / "out" / "custom.json"));
   EXPECT_EQ(report["settings"]["time"], "2024-12-21T08:30:00+01:00");
@@ -132,12 +134,15 @@ TEST_F(SkyrenderCli, BadConfigsExitTwoWithKeyPathAndWriteNothing) {
                  {"type.yaml:2:", "camera.latitude", "number"});
   expectBadInput(write("range.yaml", "camera:\n  latitude: 95\n").string(),
                  {"range.yaml:2:", "camera.latitude", "95"});
-  expectBadInput(write("broken.yaml", "output:\n  width: [64\n").string(), {"broken.yaml:", "YAML"});
-  expectBadInput(write("broken.json", "{\"output\": {\"width\": 64,}}").string(), {"broken.json:1:", "JSON"});
+  expectBadInput(write("broken.yaml", "output:\n  width: [64\n").string(),
+                 {"broken.yaml:", "YAML"});
+  expectBadInput(write("broken.json", "{\"output\": {\"width\": 64,}}").string(),
+                 {"broken.json:1:", "JSON"});
   expectBadInput(write("range.json", "{\n  \"output\": {\"width\": 0}\n}").string(),
                  {"range.json:2:", "output.width"});
   expectBadInput((mDir / "missing.yaml").string(), {"missing.yaml", "cannot open"});
-  expectBadInput(write("nan.yaml", "sky:\n  glow_size: .nan\n").string(), {"nan.yaml:2:", "sky.glow_size"});
+  expectBadInput(write("nan.yaml", "sky:\n  glow_size: .nan\n").string(),
+                 {"nan.yaml:2:", "sky.glow_size"});
 }
 
 TEST_F(SkyrenderCli, BadArgumentsExitTwo) {
@@ -158,10 +163,13 @@ TEST_F(SkyrenderCli, BadArgumentsExitTwo) {
 TEST_F(SkyrenderCli, NoVulkanDeviceIsOneClearError) {
   // No driver manifest the loader can read: no device at all. Validation is off here because
   // the layer would report the loader's complaints, which is not what this test is about.
-  CliRun r = run("render --width 8 --height 8 --out " + out(),
-                 "env SKY_VALIDATION=0 VK_ICD_FILENAMES=/nonexistent.json VK_DRIVER_FILES=/nonexistent.json");
+  CliRun r = run(
+      "render --width 8 --height 8 --out " + out(),
+      "env SKY_VALIDATION=0 VK_ICD_FILENAMES=/nonexistent.json VK_DRIVER_FILES=/nonexistent.json");
   EXPECT_EQ(r.rc, 1);
-  EXPECT_EQ(r.err, "error: no Vulkan 1.3 device found (install mesa-vulkan-drivers for the CPU device lavapipe)\n");
+  EXPECT_EQ(r.err,
+            "error: no Vulkan 1.3 device found (install mesa-vulkan-drivers for the CPU device "
+            "lavapipe)\n");
   EXPECT_TRUE(outEmpty());
 }
 
@@ -173,7 +181,8 @@ TEST_F(SkyrenderCli, BrokenShaderIsOneLineWithFileAndLineAndWritesNothing) {
   size_t secondLine = text.find('\n') + 1;
   text.insert(text.find('\n', secondLine) + 1, "this is not glsl;\n");
   std::ofstream(shaders / "atmosphere_composite.comp", std::ios::trunc) << text;
-  CliRun r = run("render --width 8 --height 8 --out " + out(), "env SKY_SHADER_DIR=" + shaders.string());
+  CliRun r =
+      run("render --width 8 --height 8 --out " + out(), "env SKY_SHADER_DIR=" + shaders.string());
   EXPECT_EQ(r.rc, 1);
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   EXPECT_THAT(r.err, HasSubstr("atmosphere_composite.comp:3: error:"));
@@ -195,7 +204,8 @@ TEST_F(SkyrenderCli, UnwritableOutputFolderIsBadInput) {
 }
 
 TEST_F(SkyrenderCli, ValidatePrintsSettingsThatReproduceTheScene) {
-  fs::path scene = write("s.yaml", "output: {width: 64, height: 36}\nsun: {azimuth: 120, elevation: 8.5}\n");
+  fs::path scene =
+      write("s.yaml", "output: {width: 64, height: 36}\nsun: {azimuth: 120, elevation: 8.5}\n");
   CliRun first = run("validate " + scene.string());
   ASSERT_EQ(first.rc, 0) << first.err;
   EXPECT_THAT(first.out, HasSubstr("vertical_fov"));  // defaults are filled in
@@ -219,14 +229,16 @@ TEST_F(SkyrenderCli, ValidatePrintsSettingsThatReproduceTheScene) {
 TEST_F(SkyrenderCli, SchemaCommandPrintsTheCheckedInSchema) {
   CliRun r = run("schema");
   ASSERT_EQ(r.rc, 0);
-  const fs::path schema = fs::path(std::getenv("SKY_DATA_DIR")) / "configs" / "schema" / "scene.schema.json";
+  const fs::path schema =
+      fs::path(std::getenv("SKY_DATA_DIR")) / "configs" / "schema" / "scene.schema.json";
   EXPECT_EQ(r.out, readTextFile(schema));
 }
 
 TEST_F(SkyrenderCli, HelpDocumentsEveryOption) {
   CliRun r = run("render --help");
   EXPECT_EQ(r.rc, 0);
-  for (const char* opt : {"--out", "--name", "--width", "--height", "--time", "--set", "--dump-graph", "--gpu", "--ocio"})
+  for (const char* opt : {"--out", "--name", "--width", "--height", "--time", "--set",
+                          "--dump-graph", "--gpu", "--ocio"})
     EXPECT_THAT(r.out, HasSubstr(opt));
 }
 

@@ -29,7 +29,8 @@ TEST(OcioConfig, RolesAndColorSpaces) {
   EXPECT_STREQ(config->getColorSpace(OCIO::ROLE_INTERCHANGE_SCENE)->getName(), "ACES2065-1");
   EXPECT_STREQ(config->getColorSpace(OCIO::ROLE_DATA)->getName(), "Raw");
 
-  for (const char* name : {"ACES2065-1", "ACEScg", "Linear Rec.709 (sRGB)", "sRGB - Texture", "Raw"}) {
+  for (const char* name :
+       {"ACES2065-1", "ACEScg", "Linear Rec.709 (sRGB)", "sRGB - Texture", "Raw"}) {
     OCIO::ConstColorSpaceRcPtr cs = config->getColorSpace(name);
     ASSERT_TRUE(cs) << name;
     EXPECT_EQ(cs->getReferenceSpaceType(), OCIO::REFERENCE_SPACE_SCENE) << name;
@@ -50,7 +51,8 @@ TEST(OcioConfig, BuiltFromBuiltinsOnly) {
   // No LUT files: the config must work wherever it is copied.
   const std::string text = readTextFile(configDir() / "ocio" / "config.ocio");
   EXPECT_EQ(text.find("FileTransform"), std::string::npos);
-  EXPECT_NE(text.find("ACES-OUTPUT - ACES2065-1_to_CIE-XYZ-D65 - SDR-VIDEO_1.0"), std::string::npos);
+  EXPECT_NE(text.find("ACES-OUTPUT - ACES2065-1_to_CIE-XYZ-D65 - SDR-VIDEO_1.0"),
+            std::string::npos);
   EXPECT_NE(text.find("DISPLAY - CIE-XYZ-D65_to_sRGB"), std::string::npos);
 }
 

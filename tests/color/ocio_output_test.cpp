@@ -95,7 +95,8 @@ TEST_F(OcioOutputTest, MissingConfigIsBadInputNamingFile) {
 
 TEST_F(OcioOutputTest, UnparsableConfigIsOneLineBadInputWithOcioMessage) {
   const fs::path broken = dir() / "broken.ocio";
-  writeFileAtomic(broken, std::string_view("ocio_profile_version: 2\ncolorspaces: [\n  - {name: x\n"));
+  writeFileAtomic(broken,
+                  std::string_view("ocio_profile_version: 2\ncolorspaces: [\n  - {name: x\n"));
   Error e = catchError([&] { OcioOutput::load(broken); });
   const std::string msg = e.what();
   EXPECT_EQ(e.kind(), ErrorKind::BadInput);
@@ -134,14 +135,13 @@ TEST_F(OcioOutputTest, OcioEnvironmentOverridesDefaultAndExplicitOverridesEnviro
 
 TEST_F(OcioOutputTest, UntonemappedViewIsSrgbEncodingClipped) {
   OcioOutput out = OcioOutput::load();
-  const std::vector<float> in{0.18f, 0.18f, 0.18f, 1.0f,   // grey
-                              0.0f,  0.0f,  0.0f,  1.0f,   // black
-                              1.0f,  1.0f,  1.0f,  1.0f,   // white
-                              1.0f,  0.0f,  0.0f,  1.0f,   // saturated primary
-                              0.5f,  0.1f,  0.02f, 1.0f,   // saturated orange
-                              0.002f, 0.01f, 0.7f, 1.0f,   // across the linear toe
-                              100.0f, 100.0f, 100.0f, 1.0f,
-                              -0.1f, 0.5f,  0.5f,  1.0f};
+  const std::vector<float> in{0.18f,  0.18f,  0.18f,  1.0f,  // grey
+                              0.0f,   0.0f,   0.0f,   1.0f,  // black
+                              1.0f,   1.0f,   1.0f,   1.0f,  // white
+                              1.0f,   0.0f,   0.0f,   1.0f,  // saturated primary
+                              0.5f,   0.1f,   0.02f,  1.0f,  // saturated orange
+                              0.002f, 0.01f,  0.7f,   1.0f,  // across the linear toe
+                              100.0f, 100.0f, 100.0f, 1.0f, -0.1f, 0.5f, 0.5f, 1.0f};
   const std::vector<float> got = convert(out, in, kUntoned);
   for (size_t i = 0; i < in.size(); ++i) {
     if (i % 4 == 3) continue;
@@ -155,14 +155,12 @@ TEST_F(OcioOutputTest, AcesViewMatchesMeasuredValues) {
   // (ACES Central, "Understanding the sRGB RRT/ODT"); 0.18 -> 0.356 follows from the RRT's
   // mid-grey at ~10% of peak luminance. Tolerance covers OCIO's fast pow/exp approximations.
   OcioOutput out = OcioOutput::load();
-  const std::vector<float> in{0.18f, 0.18f, 0.18f, 1.0f, 0.0f, 0.0f,  0.0f,  1.0f,
-                              1.0f,  1.0f,  1.0f,  1.0f, 1.0f, 0.0f,  0.0f,  1.0f,
-                              0.5f,  0.1f,  0.02f, 1.0f};
-  const std::vector<float> expected{0.355954f, 0.355954f, 0.355954f, 1.0f,
-                                    0.0f,      0.0f,      0.0f,      1.0f,
-                                    0.811971f, 0.811971f, 0.811971f, 1.0f,
-                                    0.803756f, 0.0f,      0.024502f, 1.0f,
-                                    0.603653f, 0.239854f, 0.075292f, 1.0f};
+  const std::vector<float> in{0.18f, 0.18f, 0.18f, 1.0f, 0.0f, 0.0f, 0.0f, 1.0f, 1.0f,  1.0f,
+                              1.0f,  1.0f,  1.0f,  0.0f, 0.0f, 1.0f, 0.5f, 0.1f, 0.02f, 1.0f};
+  const std::vector<float> expected{0.355954f, 0.355954f, 0.355954f, 1.0f,      0.0f,
+                                    0.0f,      0.0f,      1.0f,      0.811971f, 0.811971f,
+                                    0.811971f, 1.0f,      0.803756f, 0.0f,      0.024502f,
+                                    1.0f,      0.603653f, 0.239854f, 0.075292f, 1.0f};
   const std::vector<float> got = convert(out, in, kAces);
   for (size_t i = 0; i < in.size(); ++i) EXPECT_NEAR(got[i], expected[i], 5e-4f) << "value " << i;
 }
@@ -177,7 +175,8 @@ TEST_F(OcioOutputTest, AcesViewStaysInDisplayRangeAndIsMonotonic) {
   for (size_t i = 0; i + 4 < got.size(); i += 4) {
     if (ramp[i] >= 1.0f / 256.0f && ramp[i + 4] <= 16.0f)
       EXPECT_LT(got[i], got[i + 4]) << "input " << ramp[i];
-    else EXPECT_LE(got[i], got[i + 4]) << "input " << ramp[i];
+    else
+      EXPECT_LE(got[i], got[i + 4]) << "input " << ramp[i];
   }
   for (float v : got) {
     EXPECT_GE(v, 0.0f);
@@ -196,8 +195,8 @@ TEST_F(OcioOutputTest, RawViewIsIdentity) {
 
 TEST_F(OcioOutputTest, AlphaIsUntouched) {
   OcioOutput out = OcioOutput::load();
-  const std::vector<float> in{0.5f, 0.2f, 0.1f, 0.25f, 3.0f, 2.0f, 1.0f, 2.0f,
-                              0.1f, 0.1f, 0.1f, -1.0f};
+  const std::vector<float> in{0.5f, 0.2f, 0.1f, 0.25f, 3.0f, 2.0f,
+                              1.0f, 2.0f, 0.1f, 0.1f,  0.1f, -1.0f};
   for (const char* view : {kAces, kUntoned, "Raw"}) {
     const std::vector<float> got = convert(out, in, view, 2.5);
     for (size_t i = 3; i < in.size(); i += 4) EXPECT_EQ(got[i], in[i]) << view;
@@ -206,8 +205,8 @@ TEST_F(OcioOutputTest, AlphaIsUntouched) {
 
 TEST_F(OcioOutputTest, PlusOneEvEqualsDoublingTheInput) {
   OcioOutput out = OcioOutput::load();
-  const std::vector<float> in{0.18f, 0.1f, 0.02f, 1.0f, 0.03f, 0.04f, 0.05f, 1.0f,
-                              0.4f,  0.4f, 0.4f,  1.0f};
+  const std::vector<float> in{0.18f, 0.1f, 0.02f, 1.0f, 0.03f, 0.04f,
+                              0.05f, 1.0f, 0.4f,  0.4f, 0.4f,  1.0f};
   std::vector<float> doubled = in, quartered = in;
   for (size_t i = 0; i < in.size(); ++i) {
     if (i % 4 == 3) continue;
@@ -233,10 +232,12 @@ TEST_F(OcioOutputTest, ConcurrentCallsMatchSerialOnes) {
   std::vector<float> base;
   for (int i = 0; i < 256; ++i) base.insert(base.end(), {i / 64.0f, i / 128.0f, i / 512.0f, 1.0f});
   std::vector<std::vector<float>> serial, parallel(8, base);
-  for (int t = 0; t < 8; ++t) serial.push_back(convert(out, base, t % 2 ? kAces : kUntoned, t * 0.5));
+  for (int t = 0; t < 8; ++t)
+    serial.push_back(convert(out, base, t % 2 ? kAces : kUntoned, t * 0.5));
   std::vector<std::thread> threads;
   for (int t = 0; t < 8; ++t)
-    threads.emplace_back([&, t] { out.toDisplay(parallel[size_t(t)], "sRGB", t % 2 ? kAces : kUntoned, t * 0.5); });
+    threads.emplace_back(
+        [&, t] { out.toDisplay(parallel[size_t(t)], "sRGB", t % 2 ? kAces : kUntoned, t * 0.5); });
   for (std::thread& th : threads) th.join();
   EXPECT_EQ(parallel, serial);
 }
@@ -244,7 +245,8 @@ TEST_F(OcioOutputTest, ConcurrentCallsMatchSerialOnes) {
 TEST_F(OcioOutputTest, BadBufferAndExposureAreRejected) {
   OcioOutput out = OcioOutput::load();
   std::vector<float> three{0.1f, 0.2f, 0.3f};
-  EXPECT_EQ(catchError([&] { out.toDisplay(three, "sRGB", "Raw", 0.0); }).kind(), ErrorKind::Internal);
+  EXPECT_EQ(catchError([&] { out.toDisplay(three, "sRGB", "Raw", 0.0); }).kind(),
+            ErrorKind::Internal);
   std::vector<float> px{0.1f, 0.2f, 0.3f, 1.0f};
   EXPECT_EQ(catchError([&] { out.toDisplay(px, "sRGB", "Raw", std::nan("")); }).kind(),
             ErrorKind::BadInput);

@@ -20,15 +20,17 @@ protected:
     if (const char* v = std::getenv("OCIO")) mSavedOcio = v;
     ::unsetenv("OCIO");
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    mDir = std::filesystem::temp_directory_path() /
-           ("sky-color-" + std::to_string(::getpid()) + "-" + info->test_suite_name() + "-" +
-            info->name());
+    mDir =
+        std::filesystem::temp_directory_path() / ("sky-color-" + std::to_string(::getpid()) + "-" +
+                                                  info->test_suite_name() + "-" + info->name());
     std::filesystem::remove_all(mDir);
     std::filesystem::create_directories(mDir);
   }
   void TearDown() override {
-    if (mSavedOcio) ::setenv("OCIO", mSavedOcio->c_str(), 1);
-    else ::unsetenv("OCIO");
+    if (mSavedOcio)
+      ::setenv("OCIO", mSavedOcio->c_str(), 1);
+    else
+      ::unsetenv("OCIO");
     std::error_code ec;
     std::filesystem::remove_all(mDir, ec);
   }

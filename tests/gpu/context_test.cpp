@@ -24,7 +24,8 @@ TEST(GpuValidation, TestsRunWithTheLayersOn) {
 }
 
 TEST(GpuValidation, AMisuseReachesTheHandler) {
-  // A private context with its own handler: this test wants the message, the shared one fails on it.
+  // A private context with its own handler: this test wants the message, the shared one fails on
+  // it.
   ContextOptions options;
   options.validation = true;
   std::vector<std::string> messages;
@@ -54,7 +55,8 @@ TEST(GpuContext, GpuByIndexAndUnknownNameListsDevices) {
     FAIL() << "expected an error";
   } catch (const Error& e) {
     EXPECT_EQ(e.kind(), ErrorKind::BadInput);
-    EXPECT_THAT(e.what(), HasSubstr("--gpu no-such-gpu-xyz: no such Vulkan device (available: 0: "));
+    EXPECT_THAT(e.what(),
+                HasSubstr("--gpu no-such-gpu-xyz: no such Vulkan device (available: 0: "));
   }
   ContextOptions byBadIndex;
   byBadIndex.gpu = "99";

@@ -21,7 +21,8 @@ ResourceNode image(const std::string& name, uint32_t size = 64) {
   return r;
 }
 
-PassNode pass(const std::string& name, std::vector<ResourceAccess> accesses, bool sideEffect = false) {
+PassNode pass(const std::string& name, std::vector<ResourceAccess> accesses,
+              bool sideEffect = false) {
   return {name, std::move(accesses), sideEffect};
 }
 
@@ -33,8 +34,7 @@ constexpr Access kCopy = Access::TransferSrc;
 GraphDesc chain() {
   GraphDesc g;
   g.resources = {image("a"), image("b"), image("c")};
-  g.passes = {pass("fill", {{0, 0, kWrite}}),
-              pass("debug", {{0, 1, kSample}, {2, 0, kWrite}}),
+  g.passes = {pass("fill", {{0, 0, kWrite}}), pass("debug", {{0, 1, kSample}, {2, 0, kWrite}}),
               pass("blur", {{0, 1, kSample}, {1, 0, kWrite}}),
               pass("readback", {{1, 1, kCopy}}, true)};
   return g;
@@ -105,7 +105,8 @@ TEST(GraphMemory, NonOverlappingTransientsShareASlot) {
   GraphDesc g;
   g.resources = {image("a"), image("b"), image("c")};
   g.passes = {pass("p0", {{0, 0, kWrite}}), pass("p1", {{0, 1, kSample}, {1, 0, kWrite}}),
-              pass("p2", {{1, 1, kSample}, {2, 0, kWrite}}), pass("readback", {{2, 1, kCopy}}, true)};
+              pass("p2", {{1, 1, kSample}, {2, 0, kWrite}}),
+              pass("readback", {{2, 1, kCopy}}, true)};
   std::vector<uint32_t> ord = order(g, cull(g));
   std::vector<Lifetime> life = computeLifetimes(g, ord);
   std::vector<MemoryRequirement> req(3, {1000, 256, 0b11});
@@ -142,7 +143,8 @@ TEST(GraphBarriers, ExactListForASmallGraph) {
   GraphDesc g;
   g.resources = {image("a"), image("b"), image("c")};
   g.passes = {pass("fill", {{0, 0, kWrite}}), pass("blur", {{0, 1, kSample}, {1, 0, kWrite}}),
-              pass("tone", {{1, 1, kSample}, {2, 0, kWrite}}), pass("readback", {{2, 1, kCopy}}, true)};
+              pass("tone", {{1, 1, kSample}, {2, 0, kWrite}}),
+              pass("readback", {{2, 1, kCopy}}, true)};
   std::vector<uint32_t> ord = order(g, cull(g));
   std::vector<Lifetime> life = computeLifetimes(g, ord);
   MemoryPlan mem = assignMemory(g, life, std::vector<MemoryRequirement>(3, {4096, 256, ~0u}));
@@ -163,17 +165,19 @@ TEST(GraphBarriers, ExactListForASmallGraph) {
   EXPECT_EQ(plan.before[1], (B{{0, C, W, C, S, GEN, RO}, {1, NONE, 0, C, W, UNDEF, GEN}}));
   // c takes over a's memory: it waits for a's last use (the sampled read in blur).
   EXPECT_EQ(plan.before[2], (B{{1, C, W, C, S, GEN, RO}, {2, C, 0, C, W, UNDEF, GEN}}));
-  EXPECT_EQ(plan.before[3],
-            (B{{2, C, W, COPY, VK_ACCESS_2_TRANSFER_READ_BIT, GEN, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL}}));
+  EXPECT_EQ(plan.before[3], (B{{2, C, W, COPY, VK_ACCESS_2_TRANSFER_READ_BIT, GEN,
+                                VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL}}));
 }
 
 TEST(GraphBarriers, ImportedStateSynchronisesWithThePreviousFrame) {
   GraphDesc g;
   g.resources = {image("noise"), image("out")};
   g.resources[0].imported = true;
-  g.resources[0].initial = {VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+  g.resources[0].initial = {VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                            VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                             VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT};
-  g.passes = {pass("use", {{0, 0, kSample}, {1, 0, kWrite}}), pass("use2", {{0, 0, kSample}, {1, 1, Access::StorageReadWriteCompute}}),
+  g.passes = {pass("use", {{0, 0, kSample}, {1, 0, kWrite}}),
+              pass("use2", {{0, 0, kSample}, {1, 1, Access::StorageReadWriteCompute}}),
               pass("readback", {{1, 2, kCopy}}, true)};
   std::vector<uint32_t> ord = order(g, cull(g));
   MemoryPlan mem = assignMemory(g, computeLifetimes(g, ord), std::vector<MemoryRequirement>(2));
@@ -181,9 +185,10 @@ TEST(GraphBarriers, ImportedStateSynchronisesWithThePreviousFrame) {
   // Same layout, but last frame's write must be made visible — once, not per reader.
   ASSERT_EQ(plan.before[0].size(), 2u);
   EXPECT_EQ(plan.before[0][0],
-            (Barrier{0, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                     VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT,
-                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL}));
+            (Barrier{0, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                     VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                     VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL}));
   for (const Barrier& b : plan.before[1]) EXPECT_NE(b.resource, 0u);
   EXPECT_EQ(plan.finalState[0].layout, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
 }

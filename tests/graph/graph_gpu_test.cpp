@@ -21,7 +21,8 @@ using ::testing::HasSubstr;
 class GraphGpuTest : public test::GpuTest {
 protected:
   void SetUp() override {
-    ShaderCompiler compiler(std::filesystem::path(std::getenv("SKY_TEST_DATA")) / "graph", std::nullopt);
+    ShaderCompiler compiler(std::filesystem::path(std::getenv("SKY_TEST_DATA")) / "graph",
+                            std::nullopt);
     CompiledShader fill = compiler.compile("fill.comp");
     CompiledShader add = compiler.compile("add.comp");
     mFill = std::make_unique<ComputePipeline>(ctx(), "fill", fill.spirv, fill.reflection);
@@ -56,14 +57,15 @@ TEST_F(GraphGpuTest, ChainWithAliasedMemoryGivesTheRightPixels) {
   }
   auto add = [&](const char* name, ImageId& in, ImageId& out, float v) {
     GraphBuilder pb = g.addPass(name, [&, v](PassContext& pc) {
-      pc.dispatch(*mAdd, {Binding::of(0, in, mSampler.get()), Binding::of(1, out)}, 2, 2, 1, &v, sizeof v);
+      pc.dispatch(*mAdd, {Binding::of(0, in, mSampler.get()), Binding::of(1, out)}, 2, 2, 1, &v,
+                  sizeof v);
     });
     pb.read(in, Access::SampledCompute);
     out = pb.write(pb.create(desc(std::string(name) + "_out")), Access::StorageWriteCompute);
   };
-  add("add1", a, b, 10.0f);   // b = 11
-  add("add2", b, c, 100.0f);  // c = 111, may reuse a's memory
-  add("add3", c, d, 1000.0f); // d = 1111, may reuse b's memory
+  add("add1", a, b, 10.0f);    // b = 11
+  add("add2", b, c, 100.0f);   // c = 111, may reuse a's memory
+  add("add3", c, d, 1000.0f);  // d = 1111, may reuse b's memory
   g.requestOutput(d, "d");
   const CompiledGraph& compiled = g.compile();
   EXPECT_EQ(compiled.memory.slots.size(), 2u) << "4 images with chained lifetimes need 2 slots";
@@ -124,7 +126,8 @@ TEST_F(GraphGpuTest, PersistentImageCarriesDataAndStateAcrossFrames) {
     }
     GraphBuilder pb = g.addPass("use", [&](PassContext& pc) {
       float v = 1.0f;
-      pc.dispatch(*mAdd, {Binding::of(0, in, mSampler.get()), Binding::of(1, out)}, 2, 2, 1, &v, sizeof v);
+      pc.dispatch(*mAdd, {Binding::of(0, in, mSampler.get()), Binding::of(1, out)}, 2, 2, 1, &v,
+                  sizeof v);
     });
     pb.read(in, Access::SampledCompute);
     out = pb.write(pb.create(desc("out")), Access::StorageWriteCompute);

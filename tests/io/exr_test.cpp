@@ -27,7 +27,8 @@ constexpr int kW = 7, kH = 5;
 // Distinct value per layer, pixel and channel, spread over many magnitudes so a swapped
 // row, channel or layer shows up.
 float pattern(int layer, int x, int y, int c) {
-  return (1.0f + float(layer)) * (0.01f * float(x + 1) + float(y) * 1.5f) * std::pow(4.0f, float(c - 1));
+  return (1.0f + float(layer)) * (0.01f * float(x + 1) + float(y) * 1.5f) *
+         std::pow(4.0f, float(c - 1));
 }
 
 ImageLayer makeLayer(int index, std::string name, std::vector<std::string> channels) {
@@ -93,7 +94,8 @@ TEST_F(ExrTest, FileHoldsExactChannelNamesAsHalfZipSinglePart) {
     names.insert(it.name());
     EXPECT_EQ(it.channel().type, Imf::HALF) << it.name();
   }
-  EXPECT_EQ(names, (std::set<std::string>{"R", "G", "B", "A", "sky.R", "sky.G", "sky.B", "depth.Z"}));
+  EXPECT_EQ(names,
+            (std::set<std::string>{"R", "G", "B", "A", "sky.R", "sky.G", "sky.B", "depth.Z"}));
 
   // Row 0 of the image is the first scanline of the file (top of the picture).
   const Imath::Box2i dw = file.header().dataWindow();
@@ -131,7 +133,8 @@ TEST_F(ExrTest, ReadsRgbaFileFromOtherToolsWithOffsetDataWindow) {
   const Imath::Box2i data(Imath::V2i(10, 20), Imath::V2i(13, 22));
   std::vector<Imf::Rgba> px;
   for (int y = 0; y < 3; ++y)
-    for (int x = 0; x < 4; ++x) px.emplace_back(half(float(x)), half(float(y)), half(0.5f), half(1.0f));
+    for (int x = 0; x < 4; ++x)
+      px.emplace_back(half(float(x)), half(float(y)), half(0.5f), half(1.0f));
   {
     Imf::RgbaOutputFile out(path.c_str(), display, data, Imf::WRITE_RGBA, 1.0f, Imath::V2f(0, 0),
                             1.0f, Imf::INCREASING_Y, Imf::PIZ_COMPRESSION);

@@ -18,9 +18,8 @@ class ScratchDirTest : public ::testing::Test {
 protected:
   void SetUp() override {
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    mDir = std::filesystem::temp_directory_path() /
-           ("sky-io-" + std::to_string(::getpid()) + "-" + info->test_suite_name() + "-" +
-            info->name());
+    mDir = std::filesystem::temp_directory_path() / ("sky-io-" + std::to_string(::getpid()) + "-" +
+                                                     info->test_suite_name() + "-" + info->name());
     std::filesystem::remove_all(mDir);
     std::filesystem::create_directories(mDir);
   }

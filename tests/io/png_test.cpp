@@ -18,14 +18,17 @@ class PngTest : public test::ScratchDirTest {};
 
 TEST_F(PngTest, RoundTripClampsAndRoundsToNearest) {
   // 3x2 RGBA: row 0 = top.
-  const std::vector<float> rgba{
-      0.0f,  0.5f,  1.0f,  1.0f,     // 0, 127.5 -> 128, 255
-      -0.5f, 1.5f,  0.2f,  1.0f,     // clamped; 0.2 * 255 = 51
-      std::nanf(""), 0.25f, 0.75f, 0.0f,  // NaN -> 0; 63.75 -> 64; 191.25 -> 191
-      10.4f / 255.0f, 10.6f / 255.0f, 254.49f / 255.0f, 0.5f,
-      1.0f / 255.0f, 0.002f, 0.998f, 1.0f,
-      0.0f, 0.0f, 0.0f, 1.0f};
-  const std::vector<uint8_t> expected{0,  128, 255, 255, 0, 255, 51, 255, 0,   64, 191, 0,
+  const std::vector<float> rgba{0.0f,           0.5f,           1.0f,
+                                1.0f,  // 0, 127.5 -> 128, 255
+                                -0.5f,          1.5f,           0.2f,
+                                1.0f,  // clamped; 0.2 * 255 = 51
+                                std::nanf(""),  0.25f,          0.75f,
+                                0.0f,  // NaN -> 0; 63.75 -> 64; 191.25 -> 191
+                                10.4f / 255.0f, 10.6f / 255.0f, 254.49f / 255.0f,
+                                0.5f,           1.0f / 255.0f,  0.002f,
+                                0.998f,         1.0f,           0.0f,
+                                0.0f,           0.0f,           1.0f};
+  const std::vector<uint8_t> expected{0,  128, 255, 255, 0, 255, 51,  255, 0, 64, 191, 0,
                                       10, 11,  254, 128, 1, 1,   254, 255, 0, 0,  0,   255};
   const fs::path path = dir() / "preview.png";
   writePng8(path, 3, 2, rgba);
@@ -77,7 +80,8 @@ TEST_F(PngTest, FailedWritesLeaveNoFiles) {
 
 TEST_F(PngTest, WrongBufferSizeIsInternal) {
   const std::vector<float> rgba(15, 0.5f);
-  EXPECT_EQ(catchError([&] { writePng8(dir() / "a.png", 2, 2, rgba); }).kind(), ErrorKind::Internal);
+  EXPECT_EQ(catchError([&] { writePng8(dir() / "a.png", 2, 2, rgba); }).kind(),
+            ErrorKind::Internal);
   EXPECT_EQ(catchError([&] { writePng8(dir() / "a.png", 0, 2, {}); }).kind(), ErrorKind::Internal);
   EXPECT_TRUE(entries().empty());
 }

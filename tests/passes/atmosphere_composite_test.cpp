@@ -79,9 +79,10 @@ TEST_F(AtmosphereCompositeTest, SunDiscKeepsItsEnergyAndHidesBelowTheHorizon) {
   for (int y = 0; y < 36; ++y)
     for (int x = 0; x < 64; ++x) {
       const size_t i = static_cast<size_t>(y) * 64 + x;
-      const double cosT = glm::dot(referenceDirection(scene.camera, 64, 36, x, y), glm::vec3(view.forward));
-      energy += (beauty->pixels[i * 4 + 1] - sky->pixels[i * 3 + 1]) * view.forward.w * view.forward.w *
-                cosT * cosT * cosT;
+      const double cosT =
+          glm::dot(referenceDirection(scene.camera, 64, 36, x, y), glm::vec3(view.forward));
+      energy += (beauty->pixels[i * 4 + 1] - sky->pixels[i * 3 + 1]) * view.forward.w *
+                view.forward.w * cosT * cosT * cosT;
     }
   const double r = 0.5 * scene.sun.angularDiameter * 3.14159265358979 / 180;
   const double expected = 3.14159265358979 * r * r * scene.sky.sunColor.g * scene.sun.discIntensity;
@@ -98,7 +99,8 @@ TEST_F(AtmosphereCompositeTest, SunDiscKeepsItsEnergyAndHidesBelowTheHorizon) {
 // Tolerance: PSNR >= 50 dB on RGB (peak = the reference's largest value) and max error
 // <= 2 % of the peak, room for GPU-to-GPU float differences but not for a changed sky.
 // SKY_UPDATE_GOLDEN=1 rewrites the references instead (scripts/update-goldens.sh).
-class ClearSkyGolden : public AtmosphereCompositeTest, public ::testing::WithParamInterface<const char*> {};
+class ClearSkyGolden : public AtmosphereCompositeTest,
+                       public ::testing::WithParamInterface<const char*> {};
 
 std::vector<float> rgbOf(const LayeredImage& image) {
   const ImageLayer* l = image.find("");
@@ -114,7 +116,8 @@ TEST_P(ClearSkyGolden, MatchesReference) {
   ASSERT_EQ(scene.output.width, 64);
   ASSERT_EQ(scene.output.height, 36);
   RenderedFrame frame = render(scene);
-  const fs::path golden = fs::path(std::getenv("SKY_TEST_DATA")).parent_path() / "golden" / (name + ".exr");
+  const fs::path golden =
+      fs::path(std::getenv("SKY_TEST_DATA")).parent_path() / "golden" / (name + ".exr");
   if (const char* u = std::getenv("SKY_UPDATE_GOLDEN"); u && std::string(u) == "1") {
     writeExr(golden, frame.image);
     GTEST_SKIP() << "wrote " << golden;

@@ -79,7 +79,7 @@ TEST(SpirvReflect, LocalSizeFromSpecializationConstantDefault) {
 
 // Just enough of an assembler to write modules by hand.
 class SpirvBuilder {
- public:
+public:
   SpirvBuilder() : mWords{spv::MagicNumber, 0x00010000u, 0, 100, 0} {}
   SpirvBuilder& op(spv::Op code, std::vector<uint32_t> operands) {
     mWords.push_back(static_cast<uint32_t>((operands.size() + 1) << 16) | code);
@@ -95,7 +95,7 @@ class SpirvBuilder {
   }
   std::vector<uint32_t>& words() { return mWords; }
 
- private:
+private:
   std::vector<uint32_t> mWords;
 };
 

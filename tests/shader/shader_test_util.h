@@ -33,7 +33,7 @@ inline std::string readAll(const std::filesystem::path& path) {
 // A fresh folder removed again at scope exit; unique per process and per instance so tests
 // (and parallel ctest runs) never share one.
 class ScratchDir {
- public:
+public:
   explicit ScratchDir(const std::string& tag) {
     static std::atomic<int> counter{0};
     mPath =
@@ -50,7 +50,7 @@ class ScratchDir {
   ScratchDir& operator=(const ScratchDir&) = delete;
   const std::filesystem::path& path() const { return mPath; }
 
- private:
+private:
   std::filesystem::path mPath;
 };
 

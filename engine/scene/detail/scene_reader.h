@@ -17,7 +17,7 @@ namespace sky::detail {
 
 // Lists a section's keys (the reader checks a map against them before reading it).
 class KeyCollector {
- public:
+public:
   std::vector<std::string> keys;
 
   template <class T, class... Rest>
@@ -32,7 +32,7 @@ class KeyCollector {
 };
 
 class SceneReader {
- public:
+public:
   // `map` must outlive the reader; `path` is the key path of the map ("" at the top).
   SceneReader(const ConfigNode& map, std::string path) : mMap(map), mPath(std::move(path)) {}
 
@@ -65,7 +65,7 @@ class SceneReader {
   void field(std::string_view key, IsoTime& value, std::string_view);
   void bothOrNeither(std::string_view a, std::string_view b);
 
- private:
+private:
   static void checkKeys(const ConfigNode& map, const std::string& path,
                         const std::vector<std::string>& known);
   [[noreturn]] static void fail(const ConfigNode& node, const std::string& path,

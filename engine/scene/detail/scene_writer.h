@@ -18,7 +18,7 @@
 namespace sky::detail {
 
 class SceneWriter {
- public:
+public:
   // Appends the fields of `settings` to `map` (a Map node).
   template <class T>
   static void write(ConfigNode& map, T& settings) {
@@ -42,7 +42,7 @@ class SceneWriter {
   // Checked once the section is complete (the pair may be described in any order).
   void bothOrNeither(std::string_view a, std::string_view b) { mPairs.emplace_back(a, b); }
 
- private:
+private:
   explicit SceneWriter(ConfigNode& map) : mMap(map) {}
   void checkPairs() const;
 

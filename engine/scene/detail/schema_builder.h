@@ -18,7 +18,7 @@ namespace sky::detail {
 extern const char* const kIsoTimePattern;
 
 class SchemaBuilder {
- public:
+public:
   using Json = nlohmann::ordered_json;
 
   // An object schema for `settings`, with its properties described and defaults filled.
@@ -48,7 +48,7 @@ class SchemaBuilder {
   void field(std::string_view key, const IsoTime& value, std::string_view description);
   void bothOrNeither(std::string_view a, std::string_view b);
 
- private:
+private:
   explicit SchemaBuilder(Json& schema) : mSchema(schema) {}
   static Json emptyObject(std::string_view description);
 

@@ -15,7 +15,7 @@ namespace sky::detail {
 // parse) sees the same text even if the file changes on disk in between. One instance per
 // compile; not shared between threads.
 class FileIncluder final : public glslang::TShader::Includer {
- public:
+public:
   FileIncluder(std::filesystem::path root, std::string rootDisplayName);
 
   // Registers the main file before the first pass; returns the name glslang reports it by.
@@ -33,7 +33,7 @@ class FileIncluder final : public glslang::TShader::Includer {
   // Main file then every included file in first-inclusion order; valid after a pass.
   const std::vector<std::filesystem::path>& dependencies() const { return mDependencies; }
 
- private:
+private:
   struct File {
     std::filesystem::path path;
     std::string text;
