@@ -27,23 +27,23 @@ uint32_t FrameGraph::addResource(ResourceNode node, ResourceRecord record) {
 
 ImageId FrameGraph::importImage(PersistentImage& image) {
   if (!image.image) internalError("frame graph: importing an empty image");
-  ResourceNode node;
-  node.name = image.image.desc().name;
-  node.kind = ResourceKind::Image;
-  node.imported = true;
-  node.image = image.image.desc();
-  node.initial = image.state;
+  const ImageDesc& d = image.image.desc();
+  ResourceNode node{.name = d.name,
+                    .kind = ResourceKind::Image,
+                    .imported = true,
+                    .image = d,
+                    .initial = image.state};
   return {addResource(std::move(node), {&image, nullptr, -1}), 0};
 }
 
 BufferId FrameGraph::importBuffer(PersistentBuffer& buffer) {
   if (!buffer.buffer) internalError("frame graph: importing an empty buffer");
-  ResourceNode node;
-  node.name = buffer.buffer.desc().name;
-  node.kind = ResourceKind::Buffer;
-  node.imported = true;
-  node.buffer = buffer.buffer.desc();
-  node.initial = buffer.state;
+  const BufferDesc& d = buffer.buffer.desc();
+  ResourceNode node{.name = d.name,
+                    .kind = ResourceKind::Buffer,
+                    .imported = true,
+                    .buffer = d,
+                    .initial = buffer.state};
   return {addResource(std::move(node), {nullptr, &buffer, -1}), 0};
 }
 

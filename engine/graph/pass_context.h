@@ -29,26 +29,13 @@ struct Binding {
   const Sampler* sampler = nullptr;
 
   static Binding of(uint32_t b, ImageId h, const Sampler* s = nullptr) {
-    Binding r;
-    r.binding = b;
-    r.kind = Kind::Image;
-    r.image = h;
-    r.sampler = s;
-    return r;
+    return {.binding = b, .kind = Kind::Image, .image = h, .sampler = s};
   }
   static Binding of(uint32_t b, BufferId h) {
-    Binding r;
-    r.binding = b;
-    r.kind = Kind::Buffer;
-    r.buffer = h;
-    return r;
+    return {.binding = b, .kind = Kind::Buffer, .buffer = h};
   }
   static Binding of(uint32_t b, UniformRange u) {
-    Binding r;
-    r.binding = b;
-    r.kind = Kind::Uniform;
-    r.uniform = u;
-    return r;
+    return {.binding = b, .kind = Kind::Uniform, .uniform = u};
   }
 };
 
