@@ -84,12 +84,6 @@ void Buffer::reset() {
   mMapped = nullptr;
 }
 
-VkMemoryRequirements Buffer::memoryRequirements() const {
-  VkMemoryRequirements req;
-  vkGetBufferMemoryRequirements(mCtx->device(), mBuffer, &req);
-  return req;
-}
-
 void Buffer::bindMemory(VkDeviceMemory memory, VkDeviceSize offset) {
   SKY_VK(vkBindBufferMemory(mCtx->device(), mBuffer, memory, offset));
 }

@@ -32,7 +32,6 @@ public:
   Buffer& operator=(const Buffer&) = delete;
 
   void bindMemory(VkDeviceMemory memory, VkDeviceSize offset);
-  VkMemoryRequirements memoryRequirements() const;
 
   const BufferDesc& desc() const { return mDesc; }
   VkBuffer buffer() const { return mBuffer; }

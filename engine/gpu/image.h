@@ -18,11 +18,6 @@ struct ImageDesc {
   VkFormat format = VK_FORMAT_R16G16B16A16_SFLOAT;
   uint32_t width = 1, height = 1, depth = 1;
   VkImageUsageFlags usage = 0;  // the frame graph derives this from declared accesses
-
-  bool sameShape(const ImageDesc& o) const {
-    return dim == o.dim && format == o.format && width == o.width && height == o.height &&
-           depth == o.depth && usage == o.usage;
-  }
 };
 
 // Bytes per texel of the formats the engine uses; 0 for anything else.

@@ -42,18 +42,20 @@ UniformRange PassContext::uniform(const void* data, VkDeviceSize size) const {
 void PassContext::dispatch(const ComputePipeline& pipeline, std::initializer_list<Binding> bindings,
                            uint32_t gx, uint32_t gy, uint32_t gz, const void* push,
                            uint32_t pushSize) const {
-  const std::string where =
-      "pass '" + mGraph.mDesc.passes[mPass].name + "', shader '" + pipeline.name() + "'";
+  // Built only when a check fails: dispatch runs for every pass every frame.
+  auto where = [&] {
+    return "pass '" + mGraph.mDesc.passes[mPass].name + "', shader '" + pipeline.name() + "'";
+  };
   const ShaderReflection& refl = pipeline.reflection();
   for (const DescriptorBinding& d : refl.bindings) {
     size_t n = 0;
     for (const Binding& b : bindings) n += b.binding == d.binding;
     if (n != 1)
-      internalError(where + ": binding " + std::to_string(d.binding) + " ('" + d.name +
+      internalError(where() + ": binding " + std::to_string(d.binding) + " ('" + d.name +
                     "') given " + std::to_string(n) + " times; it must be given once");
   }
   if (pushSize != refl.pushConstantSize)
-    internalError(where + ": push constants of " + std::to_string(pushSize) +
+    internalError(where() + ": push constants of " + std::to_string(pushSize) +
                   " bytes, shader wants " + std::to_string(refl.pushConstantSize));
 
   std::vector<VkWriteDescriptorSet> writes;
@@ -64,14 +66,14 @@ void PassContext::dispatch(const ComputePipeline& pipeline, std::initializer_lis
   VkDescriptorSet set = mGraph.mRuntime->mDescriptors.allocate(pipeline.setLayout());
   for (const Binding& b : bindings) {
     const DescriptorBinding* d = pipeline.binding(b.binding);
-    if (!d) internalError(where + ": the shader has no binding " + std::to_string(b.binding));
+    if (!d) internalError(where() + ": the shader has no binding " + std::to_string(b.binding));
     VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
     w.dstSet = set;
     w.dstBinding = b.binding;
     w.descriptorCount = 1;
     w.descriptorType = d->type;
     auto mismatch = [&](const char* what) {
-      internalError(where + ": binding " + std::to_string(b.binding) + " ('" + d->name + "') " +
+      internalError(where() + ": binding " + std::to_string(b.binding) + " ('" + d->name + "') " +
                     what);
     };
     switch (d->type) {

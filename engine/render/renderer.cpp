@@ -29,7 +29,7 @@ HorizontalPosition resolveSun(const Scene& scene, bool* fromTime) {
 }
 
 Renderer::Renderer(const Context& ctx, ShaderCompiler& compiler)
-    : mCtx(ctx), mRuntime(ctx), mComposite(ctx, compiler) {}
+    : mRuntime(ctx), mComposite(ctx, compiler) {}
 
 RenderedFrame Renderer::render(const Scene& scene) {
   RenderedFrame out;

@@ -30,10 +30,8 @@ public:
   // Renders one frame of `scene` at its output size. Errors: sky::Error (BadInput when the
   // size is impossible on this device or does not fit in memory).
   RenderedFrame render(const Scene& scene);
-  const Context& gpu() const { return mCtx; }
 
 private:
-  const Context& mCtx;
   GraphRuntime mRuntime;
   AtmosphereCompositePass mComposite;
 };
