@@ -1,0 +1,107 @@
+#include "passes/star_field/star_field.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <vector>
+
+#include "engine/core/error.h"
+#include "engine/shader/shader_compiler.h"
+
+namespace sky {
+namespace {
+
+// Every Vulkan device allows at least this many workgroups along x
+// (maxComputeWorkGroupCount[0]); the splat loops over any stars beyond.
+constexpr uint32_t kMaxGroups = 65535;
+
+ComputePipeline buildPipeline(const Context& ctx, ShaderCompiler& compiler, const char* name) {
+  CompiledShader shader = compiler.compile(std::string(name) + ".comp");
+  return ComputePipeline(ctx, name, shader.spirv, shader.reflection);
+}
+
+PersistentBuffer uploadStars(const Context& ctx, std::span<const Star> stars) {
+  if (stars.empty()) internalError("star field: the star list is empty");
+  std::vector<glm::vec4> packed;
+  packed.reserve(stars.size());
+  // Flux relative to a V = 0 star: Pogson's ratio, m = -2.5 log10(F / F0).
+  for (const Star& s : stars)
+    packed.emplace_back(s.directionJ2000, static_cast<float>(std::pow(10.0, -0.4 * s.vmag)));
+  // Host-visible and coherent: the single upload is a memcpy, and host writes before the
+  // first submit are visible to the device without a barrier.
+  PersistentBuffer buffer{
+      Buffer(ctx, {"stars", packed.size() * sizeof(glm::vec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                   BufferMemory::HostVisible}),
+      {}};
+  std::memcpy(buffer.buffer.mapped(), packed.data(), packed.size() * sizeof(glm::vec4));
+  return buffer;
+}
+
+}  // namespace
+
+VkDeviceSize starFluxBufferBytes(uint32_t width, uint32_t height) {
+  return (STAR_FLUX_HEADER_UINTS + VkDeviceSize(width) * height) * sizeof(uint32_t);
+}
+
+StarClearPass::StarClearPass(const Context& ctx, ShaderCompiler& compiler)
+    : mPipeline(buildPipeline(ctx, compiler, kName)) {}
+
+StarClearPass::Outputs StarClearPass::setup(GraphBuilder& b, const Inputs& in) {
+  if (in.width == 0 || in.height == 0) internalError("star_clear: empty image size");
+  mInputs = in;
+  BufferDesc desc;
+  desc.name = "star_flux";
+  desc.size = starFluxBufferBytes(in.width, in.height);
+  mOutputs.flux = b.write(b.create(desc), Access::StorageWriteCompute);
+  return mOutputs;
+}
+
+void StarClearPass::execute(PassContext& ctx) const {
+  shared::StarClearParams push{};
+  push.size = glm::uvec4(mInputs.width, mInputs.height, 0, 0);
+  ctx.dispatch(mPipeline, {Binding::of(STAR_CLEAR_BINDING_FLUX, mOutputs.flux)},
+               mPipeline.groupsX(mInputs.width), mPipeline.groupsY(mInputs.height), 1, &push,
+               sizeof push);
+}
+
+StarFieldPass::StarFieldPass(const Context& ctx, ShaderCompiler& compiler,
+                             std::span<const Star> stars)
+    : mClear(ctx, compiler),
+      mPipeline(buildPipeline(ctx, compiler, kName)),
+      mStars(uploadStars(ctx, stars)),
+      mStarCount(static_cast<uint32_t>(stars.size())) {}
+
+StarFieldPass::Outputs StarFieldPass::addTo(FrameGraph& graph, const Frame& frame) {
+  Inputs in;
+  in.stars = graph.importBuffer(mStars);
+  in.flux = graph.add(mClear, {frame.view.size.x, frame.view.size.y}).flux;
+  in.frame = frame;
+  return graph.add(*this, in);
+}
+
+StarFieldPass::Outputs StarFieldPass::setup(GraphBuilder& b, const Inputs& in) {
+  mInputs = in;
+  const Frame& f = in.frame;
+  mParams = {};
+  mParams.view = f.view;
+  mParams.j2000ToEnu0 = glm::vec4(f.j2000ToEnu[0], 0.0f);
+  mParams.j2000ToEnu1 = glm::vec4(f.j2000ToEnu[1], 0.0f);
+  mParams.j2000ToEnu2 = glm::vec4(f.j2000ToEnu[2], 0.0f);
+  mParams.extinction = glm::vec4(f.extinction, 0.0f, 0.0f, 0.0f);
+  mParams.counts = glm::uvec4(mStarCount, 0, 0, 0);
+  mInputs.stars = b.read(in.stars, Access::StorageReadCompute);
+  // Read-write: the atomics add to what star_clear wrote.
+  mOutputs.flux = b.write(in.flux, Access::StorageReadWriteCompute);
+  return mOutputs;
+}
+
+void StarFieldPass::execute(PassContext& ctx) const {
+  const uint32_t groups = std::min(mPipeline.groupsX(mStarCount), kMaxGroups);
+  ctx.dispatch(mPipeline,
+               {Binding::of(STAR_FIELD_BINDING_PARAMS, ctx.uniform(mParams)),
+                Binding::of(STAR_FIELD_BINDING_STARS, mInputs.stars),
+                Binding::of(STAR_FIELD_BINDING_FLUX, mInputs.flux)},
+               groups, 1);
+}
+
+}  // namespace sky

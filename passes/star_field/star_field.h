@@ -1,0 +1,90 @@
+#pragma once
+// The star field: every catalogue star rotated from J2000 into the camera's east-north-up
+// frame, dimmed by extinction (Kasten-Young air mass), faded out just below the horizon and
+// splatted bilinearly into a buffer of fixed-point flux, one uint per pixel
+// (shaders/star_field.comp; layout in shaders/common/star_field_shared.h). Composites read
+// it through shaders/common/star_field.glsl. Two graph passes: star_clear zeroes the
+// transient buffer, star_field accumulates into it with atomics.
+#include <span>
+
+#include <glm/mat3x3.hpp>
+
+#include "engine/gpu/compute_pipeline.h"
+#include "engine/graph/frame_graph.h"
+#include "engine/graph/pass_context.h"
+#include "engine/lighting/star_catalog.h"
+#include "shaders/common/star_field_shared.h"
+
+namespace sky {
+
+class Context;
+class ShaderCompiler;
+
+// Bytes of the flux buffer of a width x height image: the uvec4 header, one uint per pixel.
+VkDeviceSize starFluxBufferBytes(uint32_t width, uint32_t height);
+
+// Creates the frame's flux buffer, zeroed, with its (width, height) header.
+class StarClearPass {
+public:
+  static constexpr const char* kName = "star_clear";
+  struct Inputs {
+    uint32_t width = 0, height = 0;  // the image the stars are splatted for
+  };
+  struct Outputs {
+    BufferId flux;
+  };
+
+  // Compiles star_clear.comp (once, at start-up).
+  StarClearPass(const Context& ctx, ShaderCompiler& compiler);
+  Outputs setup(GraphBuilder& builder, const Inputs& inputs);
+  void execute(PassContext& ctx) const;
+
+private:
+  ComputePipeline mPipeline;
+  Inputs mInputs{};
+  Outputs mOutputs;
+};
+
+class StarFieldPass {
+public:
+  static constexpr const char* kName = "star_field";
+  // What changes from frame to frame.
+  struct Frame {
+    shared::ViewState view;
+    glm::mat3 j2000ToEnu{1.0f};  // rotation J2000 equatorial -> camera east-north-up
+    float extinction = 0.2f;     // k: V-band magnitudes per air mass (0.2: clear, low site)
+  };
+  struct Inputs {
+    BufferId stars;  // starBuffer() imported into this frame's graph
+    BufferId flux;   // StarClearPass's output for the same image size
+    Frame frame;
+  };
+  struct Outputs {
+    BufferId flux;  // fixed-point star flux per pixel (star_field_shared.h)
+  };
+
+  // Compiles both shaders and uploads the stars (direction, 10^(-0.4 V)) once into a
+  // persistent host-visible buffer. `stars` must not be empty.
+  StarFieldPass(const Context& ctx, ShaderCompiler& compiler, std::span<const Star> stars);
+
+  // Imports the star buffer, adds star_clear and star_field to `graph` and returns the
+  // filled flux buffer. This pass object must outlive graph.execute().
+  Outputs addTo(FrameGraph& graph, const Frame& frame);
+
+  // The pieces addTo() uses, for graphs that want to place the passes themselves.
+  PersistentBuffer& starBuffer() { return mStars; }
+  uint32_t starCount() const { return mStarCount; }
+  Outputs setup(GraphBuilder& builder, const Inputs& inputs);
+  void execute(PassContext& ctx) const;
+
+private:
+  StarClearPass mClear;
+  ComputePipeline mPipeline;
+  PersistentBuffer mStars;
+  uint32_t mStarCount = 0;
+  shared::StarFieldParams mParams{};
+  Inputs mInputs{};
+  Outputs mOutputs;
+};
+
+}  // namespace sky
