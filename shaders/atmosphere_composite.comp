@@ -1,9 +1,13 @@
 #version 460
-// The final image: for now the Kozlov 3.1 clear sky plus the sun disc, in scene-linear
-// Rec.709. Later layers (high clouds, volumetric clouds, aerial perspective) join here.
+// The final image in scene-linear Rec.709: the clear sky lit by sun and moon (Kozlov 3.1),
+// the star field, and the sun and moon discs. Later layers (high clouds, volumetric clouds,
+// aerial perspective) join here.
 #include "common/atmosphere_composite_shared.h"
 #include "common/view.glsl"
-#include "common/kozlov_sky.glsl"
+#define LIGHTING_BINDING ATMOSPHERE_COMPOSITE_BINDING_LIGHTING
+#include "common/lighting.glsl"
+#define STAR_FLUX_BINDING ATMOSPHERE_COMPOSITE_BINDING_STARS
+#include "common/star_field.glsl"
 
 layout(local_size_x = ATMOSPHERE_COMPOSITE_GROUP_X, local_size_y = ATMOSPHERE_COMPOSITE_GROUP_Y) in;
 
@@ -23,26 +27,65 @@ float discCoverage(float distance, float radius, float pixel) {
   return inside * (radius * radius) / (spread * spread);
 }
 
+// Radiance of the moon's surface seen in direction V (inside the disc, |offset| < 1 in units
+// of the disc radius). Lommel-Seeliger shading with the sun at the phase angle toward the
+// bright limb; the earthlit part everywhere (it only shows where sunlight does not).
+vec3 moonSurface(LightingState L, vec3 V) {
+  vec3 d = L.moon.direction.xyz;
+  vec3 limb = L.moonLimb.xyz;
+  vec3 across = cross(d, limb);
+  float sinR = sin(L.moon.direction.w);
+  vec2 q = vec2(dot(V, limb), dot(V, across)) / sinR;
+  float r2 = min(dot(q, q), 1.0);
+  vec3 n = vec3(q, sqrt(1.0 - r2));  // surface normal in (limb, across, toward us)
+  float phase = L.moonLimb.w;
+  vec3 s = vec3(sin(phase), 0.0, cos(phase));  // the sun, seen from the moon
+  float mu0 = max(dot(n, s), 0.0);
+  float shade = mu0 / max(mu0 + n.z, 1e-6);
+  return L.moonDisc.rgb * shade + L.moonEarthshine.rgb;
+}
+
 void main() {
   uvec2 p = gl_GlobalInvocationID.xy;
   if (any(greaterThanEqual(p, params.view.size.xy))) return;
-  vec3 V = viewDirection(params.view, vec2(p) + 0.5);
-  vec3 S = params.sunDirection.xyz;
+  vec2 pixelCentre = vec2(p) + 0.5;
+  vec3 V = viewDirection(params.view, pixelCentre);
+  LightingState L = lighting;
 
-  vec3 sky = kozlovClearSky(V, S, params.skyColor.rgb, params.fogColor.rgb, params.glowColor.rgb,
-                            params.skyColor.w, params.fogColor.w);
+  vec3 sky = clearSky(L, V);
 
   // A pinhole pixel spans p cos^2 (radially) by p cos (tangentially) at angle theta off axis.
   float cosOffAxis = dot(V, params.view.forward.xyz);
   float pixelAngle = params.view.forward.w * pow(cosOffAxis, 1.5);
-  float distance = acos(clamp(dot(V, S), -1.0, 1.0));
-  // The ground hides whatever part of the disc lies below the horizon: the share of the
-  // disc above it (linear in elevation across the diameter), drawn only above the horizon.
-  float radius = params.sunDirection.w;
-  float discAbove = clamp((asin(clamp(S.z, -1.0, 1.0)) + radius) / (2.0 * radius), 0.0, 1.0);
+  // The ground hides what lies below the horizon, pixel by pixel.
   float aboveHorizon = clamp(V.z / pixelAngle + 0.5, 0.0, 1.0);
-  vec3 disc = params.sunDisc.rgb * discCoverage(distance, radius, pixelAngle) * discAbove * aboveHorizon;
+
+  // A disc spread over a pixel wider than itself (see discCoverage) would leak past the
+  // horizon; there the share of the disc above the horizon (illuminance.w) hides it instead.
+  // Resolved discs are cut pixel by pixel. The two blend as the disc grows past a pixel.
+  vec3 S = L.sun.direction.xyz;
+  float sunR = L.sun.direction.w;
+  float sunCover = discCoverage(acos(clamp(dot(V, S), -1.0, 1.0)), sunR, pixelAngle);
+  float sunResolved = smoothstep(1.0, 2.0, sunR / pixelAngle);
+  vec3 sunDisc = L.sunDisc.rgb * sunCover * aboveHorizon * mix(L.sun.illuminance.w, 1.0, sunResolved);
+
+  // The moon: resolved discs are shaded per pixel with an anti-aliased edge; discs near or
+  // below a pixel in size carry their mean radiance with the sun's coverage rule, so the
+  // drawn flux stays right at every resolution. The two blend, so zooming does not pop.
+  vec3 M = L.moon.direction.xyz;
+  float moonR = L.moon.direction.w;
+  float moonDist = acos(clamp(dot(V, M), -1.0, 1.0));
+  float moonCover = discCoverage(moonDist, moonR, pixelAngle);
+  vec3 moonMean = L.moonDisc.rgb * L.moonEarthshine.w + L.moonEarthshine.rgb;
+  vec3 moonResolved = moonDist < moonR + pixelAngle ? moonSurface(L, V) : vec3(0.0);
+  float resolved = smoothstep(1.0, 2.0, moonR / pixelAngle);
+  vec3 moonDisc = mix(moonMean, moonResolved, resolved) * moonCover * aboveHorizon *
+                  mix(L.moon.illuminance.w, 1.0, resolved);
+
+  // Stars shine through the sky light but not through the moon.
+  vec3 stars = vec3(starFlux(ivec2(p)) * L.night.z / pixelSolidAngle(params.view, pixelCentre));
+  stars *= (1.0 - moonCover) * aboveHorizon;
 
   imageStore(skyImage, ivec2(p), vec4(sky, 1.0));
-  imageStore(beautyImage, ivec2(p), vec4(sky + disc, 1.0));
+  imageStore(beautyImage, ivec2(p), vec4(sky + stars + sunDisc + moonDisc, 1.0));
 }

@@ -1,5 +1,9 @@
 #include "commands.h"
 
+#include <unistd.h>
+
+#include <charconv>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -9,6 +13,7 @@
 #include "engine/color/ocio_output.h"
 #include "engine/core/error.h"
 #include "engine/gpu/context.h"
+#include "engine/lighting/lighting_state.h"
 #include "engine/render/render_files.h"
 #include "engine/render/renderer.h"
 #include "engine/scene/scene_io.h"
@@ -26,6 +31,10 @@ usage:
   skyrender validate SCENE [--set K=V]  check SCENE and print its effective settings
                                        (defaults filled in) in the same format; the printed
                                        file reproduces the render exactly
+  skyrender ephemeris --lat D --lon D --time ISO8601 [--height-m M]
+            [--pressure-hpa P] [--temperature-c T]
+                                       print sun and moon positions, moon phase and the
+                                       key light as JSON (defaults: 0 m, 1010 hPa, 10 C)
   skyrender schema                     print the JSON Schema of scene files
   skyrender devices                    list the Vulkan devices and which one is picked
   skyrender --help                     this text
@@ -35,7 +44,10 @@ render options:
   --name NAME          file stem, same as --set output.name=NAME
   --width W            same as --set output.width=W
   --height H           same as --set output.height=H
-  --time ISO8601       same as --set time=ISO8601 (with zone: Z or +HH:MM)
+  --time TIME          same as --set time=TIME: an instant (ISO 8601 with a zone, Z or
+                       +HH:MM) or a time-lapse START/END/STEP, e.g.
+                       2024-06-21T00:00Z/2024-06-22T00:00Z/15m
+                       (a time-lapse writes NAME_0001.exr/.png/.json, ...)
   --set KEY.PATH=VALUE override any scene key; VALUE is read as a YAML scalar or flow
                        sequence (e.g. --set sky.sky_color=[0.1,0.2,0.5]); repeatable;
                        validated exactly like the file
@@ -47,7 +59,8 @@ render options:
 outputs:
   NAME.exr   scene-linear Rec.709, half float: R,G,B,A (beauty) and layers sky.R/G/B
   NAME.png   8-bit display image through output.display / output.view, exposure applied
-  NAME.json  settings, sun placement, per-pass GPU milliseconds, total, device name
+  NAME.json  settings, time, sun, moon and light (as `ephemeris` prints them),
+             per-pass GPU milliseconds, total, device name
 
 environment:
   SKY_VALIDATION=1   enable the Vulkan validation layers (messages go to stderr)
@@ -83,7 +96,72 @@ Scene loadScene(const CliArgs& args, bool required) {
   return loadSceneFile(args.positional()[0], overridesFrom(args));
 }
 
+// A one-line progress bar on stderr for time-lapses, only when stderr is a terminal (logs and
+// tests get the final summary line alone).
+class Progress {
+public:
+  explicit Progress(int64_t count) : mCount(count), mEnabled(count > 1 && isatty(2)) {}
+  void show(int64_t index, const IsoTime& time) const {
+    if (!mEnabled) return;
+    constexpr int kWidth = 30;
+    int filled = static_cast<int>(kWidth * index / mCount);
+    std::fprintf(stderr, "\r[%s%s] %lld/%lld %s", std::string(filled, '#').c_str(),
+                 std::string(kWidth - filled, '.').c_str(), static_cast<long long>(index + 1),
+                 static_cast<long long>(mCount), time.format().c_str());
+    std::fflush(stderr);
+  }
+  void done() const {
+    if (mEnabled) std::fprintf(stderr, "\r\033[K");  // clear the bar's line
+  }
+
+private:
+  int64_t mCount;
+  bool mEnabled;
+};
+
+// A number option, strictly: the whole text a finite number within [min, max].
+double numberOption(const CliArgs& args, const std::string& option, double min, double max,
+                    std::optional<double> fallback) {
+  std::optional<std::string> text = args.value(option);
+  if (!text) {
+    if (!fallback) inputError(option + " is required (see --help)");
+    return *fallback;
+  }
+  double v = 0.0;
+  auto [end, ec] = std::from_chars(text->data(), text->data() + text->size(), v);
+  if (ec != std::errc() || end != text->data() + text->size() || !std::isfinite(v))
+    inputError(option + " '" + *text + "': expected a number");
+  if (v < min || v > max) {
+    char range[96];
+    std::snprintf(range, sizeof range, "[%g, %g]", min, max);
+    inputError(option + " " + *text + ": out of range " + range);
+  }
+  return v;
+}
+
 }  // namespace
+
+int ephemerisCommand(const std::vector<std::string>& argv) {
+  CliArgs args(argv,
+               {"--lat", "--lon", "--time", "--height-m", "--pressure-hpa", "--temperature-c"}, {},
+               {});
+  if (!args.positional().empty())
+    inputError("ephemeris takes no positional arguments: '" + args.positional()[0] + "'");
+  // The same lighting model a render uses, for a scene that is only a place and an instant.
+  Scene scene;
+  scene.camera.latitude = numberOption(args, "--lat", -90, 90, std::nullopt);
+  scene.camera.longitude = numberOption(args, "--lon", -180, 180, std::nullopt);
+  scene.camera.altitudeM = numberOption(args, "--height-m", -500, 100000, 0.0);
+  scene.lighting.pressureHpa = numberOption(args, "--pressure-hpa", 0, 1200, 1010.0);
+  scene.lighting.temperatureC = numberOption(args, "--temperature-c", -100, 100, 10.0);
+  std::optional<std::string> timeText = args.value("--time");
+  if (!timeText) inputError("--time is required (ISO 8601 with a zone, e.g. 2024-06-21T12:00Z)");
+  std::string why;
+  std::optional<IsoTime> time = IsoTime::parse(*timeText, &why);
+  if (!time) inputError("--time '" + *timeText + "' is not a valid time: " + why);
+  std::cout << lightingJson(computeLighting(scene, *time)).dump(2) << "\n";
+  return 0;
+}
 
 int renderCommand(const std::vector<std::string>& argv) {
   CliArgs args(argv,
@@ -112,13 +190,38 @@ int renderCommand(const std::vector<std::string>& argv) {
   Context ctx(options);
   ShaderCompiler compiler;
   Renderer renderer(ctx, compiler);
-  RenderedFrame frame = renderer.render(scene);
-  RenderFiles files = writeRenderFiles(outDir, scene, frame, ocio, ctx.deviceName(), graphPath);
 
-  std::printf("wrote %s, %s, %s (%dx%d, %.2f ms GPU on %s)\n", files.exr.string().c_str(),
-              files.png.string().c_str(), files.report.string().c_str(), scene.output.width,
-              scene.output.height, frame.frame.gpuMs, ctx.deviceName().c_str());
-  if (files.graph) std::printf("wrote %s\n", files.graph->string().c_str());
+  const int64_t count = scene.time.frameCount();
+  Progress progress(count);
+  RenderFiles first, last;
+  double gpuMs = 0.0;
+  for (int64_t i = 0; i < count; ++i) {
+    const IsoTime time = scene.time.frame(i);
+    progress.show(i, time);
+    RenderedFrame frame = renderer.render(scene, time);
+    // The graph is the same every frame; the first one is written.
+    RenderFiles files =
+        writeRenderFiles(outDir, frameStem(scene.output.name, i, count), scene, frame, ocio,
+                         ctx.deviceName(), i == 0 ? graphPath : std::nullopt);
+    if (i == 0) first = files;
+    last = files;
+    gpuMs += frame.frame.gpuMs;
+  }
+  progress.done();
+
+  if (count == 1) {
+    std::printf("wrote %s, %s, %s (%dx%d, %.2f ms GPU on %s)\n", first.exr.string().c_str(),
+                first.png.string().c_str(), first.report.string().c_str(), scene.output.width,
+                scene.output.height, gpuMs, ctx.deviceName().c_str());
+  } else {
+    std::printf(
+        "wrote %lld frames %s ... %s with .exr, .png, .json (%dx%d, %.2f ms GPU per "
+        "frame on %s)\n",
+        static_cast<long long>(count), first.png.stem().string().c_str(),
+        last.png.stem().string().c_str(), scene.output.width, scene.output.height,
+        gpuMs / static_cast<double>(count), ctx.deviceName().c_str());
+  }
+  if (first.graph) std::printf("wrote %s\n", first.graph->string().c_str());
   return 0;
 }
 

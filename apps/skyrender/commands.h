@@ -7,6 +7,7 @@ namespace sky {
 
 int renderCommand(const std::vector<std::string>& args);
 int validateCommand(const std::vector<std::string>& args);
+int ephemerisCommand(const std::vector<std::string>& args);
 int schemaCommand(const std::vector<std::string>& args);
 int devicesCommand(const std::vector<std::string>& args);
 const char* usageText();

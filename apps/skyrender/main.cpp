@@ -34,10 +34,11 @@ int main(int argc, char** argv) {
       }
     if (command == "render") return sky::renderCommand(args);
     if (command == "validate") return sky::validateCommand(args);
+    if (command == "ephemeris") return sky::ephemerisCommand(args);
     if (command == "schema") return sky::schemaCommand(args);
     if (command == "devices") return sky::devicesCommand(args);
     sky::inputError("unknown command '" + command +
-                    "' (commands: render, validate, schema, devices; see --help)");
+                    "' (commands: render, validate, ephemeris, schema, devices; see --help)");
   } catch (const sky::Error& e) {
     std::cerr << "error: " << oneLine(e.what()) << "\n";
     return e.exitCode();

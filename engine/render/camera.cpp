@@ -1,5 +1,7 @@
 #include "engine/render/camera.h"
 
+#include "engine/lighting/lighting_state.h"
+
 #include <cmath>
 
 #include <glm/geometric.hpp>
@@ -10,8 +12,7 @@ constexpr double kDeg = 3.14159265358979323846 / 180.0;
 }
 
 glm::vec3 directionFromAzEl(double az, double el) {
-  const double a = az * kDeg, e = el * kDeg;
-  return glm::vec3(glm::dvec3(std::sin(a) * std::cos(e), std::cos(a) * std::cos(e), std::sin(e)));
+  return glm::vec3(enuDirection(az, el));
 }
 
 shared::ViewState makeViewState(const CameraSettings& cam, uint32_t width, uint32_t height) {

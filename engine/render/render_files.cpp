@@ -1,5 +1,7 @@
 #include "engine/render/render_files.h"
 
+#include <algorithm>
+
 #include <nlohmann/json.hpp>
 
 #include "engine/color/ocio_output.h"
@@ -20,28 +22,34 @@ std::vector<float> displayPixels(const RenderedFrame& frame, const Scene& scene,
   return rgba;
 }
 
-RenderFiles writeRenderFiles(const std::filesystem::path& dir, const Scene& scene,
-                             const RenderedFrame& frame, const OcioOutput& ocio,
+std::string frameStem(const std::string& name, int64_t index, int64_t count) {
+  if (count <= 1) return name;
+  std::string number = std::to_string(index + 1);
+  size_t width = std::max<size_t>(4, std::to_string(count).size());
+  return name + "_" + std::string(width - std::min(width, number.size()), '0') + number;
+}
+
+RenderFiles writeRenderFiles(const std::filesystem::path& dir, const std::string& stem,
+                             const Scene& scene, const RenderedFrame& frame, const OcioOutput& ocio,
                              const std::string& deviceName,
                              const std::optional<std::filesystem::path>& graphPath) {
   RenderFiles files;
-  const std::string& name = scene.output.name;
-  files.exr = dir / (name + ".exr");
-  files.png = dir / (name + ".png");
-  files.report = dir / (name + ".json");
+  files.exr = dir / (stem + ".exr");
+  files.png = dir / (stem + ".png");
+  files.report = dir / (stem + ".json");
   files.graph = graphPath;
 
   // Everything that can fail runs before the first rename.
   std::vector<float> display = displayPixels(frame, scene, ocio);
 
-  nlohmann::json report;
+  nlohmann::ordered_json report;
   report["skylayers_version"] = "0.1.0";
   report["device"] = deviceName;
   report["size"] = {frame.image.width, frame.image.height};
-  report["sun"] = {{"azimuth_deg", frame.sun.azimuthDeg},
-                   {"elevation_deg", frame.sun.elevationDeg},
-                   {"source", frame.sunFromTime ? "time_and_place" : "scene_override"}};
-  nlohmann::json passes = nlohmann::json::array();
+  report["time"] = frame.lighting.time.format();
+  const nlohmann::ordered_json lighting = lightingJson(frame.lighting);
+  for (const char* key : {"time_utc", "sun", "moon", "light"}) report[key] = lighting.at(key);
+  nlohmann::ordered_json passes = nlohmann::ordered_json::array();
   for (const PassTiming& t : frame.frame.passes)
     passes.push_back({{"name", t.name}, {"gpu_ms", t.gpuMs}});
   report["passes"] = passes;
@@ -50,7 +58,7 @@ RenderFiles writeRenderFiles(const std::filesystem::path& dir, const Scene& scen
   report["ocio"] = {{"config", ocio.configPath().string()},
                     {"display", scene.output.display},
                     {"view", scene.output.view}};
-  nlohmann::json layers = nlohmann::json::array();
+  nlohmann::ordered_json layers = nlohmann::ordered_json::array();
   for (const ImageLayer& l : frame.image.layers)
     layers.push_back(l.name.empty() ? "beauty" : l.name);
   report["exr_layers"] = layers;

@@ -1,7 +1,8 @@
 #pragma once
-// Writes a rendered frame as NAME.exr (scene-linear, multi-layer), NAME.png (display-referred
-// through the OCIO display/view) and NAME.json (settings, per-pass GPU ms, device) — all
-// three or none: each goes to a temporary file first and they are renamed together.
+// Writes a rendered frame as STEM.exr (scene-linear, multi-layer), STEM.png (display-referred
+// through the OCIO display/view) and STEM.json (settings, lighting, per-pass GPU ms, device)
+// — all three or none: each goes to a temporary file first and they are renamed together.
+// STEM is output.name for a single frame, output.name_0001 ... for a time-lapse.
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -18,9 +19,13 @@ struct RenderFiles {
   std::optional<std::filesystem::path> graph;  // --dump-graph
 };
 
+// Where frame `index` (0-based) of `count` goes: NAME for one frame, NAME_0001 (at least
+// four digits, more when the count needs them) for a sequence.
+std::string frameStem(const std::string& name, int64_t index, int64_t count);
+
 // `dir` must exist. `graphPath`, when given, also receives the compiled graph (Graphviz).
-RenderFiles writeRenderFiles(const std::filesystem::path& dir, const Scene& scene,
-                             const RenderedFrame& frame, const OcioOutput& ocio,
+RenderFiles writeRenderFiles(const std::filesystem::path& dir, const std::string& stem,
+                             const Scene& scene, const RenderedFrame& frame, const OcioOutput& ocio,
                              const std::string& deviceName,
                              const std::optional<std::filesystem::path>& graphPath = std::nullopt);
 

@@ -1,13 +1,11 @@
 #include "engine/render/renderer.h"
 
-#include <cmath>
-
+#include "engine/core/paths.h"
 #include "engine/gpu/context.h"
 #include "engine/render/camera.h"
 
 namespace sky {
 namespace {
-constexpr double kDeg = 3.14159265358979323846 / 180.0;
 
 // Splits interleaved RGBA read-back into a layer with the first `channels` channels.
 ImageLayer toLayer(const ReadbackImage& img, std::string name, std::vector<std::string> channels) {
@@ -18,36 +16,32 @@ ImageLayer toLayer(const ReadbackImage& img, std::string name, std::vector<std::
     for (size_t k = 0; k < c; ++k) layer.pixels[i * c + k] = img.pixels[i * img.channels + k];
   return layer;
 }
+
 }  // namespace
 
-HorizontalPosition resolveSun(const Scene& scene, bool* fromTime) {
-  const bool computed = !(scene.sun.azimuth && scene.sun.elevation);
-  if (fromTime) *fromTime = computed;
-  if (!computed) return {*scene.sun.azimuth, *scene.sun.elevation};
-  return sunPosition(scene.time.instant.julianDateUtc(), scene.camera.latitude,
-                     scene.camera.longitude);
-}
-
 Renderer::Renderer(const Context& ctx, ShaderCompiler& compiler)
-    : mRuntime(ctx), mComposite(ctx, compiler) {}
+    : mRuntime(ctx),
+      mStars(ctx, compiler, loadStarCatalog(configDir() / "stars" / "bright_star_catalogue.txt")),
+      mComposite(ctx, compiler) {}
 
-RenderedFrame Renderer::render(const Scene& scene) {
+RenderedFrame Renderer::render(const Scene& scene, const IsoTime& time) {
   RenderedFrame out;
-  out.sun = resolveSun(scene, &out.sunFromTime);
+  out.lighting = computeLighting(scene, time);
   const uint32_t width = static_cast<uint32_t>(scene.output.width);
   const uint32_t height = static_cast<uint32_t>(scene.output.height);
-
-  AtmosphereCompositePass::Inputs composite{};
-  shared::AtmosphereCompositeParams& p = composite.params;
-  p.view = makeViewState(scene.camera, width, height);
-  p.sunDirection = glm::vec4(directionFromAzEl(out.sun.azimuthDeg, out.sun.elevationDeg),
-                             static_cast<float>(0.5 * scene.sun.angularDiameter * kDeg));
-  p.sunDisc = glm::vec4(scene.sky.sunColor * static_cast<float>(scene.sun.discIntensity), 0.0f);
-  p.skyColor = glm::vec4(scene.sky.skyColor, static_cast<float>(scene.sky.glowSize));
-  p.fogColor = glm::vec4(scene.sky.fogColor, static_cast<float>(scene.sky.hazeHeight));
-  p.glowColor = glm::vec4(scene.sky.sunColor, 0.0f);
+  const shared::ViewState view = makeViewState(scene.camera, width, height);
 
   FrameGraph graph(mRuntime);
+  StarFieldPass::Frame stars;
+  stars.view = view;
+  stars.j2000ToEnu = glm::mat3(out.lighting.ephemeris.equatorialJ2000ToEnu);
+  stars.extinction = static_cast<float>(scene.lighting.starExtinction);
+  StarFieldPass::Outputs starOut = mStars.addTo(graph, stars);
+
+  AtmosphereCompositePass::Inputs composite{};
+  composite.params.view = view;
+  composite.lighting = out.lighting.gpu;
+  composite.starFlux = starOut.flux;
   AtmosphereCompositePass::Outputs composited = graph.add(mComposite, composite);
   graph.requestOutput(composited.beauty, "beauty");
   graph.requestOutput(composited.sky, "sky");

@@ -20,4 +20,12 @@ struct TextRule {
   const char* wording = nullptr;  // "letters, digits, '.', '_' and '-', not starting with '.'"
 };
 
+// Rules for a list of sections (palette keyframes): its length, and a number key whose
+// values must strictly increase down the list (nullptr: any order). Every item gives every key.
+struct ListRule {
+  size_t minItems = 0;
+  size_t maxItems = 0;                  // 0: no limit
+  const char* increasingKey = nullptr;  // e.g. "sun_elevation"
+};
+
 }  // namespace sky

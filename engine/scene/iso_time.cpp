@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <utility>
 
 namespace sky {
 namespace {
@@ -160,6 +161,112 @@ std::string IsoTime::format() const {
 
 double IsoTime::julianDateUtc() const {
   return 2440587.5 + (static_cast<double>(unixSeconds) + subsecond) / 86400.0;
+}
+
+}  // namespace sky
+
+namespace sky {
+
+IsoTime IsoTime::plusSeconds(double seconds) const {
+  // Whole and fractional parts apart: a 64-bit second count plus a double fraction keeps
+  // sub-microsecond steps exact over centuries, which one double of unix seconds does not.
+  double whole = std::floor(seconds);
+  double frac = subsecond + (seconds - whole);
+  double carry = std::floor(frac);
+  IsoTime r = *this;
+  r.unixSeconds = unixSeconds + static_cast<int64_t>(whole) + static_cast<int64_t>(carry);
+  r.subsecond = frac - carry;
+  return r;
+}
+
+double IsoTime::secondsSince(const IsoTime& other) const {
+  return static_cast<double>(unixSeconds - other.unixSeconds) + (subsecond - other.subsecond);
+}
+
+std::optional<double> parseDuration(std::string_view text, std::string* why) {
+  auto failWith = [&](const char* reason) -> std::optional<double> {
+    if (why) *why = reason;
+    return std::nullopt;
+  };
+  constexpr const char* kForm = "expected a duration such as 15m, 1h30m, 90s, 2d or ISO 8601 PT15M";
+  std::string_view t = text;
+  double sign = 1.0;
+  if (!t.empty() && (t[0] == '-' || t[0] == '+')) {
+    sign = t[0] == '-' ? -1.0 : 1.0;
+    t.remove_prefix(1);
+  }
+  bool iso = !t.empty() && (t[0] == 'P' || t[0] == 'p');
+  if (iso) t.remove_prefix(1);
+  bool inTime = !iso;  // the short form has no date/time split; 'm' means minutes
+  double total = 0.0;
+  int parts = 0;
+  // Each unit at most once and in order, so "1m1h" or "PT1M1M" are errors, not sums.
+  int lastRank = -1;
+  // ISO 8601 wants at least one time component after the 'T': "P1DT" is malformed.
+  bool emptyTimePart = false;
+  while (!t.empty()) {
+    if (iso && (t[0] == 'T' || t[0] == 't')) {
+      if (inTime) return failWith(kForm);
+      inTime = true;
+      emptyTimePart = true;
+      t.remove_prefix(1);
+      continue;
+    }
+    size_t n = 0;
+    while (n < t.size() && ((t[n] >= '0' && t[n] <= '9') || t[n] == '.')) ++n;
+    if (n == 0 || n == t.size()) return failWith(kForm);
+    double value = 0.0;
+    auto [end, ec] = std::from_chars(t.data(), t.data() + n, value);
+    if (ec != std::errc() || end != t.data() + n) return failWith(kForm);
+    char unit = static_cast<char>(t[n] | 0x20);  // lower case
+    int rank;
+    double seconds;
+    if (unit == 'd' && !(iso && inTime)) {
+      rank = 0, seconds = 86400.0;
+    } else if (unit == 'h' && inTime) {
+      rank = 1, seconds = 3600.0;
+    } else if (unit == 'm' && inTime) {
+      rank = 2, seconds = 60.0;
+    } else if (unit == 's' && inTime) {
+      rank = 3, seconds = 1.0;
+    } else {
+      return failWith(kForm);
+    }
+    if (rank <= lastRank) return failWith(kForm);
+    lastRank = rank;
+    total += value * seconds;
+    ++parts;
+    emptyTimePart = false;
+    t.remove_prefix(n + 1);
+  }
+  if (parts == 0 || emptyTimePart) return failWith(kForm);
+  return sign * total;
+}
+
+std::string formatDuration(double seconds) {
+  std::string out = seconds < 0 ? "-" : "";
+  double s = std::fabs(seconds);
+  // Whole units only while they are exact; the remainder goes out as shortest-round-trip
+  // seconds, so parseDuration(formatDuration(x)) == x.
+  if (s == std::floor(s) && s < 9.0e15) {
+    auto whole = static_cast<int64_t>(s);
+    const std::pair<int64_t, char> units[] = {{86400, 'd'}, {3600, 'h'}, {60, 'm'}, {1, 's'}};
+    for (auto [size, unit] : units) {
+      if (whole >= size) {
+        out += std::to_string(whole / size) + unit;
+        whole %= size;
+      }
+    }
+    return out == "" || out == "-" ? "0s" : out;
+  }
+  // Fixed notation needs room for every digit: 1e300 has 301 before the point and 1e-300
+  // 300 after it (64 bytes used to fail and print garbage). Shortest fixed text of any
+  // finite double is under 400 characters (at most 309 integer digits, or "0." + 323 zeros
+  // + 17 significant digits), so to_chars cannot fail here.
+  char buf[400];
+  auto [end, ec] = std::to_chars(buf, buf + sizeof buf, s, std::chars_format::fixed);
+  (void)ec;
+  return out + std::string(buf, end) + "s";
 }
 
 }  // namespace sky

@@ -20,8 +20,19 @@ struct IsoTime {
   std::string format() const;
   // Julian date (UTC) — the ephemeris works from this.
   double julianDateUtc() const;
+  // The instant `seconds` later (earlier when negative), written in the same zone.
+  IsoTime plusSeconds(double seconds) const;
+  // Seconds from `other` to this instant.
+  double secondsSince(const IsoTime& other) const;
 
   bool operator==(const IsoTime&) const = default;
 };
+
+// A length of time for time-lapse steps: ISO 8601 ("PT15M", "P1DT2H", "PT0.5S") or short
+// unit form ("15m", "1h30m", "90s", "2d", "0.5s"). Returns seconds, which may be zero or
+// negative ("-15m") so the caller can say what is wrong; nullopt for text that is neither form.
+std::optional<double> parseDuration(std::string_view text, std::string* why = nullptr);
+// Short unit form, reading back as the same number of seconds: 900 -> "15m", 5400 -> "1h30m".
+std::string formatDuration(double seconds);
 
 }  // namespace sky

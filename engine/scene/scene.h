@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <glm/vec3.hpp>
 
@@ -32,8 +33,18 @@ struct CameraSettings {
   double verticalFov = 60.0;  // degrees, 1..179
 };
 
+// `time` is one instant or a time-lapse range. In a file: a single ISO 8601 string, the
+// interval text "START/END/STEP", or a map {start, end, step}.
 struct TimeSettings {
-  IsoTime instant = IsoTime::parse("2024-06-21T12:00:00+02:00").value();  // key `time`
+  IsoTime start =
+      IsoTime::parse("2024-06-21T12:00:00+02:00").value();  // the instant or first frame
+  std::optional<IsoTime> end;  // a range when set: frames start, start+step, ... up to end
+  double stepSeconds = 0.0;    // > 0 for a range
+
+  static constexpr int64_t kMaxFrames = 100000;
+  bool isRange() const { return end.has_value(); }
+  int64_t frameCount() const;          // 1 for an instant
+  IsoTime frame(int64_t index) const;  // written in the zone of `start`
 };
 
 // An explicit sun placement (art direction, tests). When azimuth/elevation are absent the
@@ -42,16 +53,54 @@ struct SunSettings {
   std::optional<double> azimuth;    // degrees from north through east, -360..360
   std::optional<double> elevation;  // degrees above the horizon, -90..90
   double angularDiameter = 0.53;    // degrees, 0.01..20
-  double discIntensity = 40.0;      // disc radiance as a multiple of sky.sun_color, 0..1e6
+  double discScale = 1.0;           // multiplies the physical disc radiance, 0..1e3
 };
 
-// Kozlov 3.1 clear sky: C = (Csky h + Cfog (1 - h)) (1 - l) + Csun l.
+// The moon follows `time` and place; azimuth/elevation override its placement only (phase,
+// distance and brightness still come from the ephemeris).
+struct MoonSettings {
+  std::optional<double> azimuth;
+  std::optional<double> elevation;
+  double discScale = 1.0;   // multiplies the physical disc radiance, 0..1e3
+  double earthshine = 1.0;  // multiplies the modelled earthshine on the dark limb, 0..100
+};
+
+// Kozlov 3.1 clear-sky geometry (the colours come from the lighting palette).
 struct SkySettings {
-  glm::vec3 skyColor{0.07f, 0.20f, 0.65f};  // Csky, scene-linear, each 0..1e6
-  glm::vec3 fogColor{0.50f, 0.62f, 0.80f};  // Cfog
-  glm::vec3 sunColor{1.00f, 0.85f, 0.65f};  // Csun (glow and disc colour)
-  double glowSize = 0.30;                   // s, 0..1
-  double hazeHeight = 0.20;                 // hmax as a fraction of the dome height, 0.001..1
+  double glowSize = 0.30;    // s, 0..1
+  double hazeHeight = 0.20;  // hmax as a fraction of the dome height, 0.001..1
+};
+
+// One palette keyframe: the Kozlov colours at a sun elevation. Colours are scene-linear in
+// the renderer's units (1 = 10^4 cd/m^2) as they should appear after the night exposure
+// lift (see docs/lighting.md), so night keyframes are small numbers.
+struct PaletteKey {
+  double sunElevation = 0.0;  // degrees, -90..90
+  glm::vec3 skyColor{0.0f};   // Csky
+  glm::vec3 fogColor{0.0f};   // Cfog
+  glm::vec3 glowColor{0.0f};  // Csun: the glow around the light
+  glm::vec3 cloudLit{0.0f};   // C1: dense clouds toward the light (Kozlov 3.3)
+  glm::vec3 cloudDark{0.0f};  // C2: dense clouds away from the light
+  glm::vec3 ambientTop{0.0f};
+  glm::vec3 ambientBottom{0.0f};
+
+  bool operator==(const PaletteKey&) const = default;
+};
+
+// The default day-to-night palette (also written out in configs/default.yaml; a test keeps
+// the two equal).
+std::vector<PaletteKey> defaultPalette();
+
+struct LightingSettings {
+  double pressureHpa = 1010.0;  // refraction; 0 turns it off. 0..1200
+  double temperatureC = 10.0;   // refraction, -100..100
+  double turbidity = 0.1;       // aerosol optical depth at 550 nm, 0..5 (sun/moon colour)
+  // How much of the physical darkening after sunset the exposure makes up, 0..1: night
+  // lights (moon, stars, earthshine) are lifted by this fraction of the stops the sky loses.
+  double nightAdaptation = 0.8;
+  double starBrightness = 1.0;  // multiplies catalogue star fluxes, 0..1e6
+  double starExtinction = 0.2;  // magnitudes per air mass, 0..2
+  std::vector<PaletteKey> palette = defaultPalette();
 };
 
 struct Scene {
@@ -59,7 +108,9 @@ struct Scene {
   CameraSettings camera;
   TimeSettings time;
   SunSettings sun;
+  MoonSettings moon;
   SkySettings sky;
+  LightingSettings lighting;
 };
 
 }  // namespace sky

@@ -17,6 +17,7 @@ AtmosphereCompositePass::AtmosphereCompositePass(const Context& ctx, ShaderCompi
 
 AtmosphereCompositePass::Outputs AtmosphereCompositePass::setup(GraphBuilder& b, const Inputs& in) {
   mInputs = in;
+  b.read(in.starFlux, Access::StorageReadCompute);
   ImageDesc desc;
   desc.format = VK_FORMAT_R16G16B16A16_SFLOAT;
   desc.width = in.params.view.size.x;
@@ -33,7 +34,9 @@ void AtmosphereCompositePass::execute(PassContext& ctx) const {
   ctx.dispatch(mPipeline,
                {Binding::of(ATMOSPHERE_COMPOSITE_BINDING_PARAMS, ctx.uniform(mInputs.params)),
                 Binding::of(ATMOSPHERE_COMPOSITE_BINDING_BEAUTY, mOutputs.beauty),
-                Binding::of(ATMOSPHERE_COMPOSITE_BINDING_SKY, mOutputs.sky)},
+                Binding::of(ATMOSPHERE_COMPOSITE_BINDING_SKY, mOutputs.sky),
+                Binding::of(ATMOSPHERE_COMPOSITE_BINDING_LIGHTING, ctx.uniform(mInputs.lighting)),
+                Binding::of(ATMOSPHERE_COMPOSITE_BINDING_STARS, mInputs.starFlux)},
                mPipeline.groupsX(size.x), mPipeline.groupsY(size.y));
 }
 

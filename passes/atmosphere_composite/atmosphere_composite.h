@@ -1,11 +1,12 @@
 #pragma once
-// The atmosphere composite: the final scene-linear image. For now the Kozlov 3.1 clear sky
-// for every pixel's view direction with the sun disc on top; later issues add high clouds,
-// volumetric clouds and aerial perspective here.
+// The atmosphere composite: the final scene-linear image. The Kozlov 3.1 clear sky lit by
+// sun and moon, the star field, and the sun and moon discs, all from the frame's
+// LightingState; later issues add high clouds, volumetric clouds and aerial perspective.
 #include "engine/gpu/compute_pipeline.h"
 #include "engine/graph/frame_graph.h"
 #include "engine/graph/pass_context.h"
 #include "shaders/common/atmosphere_composite_shared.h"
+#include "shaders/common/lighting_shared.h"
 
 namespace sky {
 
@@ -16,7 +17,9 @@ class AtmosphereCompositePass {
 public:
   static constexpr const char* kName = "atmosphere_composite";
   struct Inputs {
-    shared::AtmosphereCompositeParams params;  // view, sun and Kozlov colours for this frame
+    shared::AtmosphereCompositeParams params;  // the view
+    shared::LightingState lighting;            // this frame's lights and palette
+    BufferId starFlux;                         // from StarFieldPass
   };
   struct Outputs {
     ImageId beauty;  // RGBA16F scene-linear, alpha 1

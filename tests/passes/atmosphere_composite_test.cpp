@@ -1,5 +1,6 @@
 // passes/atmosphere_composite on the device: the shader against a C++ reference of Kozlov
-// 3.1 (every pixel), and golden images of the clear sky at three sun elevations.
+// 3.1 lit by sun and moon (every pixel), the sun and moon discs' energy and phase, stars by
+// night only, and golden images from day to night.
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -11,6 +12,7 @@
 #include "engine/core/paths.h"
 #include "engine/io/exr.h"
 #include "engine/io/image_metrics.h"
+#include "engine/lighting/lighting_state.h"
 #include "engine/render/camera.h"
 #include "engine/render/renderer.h"
 #include "engine/scene/scene_io.h"
@@ -21,18 +23,48 @@ namespace sky {
 namespace {
 namespace fs = std::filesystem;
 
-// Kozlov 3.1, written independently of shaders/common/kozlov_sky.glsl.
-glm::vec3 referenceClearSky(glm::vec3 v, glm::vec3 s, const SkySettings& sky) {
-  const float l = static_cast<float>(sky.glowSize) * std::pow(std::max(glm::dot(v, s), 0.0f), 2.0f);
-  const float h = std::min(std::max(v.z, 0.0f) / static_cast<float>(sky.hazeHeight), 1.0f);
-  return (sky.skyColor * h + sky.fogColor * (1.0f - h)) * (1.0f - l) + sky.sunColor * l;
-}
-
 glm::vec3 referenceDirection(const CameraSettings& cam, int w, int h, int x, int y) {
   shared::ViewState v = makeViewState(cam, w, h);
   const float nx = (x + 0.5f) / w * 2 - 1, ny = (y + 0.5f) / h * 2 - 1;
   return glm::normalize(glm::vec3(v.forward) + nx * v.right.w * glm::vec3(v.right) -
                         ny * v.up.w * glm::vec3(v.up));
+}
+
+// Kozlov 3.1, written independently of shaders/common/kozlov_sky.glsl.
+glm::vec3 referenceKozlov(glm::vec3 v, glm::vec3 s, const PaletteKey& p, const SkySettings& sky) {
+  const float l = static_cast<float>(sky.glowSize) * std::pow(std::max(glm::dot(v, s), 0.0f), 2.0f);
+  const float h = std::min(std::max(v.z, 0.0f) / static_cast<float>(sky.hazeHeight), 1.0f);
+  return (p.skyColor * h + p.fogColor * (1.0f - h)) * (1.0f - l) + p.glowColor * l;
+}
+
+// The clear sky of a frame: the daylit sky around the sun plus the moonlit one around the moon.
+glm::vec3 referenceClearSky(glm::vec3 v, const LightingState& st, const SkySettings& sky) {
+  return referenceKozlov(v, glm::vec3(st.sun.direction), st.palette, sky) +
+         referenceKozlov(v, glm::vec3(st.moon.direction), st.moonPalette, sky);
+}
+
+// Solid angle of pixel (x, y) of a pinhole image: p^2 cos^3 t at angle t off axis.
+double pixelSolidAngle(const CameraSettings& cam, int w, int h, int x, int y) {
+  const shared::ViewState view = makeViewState(cam, w, h);
+  const double cosT = glm::dot(referenceDirection(cam, w, h, x, y), glm::vec3(view.forward));
+  return double(view.forward.w) * view.forward.w * cosT * cosT * cosT;
+}
+
+// Sum over the image of (beauty - sky) times solid angle, per channel: the illuminance the
+// discs and stars add.
+glm::dvec3 addedIlluminance(const RenderedFrame& frame, const CameraSettings& cam) {
+  const ImageLayer* beauty = frame.image.find("");
+  const ImageLayer* sky = frame.image.find("sky");
+  const int w = frame.image.width, h = frame.image.height;
+  glm::dvec3 sum(0.0);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const size_t i = static_cast<size_t>(y) * w + x;
+      for (int c = 0; c < 3; ++c)
+        sum[c] +=
+            (beauty->pixels[i * 4 + c] - sky->pixels[i * 3 + c]) * pixelSolidAngle(cam, w, h, x, y);
+    }
+  return sum;
 }
 
 class AtmosphereCompositeTest : public test::GpuTest {
@@ -41,6 +73,11 @@ protected:
     static ShaderCompiler compiler;
     if (!mRenderer) mRenderer = std::make_unique<Renderer>(ctx(), compiler);
     return mRenderer->render(scene);
+  }
+  RenderedFrame render(const Scene& scene, const char* time) {
+    static ShaderCompiler compiler;
+    if (!mRenderer) mRenderer = std::make_unique<Renderer>(ctx(), compiler);
+    return mRenderer->render(scene, IsoTime::parse(time).value());
   }
   std::unique_ptr<Renderer> mRenderer;
 };
@@ -52,12 +89,12 @@ TEST_F(AtmosphereCompositeTest, SkyLayerMatchesKozlov31Everywhere) {
   RenderedFrame frame = render(scene);
   const ImageLayer* sky = frame.image.find("sky");
   ASSERT_NE(sky, nullptr);
-  const glm::vec3 s = directionFromAzEl(*scene.sun.azimuth, *scene.sun.elevation);
   const int w = scene.output.width, h = scene.output.height;
   double worst = 0;
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
-      glm::vec3 ref = referenceClearSky(referenceDirection(scene.camera, w, h, x, y), s, scene.sky);
+      glm::vec3 ref = referenceClearSky(referenceDirection(scene.camera, w, h, x, y),
+                                        frame.lighting, scene.sky);
       for (int c = 0; c < 3; ++c) {
         double got = sky->pixels[(static_cast<size_t>(y) * w + x) * 3 + c];
         // Half-float storage: 11 significant bits.
@@ -70,29 +107,92 @@ TEST_F(AtmosphereCompositeTest, SkyLayerMatchesKozlov31Everywhere) {
 TEST_F(AtmosphereCompositeTest, SunDiscKeepsItsEnergyAndHidesBelowTheHorizon) {
   Scene scene = loadSceneFile(configDir() / "tests" / "clear_sky_high.yaml");
   RenderedFrame frame = render(scene);
-  const ImageLayer* beauty = frame.image.find("");
-  const ImageLayer* sky = frame.image.find("sky");
-  // Integrated over solid angle (a pixel at angle t off axis covers p^2 cos^3 t), the disc
-  // must carry pi r^2 L: box filtering adds at most ~8 %, the pixel grid a little more.
-  const shared::ViewState view = makeViewState(scene.camera, 64, 36);
-  double energy = 0;
-  for (int y = 0; y < 36; ++y)
-    for (int x = 0; x < 64; ++x) {
-      const size_t i = static_cast<size_t>(y) * 64 + x;
-      const double cosT =
-          glm::dot(referenceDirection(scene.camera, 64, 36, x, y), glm::vec3(view.forward));
-      energy += (beauty->pixels[i * 4 + 1] - sky->pixels[i * 3 + 1]) * view.forward.w *
-                view.forward.w * cosT * cosT * cosT;
-    }
+  // The disc must carry pi r^2 L: box filtering adds at most ~8 %, the pixel grid a little more.
   const double r = 0.5 * scene.sun.angularDiameter * 3.14159265358979 / 180;
-  const double expected = 3.14159265358979 * r * r * scene.sky.sunColor.g * scene.sun.discIntensity;
-  EXPECT_NEAR(energy, expected, 0.15 * expected);
+  const double expected = 3.14159265358979 * r * r * frame.lighting.gpu.sunDisc.g;
+  EXPECT_NEAR(addedIlluminance(frame, scene.camera).g, expected, 0.15 * expected);
+  // ...which is the sun's illuminance through the atmosphere (the uniform disc's solid
+  // angle is pi r^2 to 1e-5 at this size).
+  EXPECT_NEAR(expected, frame.lighting.gpu.sun.illuminance.g, 1e-3 * expected);
 
   scene.sun.elevation = -2.0;
   frame = render(scene);
-  beauty = frame.image.find("");
-  sky = frame.image.find("sky");
+  const ImageLayer* beauty = frame.image.find("");
+  const ImageLayer* sky = frame.image.find("sky");
   for (size_t i = 0; i < 64 * 36; ++i) ASSERT_FLOAT_EQ(beauty->pixels[i * 4], sky->pixels[i * 3]);
+}
+
+// The moon seen from Zurich with a 1-degree field of view, so the disc spans about 19 pixels.
+Scene moonCloseUp(double moonAzimuth, double moonElevation) {
+  Scene scene = loadSceneFile(configDir() / "tests" / "night_full_moon.yaml");
+  scene.camera.heading = moonAzimuth;
+  scene.camera.pitch = moonElevation;
+  scene.camera.verticalFov = 1.0;
+  return scene;
+}
+
+TEST_F(AtmosphereCompositeTest, MoonDiscCarriesTheKrisciunasSchaeferFlux) {
+  // The full moon of 2024-06-22 01:08 UTC.
+  const char* time = "2024-06-22T00:30:00+02:00";
+  const LightingState st = computeLighting(moonCloseUp(0, 0), IsoTime::parse(time).value());
+  Scene scene = moonCloseUp(st.moon.azimuthDeg, st.moon.elevationDeg);
+  RenderedFrame frame = render(scene, time);
+  // Everything the disc adds (earthshine included, 1e-4 of it) is the moon's illuminance.
+  const glm::dvec3 added = addedIlluminance(frame, scene.camera);
+  for (int c = 0; c < 3; ++c)
+    EXPECT_NEAR(added[c], frame.lighting.gpu.moon.illuminance[c],
+                0.03 * frame.lighting.gpu.moon.illuminance[c]);
+}
+
+TEST_F(AtmosphereCompositeTest, MoonIsLitOnTheBrightLimbSide) {
+  // First quarter, 2024-06-14 05:18 UTC; the moon is up in Zurich that evening.
+  const char* time = "2024-06-14T22:00:00+02:00";
+  const LightingState st = computeLighting(moonCloseUp(0, 0), IsoTime::parse(time).value());
+  ASSERT_GT(st.moon.elevationDeg, 10.0);
+  ASSERT_NEAR(st.ephemeris.moon.illuminatedFraction, 0.5, 0.1);
+  Scene scene = moonCloseUp(st.moon.azimuthDeg, st.moon.elevationDeg);
+  RenderedFrame frame = render(scene, time);
+  const ImageLayer* beauty = frame.image.find("");
+  const ImageLayer* sky = frame.image.find("sky");
+  // The light-weighted centre of the disc must lie toward the bright limb, and the far side
+  // must show earthshine only.
+  const int w = scene.output.width, h = scene.output.height;
+  const glm::dvec3 limb = glm::dvec3(frame.lighting.gpu.moonLimb);
+  const double sinR = std::sin(frame.lighting.gpu.moon.direction.w);
+  double weighted = 0.0, total = 0.0, darkSide = 0.0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const size_t i = static_cast<size_t>(y) * w + x;
+      const double added = beauty->pixels[i * 4 + 1] - sky->pixels[i * 3 + 1];
+      const double along = glm::dot(glm::dvec3(referenceDirection(scene.camera, w, h, x, y)), limb);
+      weighted += added * along;
+      total += added;
+      if (along < -0.5 * sinR && along > -0.8 * sinR) darkSide = std::max(darkSide, added);
+    }
+  ASSERT_GT(total, 0.0);
+  EXPECT_GT(weighted / total, 0.25 * sinR);
+  EXPECT_LE(darkSide, 1.05 * frame.lighting.gpu.moonEarthshine.g);
+  EXPECT_GT(darkSide, 0.5 * frame.lighting.gpu.moonEarthshine.g) << "earthshine on the dark side";
+}
+
+TEST_F(AtmosphereCompositeTest, StarsShineOnlyInTheDark) {
+  // New moon 2024-06-06 12:38 UTC: a moonless night in Zurich, and the same view at noon.
+  Scene scene = loadSceneFile(configDir() / "tests" / "night_full_moon.yaml");
+  scene.camera.heading = 0;
+  scene.camera.pitch = 45;
+  RenderedFrame night = render(scene, "2024-06-06T01:00:00+02:00");
+  ASSERT_EQ(night.lighting.key, "moon");
+  ASSERT_LT(night.lighting.moon.elevationDeg, -5.0);
+  const ImageLayer* beauty = night.image.find("");
+  const ImageLayer* sky = night.image.find("sky");
+  int starPixels = 0;
+  for (size_t i = 0; i < 64 * 36; ++i)
+    if (beauty->pixels[i * 4 + 1] > 1.1f * sky->pixels[i * 3 + 1]) ++starPixels;
+  EXPECT_GE(starPixels, 10) << "pixels where stars outshine the night sky by 10 %";
+
+  RenderedFrame noon = render(scene, "2024-06-06T13:00:00+02:00");
+  const glm::dvec3 added = addedIlluminance(noon, scene.camera);
+  EXPECT_LT(added.g, 1e-6 * noon.lighting.gpu.sun.illuminance.g) << "no stars by day";
 }
 
 // Golden images: 64x36 renders of configs/tests/clear_sky_*.yaml against tests/golden/*.exr.
@@ -130,8 +230,9 @@ TEST_P(ClearSkyGolden, MatchesReference) {
   EXPECT_LE(maxAbsError(got, want), 0.02 * peak);
 }
 
-INSTANTIATE_TEST_SUITE_P(SunElevations, ClearSkyGolden,
-                         ::testing::Values("clear_sky_high", "clear_sky_low", "clear_sky_sunset"));
+INSTANTIATE_TEST_SUITE_P(DayToNight, ClearSkyGolden,
+                         ::testing::Values("clear_sky_high", "clear_sky_low", "clear_sky_sunset",
+                                           "civil_twilight", "night_full_moon"));
 
 TEST(ClearSkyGoldenSet, ReferencesDifferFromEachOther) {
   // Guards against references that could not catch a moved sun.

@@ -1,11 +1,54 @@
 #pragma once
 // Field-by-field Scene comparison for tests, written out by hand (not through the field
 // description) so a field the description forgets shows up as a difference.
+#include <ostream>
+#include <string>
+#include <vector>
+
 #include <gtest/gtest.h>
 
 #include "engine/scene/scene.h"
 
-namespace sky::test {
+namespace sky {
+
+// Readable failures: "2024-06-21T12:00:00+02:00" rather than a byte dump.
+inline void PrintTo(const IsoTime& t, std::ostream* os) {
+  *os << t.format();
+}
+
+namespace test {
+
+inline void expectSameColor(const glm::vec3& a, const glm::vec3& b, const char* name) {
+  SCOPED_TRACE(name);
+  EXPECT_EQ(a.x, b.x);
+  EXPECT_EQ(a.y, b.y);
+  EXPECT_EQ(a.z, b.z);
+}
+
+inline void expectSamePalette(const std::vector<PaletteKey>& a, const std::vector<PaletteKey>& b) {
+  ASSERT_EQ(a.size(), b.size());
+  for (size_t i = 0; i < a.size(); ++i) {
+    SCOPED_TRACE("palette[" + std::to_string(i) + "]");
+    EXPECT_EQ(a[i].sunElevation, b[i].sunElevation);
+    expectSameColor(a[i].skyColor, b[i].skyColor, "sky_color");
+    expectSameColor(a[i].fogColor, b[i].fogColor, "fog_color");
+    expectSameColor(a[i].glowColor, b[i].glowColor, "glow_color");
+    expectSameColor(a[i].cloudLit, b[i].cloudLit, "cloud_lit");
+    expectSameColor(a[i].cloudDark, b[i].cloudDark, "cloud_dark");
+    expectSameColor(a[i].ambientTop, b[i].ambientTop, "ambient_top");
+    expectSameColor(a[i].ambientBottom, b[i].ambientBottom, "ambient_bottom");
+  }
+}
+
+inline void expectSameLighting(const LightingSettings& a, const LightingSettings& b) {
+  EXPECT_EQ(a.pressureHpa, b.pressureHpa);
+  EXPECT_EQ(a.temperatureC, b.temperatureC);
+  EXPECT_EQ(a.turbidity, b.turbidity);
+  EXPECT_EQ(a.nightAdaptation, b.nightAdaptation);
+  EXPECT_EQ(a.starBrightness, b.starBrightness);
+  EXPECT_EQ(a.starExtinction, b.starExtinction);
+  expectSamePalette(a.palette, b.palette);
+}
 
 inline void expectSameScene(const Scene& a, const Scene& b) {
   EXPECT_EQ(a.output.width, b.output.width);
@@ -20,19 +63,27 @@ inline void expectSameScene(const Scene& a, const Scene& b) {
   EXPECT_EQ(a.camera.heading, b.camera.heading);
   EXPECT_EQ(a.camera.pitch, b.camera.pitch);
   EXPECT_EQ(a.camera.verticalFov, b.camera.verticalFov);
-  EXPECT_EQ(a.time.instant, b.time.instant);
+  // IsoTime's == compares the zone and the fraction too: a time that prints back in
+  // another zone is a difference.
+  EXPECT_EQ(a.time.start, b.time.start);
+  EXPECT_EQ(a.time.end, b.time.end);
+  EXPECT_EQ(a.time.stepSeconds, b.time.stepSeconds);
   EXPECT_EQ(a.sun.azimuth, b.sun.azimuth);
   EXPECT_EQ(a.sun.elevation, b.sun.elevation);
   EXPECT_EQ(a.sun.angularDiameter, b.sun.angularDiameter);
-  EXPECT_EQ(a.sun.discIntensity, b.sun.discIntensity);
-  EXPECT_EQ(a.sky.skyColor, b.sky.skyColor);
-  EXPECT_EQ(a.sky.fogColor, b.sky.fogColor);
-  EXPECT_EQ(a.sky.sunColor, b.sky.sunColor);
+  EXPECT_EQ(a.sun.discScale, b.sun.discScale);
+  EXPECT_EQ(a.moon.azimuth, b.moon.azimuth);
+  EXPECT_EQ(a.moon.elevation, b.moon.elevation);
+  EXPECT_EQ(a.moon.discScale, b.moon.discScale);
+  EXPECT_EQ(a.moon.earthshine, b.moon.earthshine);
   EXPECT_EQ(a.sky.glowSize, b.sky.glowSize);
   EXPECT_EQ(a.sky.hazeHeight, b.sky.hazeHeight);
+  expectSameLighting(a.lighting, b.lighting);
 }
 
-// A scene where every field differs from its default, with awkward values.
+// A scene where every field differs from its default, with awkward values: a time-lapse
+// with a fractional-second step and fractional start/end, numbers whose shortest text is
+// long, range ends, a subnormal float and a three-key palette of odd floats.
 inline Scene unusualScene() {
   Scene s;
   s.output.width = 64;
@@ -47,17 +98,45 @@ inline Scene unusualScene() {
   s.camera.heading = 1.0 / 3.0;
   s.camera.pitch = -0.0;
   s.camera.verticalFov = 70.00000000000001;
-  s.time.instant = IsoTime::parse("2024-12-21T05:30:00.125-03:30").value();
+  s.time.start = IsoTime::parse("2024-12-21T05:30:00.125-03:30").value();
+  s.time.end = IsoTime::parse("2024-12-21T10:30:00.375+01:00").value();  // another zone
+  s.time.stepSeconds = 61.3;
   s.sun.azimuth = 200.1;
   s.sun.elevation = 1e-7;
   s.sun.angularDiameter = 0.01;
-  s.sun.discIntensity = 1e6;
-  s.sky.skyColor = {0.1f, 0.2f, 0.3f};
-  s.sky.fogColor = {1.0f / 3.0f, 0.0f, 1e-6f};
-  s.sky.sunColor = {12.5f, 0.7f, 3e5f};
+  s.sun.discScale = 999.9999999999999;
+  s.moon.azimuth = -359.99;
+  s.moon.elevation = -0.30000000000000004;
+  s.moon.discScale = 0.0;
+  s.moon.earthshine = 100.0;
   s.sky.glowSize = 0.30000000000000004;
   s.sky.hazeHeight = 0.001;
+  s.lighting.pressureHpa = 0.0;
+  s.lighting.temperatureC = -40.05;
+  s.lighting.turbidity = 4.999999999999999;
+  s.lighting.nightAdaptation = 1.0 / 3.0;
+  s.lighting.starBrightness = 1e6;
+  s.lighting.starExtinction = 1e-300;
+  PaletteKey night;
+  night.sunElevation = -89.99999999999999;
+  night.skyColor = {1e-40f, 1.0f / 3.0f, 0.1f};
+  night.fogColor = {1e-6f, 0.0f, 524288.03f};
+  night.glowColor = {0.0f, 0.0f, 2e-3f};
+  night.cloudLit = {3.4028235e-10f, 0.7f, 0.2f};
+  night.cloudDark = {0.1f + 0.2f, 1.1754944e-38f, 2.0f / 3.0f};
+  night.ambientTop = {999999.94f, 1e6f, 0.5f};
+  night.ambientBottom = {0.0001f, 0.00012345678f, 7.0f};
+  PaletteKey dusk = night;
+  dusk.sunElevation = -1e-9;
+  dusk.skyColor = {0.30000001f, 0.2f, 0.1f};
+  dusk.glowColor = {12.5f, 0.7f, 3e5f};
+  PaletteKey day = dusk;
+  day.sunElevation = 90.0;
+  day.fogColor = {1.0f / 7.0f, 6.0f / 7.0f, 1.0f};
+  day.ambientBottom = {0.0f, 0.0f, 1e-45f};
+  s.lighting.palette = {night, dusk, day};
   return s;
 }
 
-}  // namespace sky::test
+}  // namespace test
+}  // namespace sky

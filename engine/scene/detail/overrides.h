@@ -8,8 +8,9 @@
 namespace sky::detail {
 
 // Applies one "key.path=value" to `root` (a Map). The value is a YAML scalar or flow list.
-// Errors (malformed text, a path through a non-section) throw sky::Error(BadInput) and
-// start with "--set <text>"; the nodes it adds carry that same position for later errors.
+// Errors (malformed text, a path through a non-section or into a list's items) throw
+// sky::Error(BadInput) and start with "--set <text>"; the nodes it adds carry that same position
+// for later errors.
 void applyOverride(ConfigNode& root, const std::string& text);
 
 }  // namespace sky::detail

@@ -141,16 +141,140 @@ void SceneReader::field(std::string_view key, std::string& value, const TextRule
   value = text;
 }
 
-void SceneReader::field(std::string_view key, IsoTime& value, std::string_view) {
+namespace {
+
+// One end of a time range or a single instant; `where` names the part in messages.
+IsoTime readInstant(const ConfigNode& node, const std::string& path, std::string_view text,
+                    const char* where) {
+  std::string why;
+  std::optional<IsoTime> t = IsoTime::parse(text, &why);
+  if (!t)
+    inputError(node.pos.str() + ": " + path + ": " + where + "'" + messageText(text) +
+               "' is not a valid time: " + why);
+  return *t;
+}
+
+}  // namespace
+
+void SceneReader::field(std::string_view key, TimeSettings& value, std::string_view) {
   const ConfigNode* node = mMap.find(key);
   if (!node) return;
-  std::string path = childPath(key);
-  if (!isTextLike(*node))
-    fail(*node, path, "expected an ISO 8601 time string, got " + node->describeKind());
+  const std::string path = childPath(key);
+  TimeSettings result;
+  // Positions and paths of the three parts: the map form has a node per part, the
+  // "START/END/STEP" text shares one.
+  const ConfigNode* endNode = node;
+  const ConfigNode* stepNode = node;
+  std::string endPath = path, stepPath = path;
+  std::string endText, stepText;
+  const char* endWhere = "";
+  const char* stepWhere = "";
+  if (isTextLike(*node)) {
+    std::vector<std::string_view> parts;
+    std::string_view text = node->text;
+    for (size_t start = 0;;) {
+      size_t slash = text.find('/', start);
+      parts.push_back(text.substr(start, slash == std::string_view::npos ? slash : slash - start));
+      if (slash == std::string_view::npos) break;
+      start = slash + 1;
+    }
+    if (parts.size() != 1 && parts.size() != 3)
+      fail(*node, path,
+           "'" + messageText(node->text) +
+               "' is neither a time nor a range START/END/STEP (e.g. "
+               "2024-06-21T00:00Z/2024-06-22T00:00Z/15m)");
+    result.start = readInstant(*node, path, parts[0], parts.size() == 1 ? "" : "start ");
+    if (parts.size() == 1) {
+      value = result;
+      return;
+    }
+    endText = parts[1];
+    stepText = parts[2];
+    endWhere = "end ";
+    stepWhere = "step ";
+  } else if (node->isMap()) {
+    static const std::vector<std::string> kKeys = {"start", "end", "step"};
+    checkKeys(*node, path, kKeys);
+    requireAll(*node, path, kKeys);
+    const ConfigNode* startNode = node->find("start");
+    endNode = node->find("end");
+    stepNode = node->find("step");
+    for (const ConfigNode* part : {startNode, endNode, stepNode}) {
+      if (!isTextLike(*part))
+        fail(*part, path + "." + part->key, "expected a string, got " + part->describeKind());
+    }
+    result.start = readInstant(*startNode, path + ".start", startNode->text, "");
+    endText = endNode->text;
+    stepText = stepNode->text;
+    endPath = path + ".end";
+    stepPath = path + ".step";
+  } else {
+    fail(*node, path,
+         "expected an ISO 8601 time, START/END/STEP or a {start, end, step} map, got " +
+             node->describeKind());
+  }
+  result.end = readInstant(*endNode, endPath, endText, endWhere);
   std::string why;
-  std::optional<IsoTime> t = IsoTime::parse(node->text, &why);
-  if (!t) fail(*node, path, "'" + messageText(node->text) + "' is not a valid time: " + why);
-  value = *t;
+  std::optional<double> step = parseDuration(stepText, &why);
+  if (!step)
+    fail(*stepNode, stepPath,
+         std::string(stepWhere) + "'" + messageText(stepText) + "' is not a duration: " + why);
+  if (!(*step > 0))
+    fail(*stepNode, stepPath,
+         std::string(stepWhere) + "'" + messageText(stepText) + "' must be positive");
+  result.stepSeconds = *step;
+  if (result.end->secondsSince(result.start) < 0)
+    fail(*endNode, endPath,
+         std::string(endWhere) + "'" + messageText(endText) + "' is before the start " +
+             result.start.format());
+  // Compared in double first: a tiny step over a long range overflows the frame count.
+  // Then frameCount() itself, which counts a range a hair short of a whole number of steps
+  // as whole (99999.9999999999 steps is 100001 frames).
+  if (result.end->secondsSince(result.start) / result.stepSeconds >=
+          static_cast<double>(TimeSettings::kMaxFrames) ||
+      result.frameCount() > TimeSettings::kMaxFrames)
+    fail(*stepNode, stepPath,
+         "the range has more than " + std::to_string(TimeSettings::kMaxFrames) +
+             " frames; use a longer step or a shorter range");
+  value = result;
+}
+
+void SceneReader::checkList(const ConfigNode& list, const std::string& path, const ListRule& rule) {
+  if (list.kind != ConfigNode::Kind::Sequence)
+    fail(list, path, "expected a list of maps, got " + list.describeKind());
+  size_t n = list.children.size();
+  if (n < rule.minItems || (rule.maxItems && n > rule.maxItems))
+    fail(list, path,
+         "expected " + std::to_string(rule.minItems) + " to " + std::to_string(rule.maxItems) +
+             " items, got " + std::to_string(n));
+  for (size_t i = 0; i < n; ++i) {
+    if (!list.children[i].isMap())
+      fail(list.children[i], path + "[" + std::to_string(i) + "]",
+           "expected a map of settings, got " + list.children[i].describeKind());
+  }
+}
+
+void SceneReader::requireAll(const ConfigNode& map, const std::string& path,
+                             const std::vector<std::string>& known) {
+  for (const std::string& key : known) {
+    if (!map.find(key)) fail(map, path, "missing key '" + key + "'");
+  }
+}
+
+void SceneReader::checkIncreasing(const ConfigNode& list, const std::string& path,
+                                  const ListRule& rule) {
+  if (!rule.increasingKey) return;
+  // Items are already read and validated, so every value parses.
+  std::optional<double> previous;
+  for (size_t i = 0; i < list.children.size(); ++i) {
+    const ConfigNode* n = list.children[i].find(rule.increasingKey);
+    double v = *parseNumber(n->text);
+    if (previous && !(v > *previous))
+      fail(*n, path + "[" + std::to_string(i) + "]." + rule.increasingKey,
+           messageText(n->text) + " must be greater than the previous item's " +
+               formatDouble(*previous) + " (list items in increasing " + rule.increasingKey + ")");
+    previous = v;
+  }
 }
 
 void SceneReader::bothOrNeither(std::string_view a, std::string_view b) {

@@ -12,6 +12,7 @@
 #include "engine/scene/config_tree.h"
 #include "engine/scene/field_rules.h"
 #include "engine/scene/iso_time.h"
+#include "engine/scene/scene.h"
 
 namespace sky::detail {
 
@@ -26,6 +27,10 @@ public:
   }
   template <class T, class... Rest>
   void field(std::string_view key, T&, Rest&&...) {
+    keys.emplace_back(key);
+  }
+  template <class T, class... Rest>
+  void list(std::string_view key, T&, Rest&&...) {
     keys.emplace_back(key);
   }
   void bothOrNeither(std::string_view, std::string_view) {}
@@ -62,12 +67,42 @@ public:
              std::string_view);
   void field(std::string_view key, glm::vec3& value, NumberRange range, std::string_view);
   void field(std::string_view key, std::string& value, const TextRule& rule, std::string_view);
-  void field(std::string_view key, IsoTime& value, std::string_view);
+  void field(std::string_view key, TimeSettings& value, std::string_view);
   void bothOrNeither(std::string_view a, std::string_view b);
+
+  // A list of maps: each item must give every key of T (a keyframe with a colour missing
+  // is more likely a mistake than a wish for black), and rule.increasingKey must increase.
+  template <class T>
+  void list(std::string_view key, std::vector<T>& items, ListRule rule, std::string_view) {
+    const ConfigNode* node = mMap.find(key);
+    if (!node) return;
+    std::string path = childPath(key);
+    checkList(*node, path, rule);
+    KeyCollector known;
+    T probe{};
+    describe(known, probe);
+    std::vector<T> result;
+    for (size_t i = 0; i < node->children.size(); ++i) {
+      const ConfigNode& item = node->children[i];
+      std::string itemPath = path + "[" + std::to_string(i) + "]";
+      checkKeys(item, itemPath, known.keys);  // a misspelt key first: "did you mean ..."
+      requireAll(item, itemPath, known.keys);
+      T value{};
+      read(item, itemPath, value);
+      result.push_back(value);
+    }
+    checkIncreasing(*node, path, rule);
+    items = std::move(result);
+  }
 
 private:
   static void checkKeys(const ConfigNode& map, const std::string& path,
                         const std::vector<std::string>& known);
+  static void checkList(const ConfigNode& list, const std::string& path, const ListRule& rule);
+  static void requireAll(const ConfigNode& map, const std::string& path,
+                         const std::vector<std::string>& known);
+  static void checkIncreasing(const ConfigNode& list, const std::string& path,
+                              const ListRule& rule);
   [[noreturn]] static void fail(const ConfigNode& node, const std::string& path,
                                 const std::string& what);
   static double number(const ConfigNode& node, const std::string& path, NumberRange range,

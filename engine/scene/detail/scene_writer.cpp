@@ -1,5 +1,6 @@
 #include "engine/scene/detail/scene_writer.h"
 
+#include <algorithm>
 #include <charconv>
 
 #include "engine/core/error.h"
@@ -45,13 +46,34 @@ std::string flowText(const ConfigNode& n, bool json) {
   }
 }
 
-void yamlMap(const ConfigNode& map, int indent, std::string& out) {
-  for (const ConfigNode& c : map.children) {
+bool isListOfMaps(const ConfigNode& n) {
+  return n.kind == ConfigNode::Kind::Sequence && !n.children.empty() &&
+         std::all_of(n.children.begin(), n.children.end(),
+                     [](const ConfigNode& c) { return c.isMap() && !c.children.empty(); });
+}
+
+void yamlMap(const ConfigNode& map, int indent, std::string& out, bool firstInItem = false);
+
+// "- key: value" then the item's other keys aligned under the first.
+void yamlListOfMaps(const ConfigNode& list, int indent, std::string& out) {
+  for (const ConfigNode& item : list.children) {
     out.append(static_cast<size_t>(indent), ' ');
+    out += "- ";
+    yamlMap(item, indent + 2, out, true);
+  }
+}
+
+void yamlMap(const ConfigNode& map, int indent, std::string& out, bool firstInItem) {
+  for (const ConfigNode& c : map.children) {
+    if (!firstInItem) out.append(static_cast<size_t>(indent), ' ');
+    firstInItem = false;
     out += c.key + ":";
     if (c.isMap() && !c.children.empty()) {
       out += "\n";
       yamlMap(c, indent + 2, out);
+    } else if (isListOfMaps(c)) {
+      out += "\n";
+      yamlListOfMaps(c, indent + 2, out);
     } else {
       out += " " + flowText(c, false) + "\n";
     }
@@ -68,10 +90,20 @@ void jsonMap(const ConfigNode& map, int indent, std::string& out) {
     const ConfigNode& c = map.children[i];
     out.append(static_cast<size_t>(indent + 2), ' ');
     out += quoted(c.key) + ": ";
-    if (c.isMap())
+    if (c.isMap()) {
       jsonMap(c, indent + 2, out);
-    else
+    } else if (isListOfMaps(c)) {
+      out += "[\n";
+      for (size_t k = 0; k < c.children.size(); ++k) {
+        out.append(static_cast<size_t>(indent + 4), ' ');
+        jsonMap(c.children[k], indent + 4, out);
+        out += k + 1 < c.children.size() ? ",\n" : "\n";
+      }
+      out.append(static_cast<size_t>(indent + 2), ' ');
+      out += "]";
+    } else {
       out += flowText(c, true);
+    }
     out += i + 1 < map.children.size() ? ",\n" : "\n";
   }
   out.append(static_cast<size_t>(indent), ' ');
@@ -106,9 +138,19 @@ void SceneWriter::field(std::string_view key, const std::string& value, const Te
   mMap.add(std::string(key), {}, ConfigNode::makeScalar(value, ConfigNode::Style::String, {}));
 }
 
-void SceneWriter::field(std::string_view key, const IsoTime& value, std::string_view) {
-  mMap.add(std::string(key), {},
-           ConfigNode::makeScalar(value.format(), ConfigNode::Style::String, {}));
+void SceneWriter::field(std::string_view key, const TimeSettings& value, std::string_view) {
+  auto text = [](std::string t) {
+    return ConfigNode::makeScalar(std::move(t), ConfigNode::Style::String, {});
+  };
+  if (!value.end) {
+    mMap.add(std::string(key), {}, text(value.start.format()));
+    return;
+  }
+  ConfigNode range = ConfigNode::makeMap({});
+  range.add("start", {}, text(value.start.format()));
+  range.add("end", {}, text(value.end->format()));
+  range.add("step", {}, text(formatDuration(value.stepSeconds)));
+  mMap.add(std::string(key), {}, std::move(range));
 }
 
 void SceneWriter::checkPairs() const {

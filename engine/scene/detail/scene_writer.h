@@ -14,6 +14,7 @@
 #include "engine/scene/config_tree.h"
 #include "engine/scene/field_rules.h"
 #include "engine/scene/iso_time.h"
+#include "engine/scene/scene.h"
 
 namespace sky::detail {
 
@@ -38,7 +39,17 @@ public:
              std::string_view);
   void field(std::string_view key, const glm::vec3& value, NumberRange, std::string_view);
   void field(std::string_view key, const std::string& value, const TextRule&, std::string_view);
-  void field(std::string_view key, const IsoTime& value, std::string_view);
+  void field(std::string_view key, const TimeSettings& value, std::string_view);
+  template <class T>
+  void list(std::string_view key, const std::vector<T>& items, ListRule, std::string_view) {
+    ConfigNode seq = ConfigNode::makeSequence({});
+    for (T item : items) {
+      ConfigNode map = ConfigNode::makeMap({});
+      write(map, item);
+      seq.children.push_back(std::move(map));
+    }
+    mMap.add(std::string(key), {}, std::move(seq));
+  }
   // Checked once the section is complete (the pair may be described in any order).
   void bothOrNeither(std::string_view a, std::string_view b) { mPairs.emplace_back(a, b); }
 
@@ -50,7 +61,8 @@ private:
   std::vector<std::pair<std::string, std::string>> mPairs;
 };
 
-// Block-style YAML (flow lists for colours), strings always double-quoted.
+// Block-style YAML (flow lists for colours, block lists of maps), strings always
+// double-quoted.
 std::string toYamlText(const ConfigNode& root);
 // Two-space indented JSON, lists of scalars on one line.
 std::string toJsonText(const ConfigNode& root);

@@ -97,13 +97,36 @@ void SchemaBuilder::field(std::string_view key, const std::string& value, const 
   mSchema["properties"][std::string(key)] = std::move(s);
 }
 
-void SchemaBuilder::field(std::string_view key, const IsoTime& value,
+Json orderedJson(const ConfigNode& map) {
+  Json o = Json::object();
+  for (const ConfigNode& c : map.children)
+    o[c.key] = c.isMap() ? orderedJson(c) : Json(toJsonValue(c));
+  return o;
+}
+
+void SchemaBuilder::field(std::string_view key, const TimeSettings& value,
                           std::string_view description) {
+  // The reader's rules in schema form: an instant, "START/END/STEP", or the map.
+  std::string iso = kIsoTimePattern;
+  std::string bare = iso.substr(1, iso.size() - 2);  // without ^ and $
+  Json instant = {{"type", "string"}, {"pattern", iso}};
+  Json interval = {{"type", "string"}, {"pattern", "^" + bare + "/" + bare + "/[^/]+$"}};
+  Json range = {{"type", "object"},
+                {"additionalProperties", false},
+                {"required", Json::array({"start", "end", "step"})},
+                {"properties",
+                 {{"start", instant},
+                  {"end", instant},
+                  {"step",
+                   {{"type", "string"},
+                    {"description", "a positive duration: 15m, 1h30m, 90s, 2d or PT15M"}}}}}};
   Json s = Json::object();
   s["description"] = std::string(description);
-  s["type"] = "string";
-  s["pattern"] = kIsoTimePattern;
-  s["default"] = value.format();
+  s["anyOf"] = Json::array({instant, interval, range});
+  s["default"] = value.end ? Json({{"start", value.start.format()},
+                                   {"end", value.end->format()},
+                                   {"step", formatDuration(value.stepSeconds)}})
+                           : Json(value.start.format());
   mSchema["properties"][std::string(key)] = std::move(s);
 }
 

@@ -10,6 +10,8 @@
 
 #include "engine/scene/field_rules.h"
 #include "engine/scene/iso_time.h"
+#include "engine/scene/scene.h"
+#include "engine/scene/detail/scene_writer.h"
 
 namespace sky::detail {
 
@@ -45,14 +47,49 @@ public:
              std::string_view description);
   void field(std::string_view key, const std::string& value, const TextRule& rule,
              std::string_view description);
-  void field(std::string_view key, const IsoTime& value, std::string_view description);
+  void field(std::string_view key, const TimeSettings& value, std::string_view description);
+  template <class T>
+  void list(std::string_view key, const std::vector<T>& items, ListRule rule,
+            std::string_view description) {
+    T probe{};
+    Json item = objectSchema(probe, "one item");
+    Json required = Json::array();
+    for (auto& [name, _] : item["properties"].items()) required.push_back(name);
+    item["required"] = std::move(required);
+    for (auto& [name, prop] : item["properties"].items()) prop.erase("default");
+    Json s = Json::object();
+    s["description"] = std::string(description);
+    s["type"] = "array";
+    s["items"] = std::move(item);
+    s["minItems"] = rule.minItems;
+    if (rule.maxItems) s["maxItems"] = rule.maxItems;
+    s["default"] = listDefault(items);
+    mSchema["properties"][std::string(key)] = std::move(s);
+  }
   void bothOrNeither(std::string_view a, std::string_view b);
 
 private:
   explicit SchemaBuilder(Json& schema) : mSchema(schema) {}
+  // The items as the writer prints them, so the schema default is what `validate` shows.
+  template <class T>
+  static Json listDefault(const std::vector<T>& items);
   static Json emptyObject(std::string_view description);
 
   Json& mSchema;
 };
+
+// A written map as ordered JSON (keys in the order the description gives them).
+SchemaBuilder::Json orderedJson(const ConfigNode& map);
+
+template <class T>
+SchemaBuilder::Json SchemaBuilder::listDefault(const std::vector<T>& items) {
+  Json out = Json::array();
+  for (T item : items) {
+    ConfigNode map = ConfigNode::makeMap({});
+    SceneWriter::write(map, item);
+    out.push_back(orderedJson(map));
+  }
+  return out;
+}
 
 }  // namespace sky::detail

@@ -1,0 +1,122 @@
+#include "engine/lighting/light_model.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace sky::light {
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kDeg = kPi / 180.0;
+
+// Rayleigh optical depth of the whole atmosphere at sea level, Hansen & Travis (1974) eq. 2.29
+// with lambda in micrometres.
+double rayleighDepth(double lambdaNm) {
+  double l = lambdaNm * 1e-3;
+  double l2 = l * l;
+  return 0.008569 / (l2 * l2) * (1.0 + 0.0113 / l2 + 0.00013 / (l2 * l2));
+}
+
+// Ozone (300 Dobson units = 8.07e18 molecules/cm^2) times the Chappuis-band cross-section.
+double ozoneDepth(double lambdaNm) {
+  // Cross-sections in 1e-21 cm^2 at 440, 550, 680 nm (Serdyuchenko et al. 2014, rounded).
+  if (lambdaNm < 500.0) return 8.07e18 * 0.2e-21;
+  if (lambdaNm < 600.0) return 8.07e18 * 3.3e-21;
+  return 8.07e18 * 2.0e-21;
+}
+
+}  // namespace
+
+double airMass(double apparentElevationDeg) {
+  double h = std::max(apparentElevationDeg, -1.0);
+  // Kasten & Young (1989): m = 1 / (sin h + 0.50572 (h + 6.07995)^-1.6364).
+  return 1.0 / (std::sin(h * kDeg) + 0.50572 * std::pow(h + 6.07995, -1.6364));
+}
+
+glm::dvec3 atmosphereTransmittance(double apparentElevationDeg, double altitudeM,
+                                   double turbidity) {
+  double m = airMass(apparentElevationDeg);
+  // Standard atmosphere: pressure scale height 8.434 km; aerosols mostly below 1.2 km.
+  double pressureRatio = std::exp(-altitudeM / 8434.0);
+  double aerosolRatio = std::exp(-std::max(altitudeM, 0.0) / 1200.0);
+  glm::dvec3 t;
+  for (int c = 0; c < 3; ++c) {
+    double lambda = kChannelWavelengthsNm[c];
+    double tau = rayleighDepth(lambda) * pressureRatio + ozoneDepth(lambda) +
+                 turbidity * aerosolRatio * std::pow(lambda / 550.0, -1.3);
+    t[c] = std::exp(-tau * m);  // Beer-Lambert along the slant path
+  }
+  return t;
+}
+
+double discAboveHorizon(double elevationDeg, double radiusDeg) {
+  if (radiusDeg <= 0.0) return elevationDeg >= 0.0 ? 1.0 : 0.0;
+  double x = std::clamp(elevationDeg / radiusDeg, -1.0, 1.0);
+  // Area of the circular segment above a chord at height -x (unit disc), over pi.
+  return (std::acos(-x) + x * std::sqrt(1.0 - x * x)) / kPi;
+}
+
+double moonIlluminanceLux(double phaseAngleDeg, double distanceKm) {
+  double a = std::fabs(phaseAngleDeg);
+  double footCandles = std::pow(10.0, -0.4 * (3.84 + 0.026 * a + 4e-9 * a * a * a * a));
+  double d = 384400.0 / distanceKm;
+  return footCandles * 10.7639 * d * d;
+}
+
+double earthshineRatio(double moonIlluminatedFraction) {
+  return 2.4e-4 * std::clamp(1.0 - moonIlluminatedFraction, 0.0, 1.0);
+}
+
+double twilightIlluminanceLux(double sunElevationDeg) {
+  // (elevation, log10 lux), clear sky, sun and sky together.
+  static constexpr std::array<std::array<double, 2>, 16> kTable = {{
+      {-90.0, -3.30},
+      {-18.0, -3.22},
+      {-16.0, -3.05},
+      {-14.0, -2.75},
+      {-12.0, -2.10},
+      {-10.0, -1.40},
+      {-8.0, -0.50},
+      {-6.0, 0.53},
+      {-4.0, 1.45},
+      {-2.0, 2.30},
+      {0.0, 2.88},
+      {5.0, 3.90},
+      {10.0, 4.30},
+      {30.0, 4.78},
+      {60.0, 5.00},
+      {90.0, 5.05},
+  }};
+  double h = std::clamp(sunElevationDeg, -90.0, 90.0);
+  for (size_t i = 1; i < kTable.size(); ++i) {
+    if (h <= kTable[i][0]) {
+      double t = (h - kTable[i - 1][0]) / (kTable[i][0] - kTable[i - 1][0]);
+      return std::pow(10.0, kTable[i - 1][1] + t * (kTable[i][1] - kTable[i - 1][1]));
+    }
+  }
+  return std::pow(10.0, kTable.back()[1]);
+}
+
+double nightLiftEv(double sunElevationDeg, double adaptation) {
+  if (sunElevationDeg >= 0.0) return 0.0;
+  return adaptation *
+         std::log2(twilightIlluminanceLux(0.0) / twilightIlluminanceLux(sunElevationDeg));
+}
+
+double dayFactor(double sunElevationDeg) {
+  double full = std::log2(twilightIlluminanceLux(0.0) / twilightIlluminanceLux(-90.0));
+  return std::clamp(1.0 - nightLiftEv(sunElevationDeg, 1.0) / full, 0.0, 1.0);
+}
+
+glm::dvec3 moonColor() {
+  // A B-V excess of 0.27 mag over the sun, spread over the channels by wavelength (redder
+  // light loses less): about -0.12, 0, +0.15 mag in R, G, B.
+  glm::dvec3 c{std::pow(10.0, 0.4 * 0.12), 1.0, std::pow(10.0, -0.4 * 0.15)};
+  return c / luminance(c);
+}
+
+double luminance(const glm::dvec3& rgb) {
+  return 0.2126 * rgb.r + 0.7152 * rgb.g + 0.0722 * rgb.b;
+}
+
+}  // namespace sky::light

@@ -1,0 +1,65 @@
+#pragma once
+// How much light the sun and the moon give at the ground, and how the exposure follows
+// the day into night. Plain functions of elevation, phase and distance so tests can check
+// each against its source. Units are in shaders/common/lighting_shared.h.
+#include <glm/vec3.hpp>
+
+namespace sky::light {
+
+// Photometric units of the renderer: radiance 1 = 10^4 cd/m^2, illuminance 1 = pi 10^4 lux.
+constexpr double kLuxPerUnit = 3.14159265358979323846 * 1.0e4;
+// Solar illuminance at the top of the atmosphere at 1 AU (photometric solar constant).
+constexpr double kSolarIlluminanceLux = 127500.0;
+// Illuminance of a V = 0 star outside the atmosphere (Allen's Astrophysical Quantities).
+constexpr double kVegaIlluminanceLux = 2.54e-6;
+constexpr double kMoonRadiusKm = 1737.4;
+
+// Wavelengths (nm) that stand for the R, G, B channels in the extinction model.
+constexpr glm::dvec3 kChannelWavelengthsNm{680.0, 550.0, 440.0};
+
+// Kasten & Young (1989) relative air mass for an apparent elevation in degrees. Clamped at
+// -1 degree, below which the formula turns back; a body that low is hidden anyway.
+double airMass(double apparentElevationDeg);
+
+// Direct-beam transmittance of the atmosphere per channel: Rayleigh (Hansen & Travis 1974
+// optical depth, scaled by the standard-atmosphere pressure at the observer's altitude),
+// ozone (Chappuis band, 300 DU) and aerosol (Angstrom exponent 1.3, optical depth
+// `turbidity` at 550 nm, scale height 1.2 km), along `airMass(elevation)`.
+glm::dvec3 atmosphereTransmittance(double apparentElevationDeg, double altitudeM, double turbidity);
+
+// Share of a disc of angular radius `radiusDeg` centred at `elevationDeg` that lies above the
+// horizon (the exact circular-segment area), so a setting body dims smoothly.
+double discAboveHorizon(double elevationDeg, double radiusDeg);
+
+// Moon illuminance outside the atmosphere, lux: Krisciunas & Schaefer (1991) eq. 8,
+// I = 10^(-0.4 (3.84 + 0.026 |a| + 4e-9 a^4)) foot-candles at the mean distance, a the
+// phase angle in degrees, scaled by the inverse square of the distance.
+double moonIlluminanceLux(double phaseAngleDeg, double distanceKm);
+
+// Earthshine on the moon relative to sunlight on it. Full Earth seen from the moon is about
+// 5 magnitudes brighter than the full moon seen from Earth, i.e. about 2.4e-4 of sunlight
+// (Danjon's measurements); scaled by Earth's illuminated fraction as seen from the moon,
+// which is 1 - k for a moon illuminated fraction k.
+double earthshineRatio(double moonIlluminatedFraction);
+
+// Clear-sky horizontal illuminance from the sun and sky, lux, by apparent sun elevation:
+// log-interpolated from commonly tabulated values (noon ~1e5, sunset ~750, end of civil
+// twilight 3.4, nautical 0.008, astronomical ~6e-4 lux, then the natural night floor).
+double twilightIlluminanceLux(double sunElevationDeg);
+
+// How far the exposure has followed the light down after sunset, in stops: `adaptation`
+// times the stops lost since sunset (0 while the sun is up).
+double nightLiftEv(double sunElevationDeg, double adaptation);
+
+// 1 by day, 0 at full night, continuous: the share of the sunset-to-night darkening (in
+// stops) still ahead. 0.5 is where the key light hands over from sun to moon.
+double dayFactor(double sunElevationDeg);
+
+// The moon's colour relative to the sun's: its reflectance reddens sunlight (B-V 0.92
+// against the sun's 0.65), normalised to unit Rec.709 luminance.
+glm::dvec3 moonColor();
+
+// Rec.709 luminance of a linear colour.
+double luminance(const glm::dvec3& rgb);
+
+}  // namespace sky::light

@@ -1,0 +1,53 @@
+#pragma once
+// The one lighting model (DESIGN "One lighting API"): from a scene and an instant, where the
+// sun and moon are, how much light each gives, which is the key light, the night lift, and
+// the palette colours by sun elevation. Computed once per frame; every pass reads `gpu`.
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+#include <nlohmann/json.hpp>
+
+#include "engine/lighting/ephemeris.h"
+#include "engine/scene/scene.h"
+#include "shaders/common/lighting_shared.h"
+
+namespace sky {
+
+struct BodyLight {
+  double azimuthDeg = 0.0;    // from north through east, [0, 360)
+  double elevationDeg = 0.0;  // apparent (refracted), or the scene's override
+  bool overridden = false;    // placed by the scene's azimuth/elevation, not the ephemeris
+  glm::dvec3 direction{0.0};  // unit, east-north-up
+  double angularRadiusDeg = 0.0;
+  double illuminanceLux = 0.0;  // at the ground, normal incidence, physical (no night lift)
+};
+
+struct LightingState {
+  IsoTime time;
+  Ephemeris ephemeris;
+  BodyLight sun;
+  BodyLight moon;
+  double dayFactor = 1.0;    // light::dayFactor of the sun's elevation
+  double nightLiftEv = 0.0;  // stops the night lights are lifted by
+  std::string key;           // "sun" (day factor >= 0.5) or "moon"
+  PaletteKey palette;        // at the sun's elevation
+  PaletteKey moonPalette;    // at the moon's elevation, scaled to moonlight
+  shared::LightingState gpu{};
+};
+
+// Unit direction for an azimuth (from north through east) and elevation, in degrees.
+glm::dvec3 enuDirection(double azimuthDeg, double elevationDeg);
+
+// Linear interpolation between the keyframes around `sunElevationDeg` (clamped to the
+// first and last keyframe). `keys` is sorted by sun elevation, as the scene reader ensures.
+PaletteKey interpolatePalette(const std::vector<PaletteKey>& keys, double sunElevationDeg);
+
+// Everything for one instant. Throws sky::Error(BadInput) for an impossible observer.
+LightingState computeLighting(const Scene& scene, const IsoTime& time);
+
+// The state as JSON, for `skyrender ephemeris` and render reports:
+// {"time_utc", "sun": {...}, "moon": {...}, "light": {"key", "day_factor", ...}}.
+nlohmann::ordered_json lightingJson(const LightingState& state);
+
+}  // namespace sky

@@ -1,0 +1,50 @@
+#include "engine/scene/scene.h"
+
+#include <cmath>
+
+namespace sky {
+
+int64_t TimeSettings::frameCount() const {
+  if (!end) return 1;
+  // A frame lands on `end` when the range is a whole number of steps; the tolerance keeps
+  // 24h / 15m from losing its last frame to rounding.
+  double steps = end->secondsSince(start) / stepSeconds;
+  return static_cast<int64_t>(std::floor(steps + 1e-9)) + 1;
+}
+
+IsoTime TimeSettings::frame(int64_t index) const {
+  return index == 0 ? start : start.plusSeconds(static_cast<double>(index) * stepSeconds);
+}
+
+std::vector<PaletteKey> defaultPalette() {
+  // Authored against the physical twilight (docs/lighting.md): the sky's luminance after the
+  // default night adaptation (0.8) falls about 1.6 stops by the end of civil twilight, 3.3 by
+  // nautical and 4 by astronomical night, relative to sunset. Day values are the Kozlov
+  // clear-sky colours the foundation shipped.
+  using v = glm::vec3;
+  return {
+      // sun_elevation, sky, fog, glow, cloud_lit, cloud_dark, ambient_top, ambient_bottom
+      {-90, v{0.0022f, 0.0035f, 0.008f}, v{0.003f, 0.0033f, 0.004f}, v{0.0f},
+       v{0.003f, 0.0032f, 0.004f}, v{0.0015f, 0.0016f, 0.002f}, v{0.002f, 0.0025f, 0.004f},
+       v{0.0012f}},
+      {-18, v{0.0022f, 0.0035f, 0.008f}, v{0.003f, 0.0033f, 0.004f}, v{0.0f},
+       v{0.003f, 0.0032f, 0.004f}, v{0.0015f, 0.0016f, 0.002f}, v{0.002f, 0.0025f, 0.004f},
+       v{0.0012f}},
+      {-12, v{0.004f, 0.008f, 0.022f}, v{0.006f, 0.007f, 0.012f}, v{0.004f, 0.003f, 0.004f},
+       v{0.01f, 0.01f, 0.015f}, v{0.004f, 0.005f, 0.008f}, v{0.004f, 0.006f, 0.014f},
+       v{0.002f, 0.002f, 0.003f}},
+      {-6, v{0.015f, 0.028f, 0.08f}, v{0.06f, 0.045f, 0.05f}, v{0.12f, 0.05f, 0.03f},
+       v{0.15f, 0.08f, 0.08f}, v{0.03f, 0.03f, 0.05f}, v{0.02f, 0.03f, 0.06f},
+       v{0.01f, 0.01f, 0.012f}},
+      {0, v{0.04f, 0.08f, 0.22f}, v{0.5f, 0.3f, 0.15f}, v{0.9f, 0.35f, 0.1f}, v{0.9f, 0.45f, 0.2f},
+       v{0.15f, 0.12f, 0.15f}, v{0.08f, 0.1f, 0.18f}, v{0.04f, 0.03f, 0.03f}},
+      {10, v{0.06f, 0.15f, 0.45f}, v{0.55f, 0.5f, 0.45f}, v{1.0f, 0.6f, 0.3f}, v{1.0f, 0.75f, 0.5f},
+       v{0.35f, 0.35f, 0.45f}, v{0.2f, 0.25f, 0.4f}, v{0.1f, 0.08f, 0.07f}},
+      {30, v{0.07f, 0.2f, 0.65f}, v{0.5f, 0.62f, 0.8f}, v{1.0f, 0.85f, 0.65f}, v{0.9f, 0.9f, 0.92f},
+       v{0.45f, 0.5f, 0.6f}, v{0.3f, 0.4f, 0.6f}, v{0.15f, 0.15f, 0.14f}},
+      {90, v{0.07f, 0.2f, 0.65f}, v{0.5f, 0.62f, 0.8f}, v{1.0f, 0.85f, 0.65f}, v{0.9f, 0.9f, 0.92f},
+       v{0.45f, 0.5f, 0.6f}, v{0.3f, 0.4f, 0.6f}, v{0.15f, 0.15f, 0.14f}},
+  };
+}
+
+}  // namespace sky
