@@ -49,7 +49,7 @@ render options:
                        2024-06-21T00:00Z/2024-06-22T00:00Z/15m
                        (a time-lapse writes NAME_0001.exr/.png/.json, ...)
   --set KEY.PATH=VALUE override any scene key; VALUE is read as a YAML scalar or flow
-                       sequence (e.g. --set sky.sky_color=[0.1,0.2,0.5]); repeatable;
+                       sequence (e.g. --set camera.heading=250); repeatable;
                        validated exactly like the file
   --dump-graph FILE    also write the compiled frame graph as Graphviz (dot -Tsvg FILE)
   --gpu NAME|INDEX     Vulkan device by index or name substring (default: a GPU if

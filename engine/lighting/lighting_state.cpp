@@ -190,7 +190,7 @@ LightingState computeLighting(const Scene& scene, const IsoTime& time) {
   g.night = glm::vec4(static_cast<float>(st.dayFactor), static_cast<float>(lift),
                       static_cast<float>(light::kVegaIlluminanceLux / light::kLuxPerUnit * lift *
                                          ls.starBrightness),
-                      static_cast<float>(ls.starExtinction));
+                      0.0f);
   for (int c = 0; c < 3; ++c) g.equatorialToEnu[c] = v4(eph.equatorialJ2000ToEnu[c]);
   return st;
 }

@@ -249,7 +249,7 @@ private:
     if (frame.anchor) mAnchors[frame.anchor] = *frame.node;
   }
 
-  // Key path of the node being parsed: "camera.pitch", "sky.sky_color[1]".
+  // Key path of the node being parsed: "camera.pitch", "lighting.palette[0].sky_color[1]".
   std::string path() const {
     std::string p;
     for (size_t i = 1; i < mStack.size(); ++i) {

@@ -191,7 +191,7 @@ private:
     return true;
   }
 
-  // Key path of the value being parsed, for messages: "camera.latitude", "sky.sky_color[1]".
+  // Key path of the value being parsed, for messages: "camera.latitude", "sky.glow_size".
   std::string path(const std::string& leaf) const {
     std::string p;
     for (size_t i = 1; i < mStack.size(); ++i) {

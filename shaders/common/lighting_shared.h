@@ -39,8 +39,8 @@ struct LightingState {
   vec4 moonEarthshine;    // rgb: radiance of the earthlit dark part; w: mean shading over
                           // the disc (so rgb * w + earthshine is the disc's mean radiance)
   vec4 night;             // x: day factor (1 day .. 0 night); y: night lift (linear);
-                          // z: star irradiance per V=0 star (before extinction);
-                          // w: star extinction (magnitudes per air mass)
+                          // z: star irradiance per V=0 star above the atmosphere (the star
+                          // pass applies the extinction); w: unused
   vec4 equatorialToEnu[3];  // columns of the J2000 equatorial -> east-north-up rotation
 };
 
