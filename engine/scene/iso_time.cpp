@@ -163,10 +163,6 @@ double IsoTime::julianDateUtc() const {
   return 2440587.5 + (static_cast<double>(unixSeconds) + subsecond) / 86400.0;
 }
 
-}  // namespace sky
-
-namespace sky {
-
 IsoTime IsoTime::plusSeconds(double seconds) const {
   // Whole and fractional parts apart: a 64-bit second count plus a double fraction keeps
   // sub-microsecond steps exact over centuries, which one double of unix seconds does not.
