@@ -54,9 +54,7 @@ void main() {
 
   vec3 sky = clearSky(L, V);
 
-  // A pinhole pixel spans p cos^2 (radially) by p cos (tangentially) at angle theta off axis.
-  float cosOffAxis = dot(V, params.view.forward.xyz);
-  float pixelAngle = params.view.forward.w * pow(cosOffAxis, 1.5);
+  float pixelAngle = viewPixelAngle(params.view, V);
   // The ground hides what lies below the horizon, pixel by pixel.
   float aboveHorizon = clamp(V.z / pixelAngle + 0.5, 0.0, 1.0);
 

@@ -5,6 +5,7 @@
 // conserves each star's flux and moves its centroid linearly with the star, so a star
 // drifting across the image in a time-lapse neither flickers nor jumps.
 #include "common/star_field_shared.h"
+#include "common/view.glsl"
 
 layout(local_size_x = STAR_FIELD_GROUP_SIZE) in;
 
@@ -30,6 +31,9 @@ float airMass(float elevationDeg) {
 }
 
 void addFlux(ivec2 pixel, float amount) {
+  // An equirectangular image wraps around in azimuth.
+  if (params.view.size.z == VIEW_PROJECTION_EQUIRECTANGULAR)
+    pixel.x = (pixel.x + int(params.view.size.x)) % int(params.view.size.x);
   if (any(lessThan(pixel, ivec2(0))) || any(greaterThanEqual(pixel, ivec2(params.view.size.xy))))
     return;
   uint counts = uint(amount * STAR_FLUX_FIXED_ONE + 0.5);
@@ -42,15 +46,11 @@ void splat(vec4 star) {
   float elevationDeg = degrees(asin(clamp(d.z, -1.0, 1.0)));
   if (elevationDeg <= -STAR_FIELD_HORIZON_FADE_DEG) return;
 
-  // The exact inverse of viewDirection() in common/view.glsl: onto the image plane at unit
-  // distance along the view axis, then ndc -> continuous pixel coordinates (centres at +0.5).
-  ViewState view = params.view;
-  float depth = dot(d, view.forward.xyz);
-  if (depth <= 0.0) return;  // behind the camera
-  vec2 ndc = vec2(dot(d, view.right.xyz) / (depth * view.right.w),
-                  -dot(d, view.up.xyz) / (depth * view.up.w));
-  vec2 size = vec2(view.size.xy);
-  vec2 p = (ndc + 1.0) * 0.5 * size - 0.5;  // relative to the centre of pixel (0, 0)
+  // The exact inverse of viewDirection() in common/view.glsl.
+  vec2 pixel;
+  if (!viewPixel(params.view, d, pixel)) return;  // behind the camera
+  vec2 size = vec2(params.view.size.xy);
+  vec2 p = pixel - 0.5;  // relative to the centre of pixel (0, 0)
   vec2 base = floor(p);
   // Keeps stars whose footprint still touches the image at the border; written so that a
   // NaN also lands here.

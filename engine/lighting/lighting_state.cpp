@@ -192,6 +192,10 @@ LightingState computeLighting(const Scene& scene, const IsoTime& time) {
                                          ls.starBrightness),
                       0.0f);
   for (int c = 0; c < 3; ++c) g.equatorialToEnu[c] = v4(eph.equatorialJ2000ToEnu[c]);
+  // Above the atmosphere: the sun is white in our Rec.709 units (its colour at the ground is
+  // all transmittance); the moon keeps its reddened albedo and the night lift.
+  g.sunSpace = v4(glm::dvec3(sunToaLux / light::kLuxPerUnit));
+  g.moonSpace = v4(moonToaLux / light::kLuxPerUnit * lift * moonTint);
   return st;
 }
 

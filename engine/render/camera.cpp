@@ -16,6 +16,15 @@ glm::vec3 directionFromAzEl(double az, double el) {
 }
 
 shared::ViewState makeViewState(const CameraSettings& cam, uint32_t width, uint32_t height) {
+  if (cam.projection == "equirectangular") {
+    shared::ViewState v{};
+    v.forward =
+        glm::vec4(directionFromAzEl(cam.heading, 0.0), static_cast<float>(180.0 * kDeg / height));
+    v.right = glm::vec4(directionFromAzEl(cam.heading + 90.0, 0.0), 0.0f);
+    v.up = glm::vec4(0.0f, 0.0f, 1.0f, 0.0f);
+    v.size = glm::uvec4(width, height, VIEW_PROJECTION_EQUIRECTANGULAR, 0);
+    return v;
+  }
   const glm::vec3 forward = directionFromAzEl(cam.heading, cam.pitch);
   // Looking straight up or down the heading still defines "right"; the cross product with
   // the zenith does not.
@@ -27,7 +36,7 @@ shared::ViewState makeViewState(const CameraSettings& cam, uint32_t width, uint3
   v.right = glm::vec4(right, static_cast<float>(tanH));
   v.up = glm::vec4(up, static_cast<float>(tanV));
   v.forward = glm::vec4(forward, static_cast<float>(2.0 * tanV / height));
-  v.size = glm::uvec4(width, height, 0, 0);
+  v.size = glm::uvec4(width, height, VIEW_PROJECTION_PERSPECTIVE, 0);
   return v;
 }
 

@@ -47,4 +47,9 @@ std::vector<PaletteKey> defaultPalette() {
   };
 }
 
+std::filesystem::path Scene::resolvePath(const std::string& path) const {
+  std::filesystem::path p(path);
+  return p.is_relative() && !baseDir.empty() ? baseDir / p : p;
+}
+
 }  // namespace sky

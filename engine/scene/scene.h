@@ -5,6 +5,7 @@
 // Keys, ranges and descriptions are written once, in engine/scene/scene_fields.h: a new
 // member here needs one line there to be read, printed and put in the JSON Schema.
 #include <cstdint>
+#include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
@@ -30,7 +31,10 @@ struct CameraSettings {
   double altitudeM = 500.0;   // metres above sea level, -500..100000
   double heading = 180.0;     // degrees clockwise from north, -360..360
   double pitch = 15.0;        // degrees above the horizon, -90..90
-  double verticalFov = 60.0;  // degrees, 1..179
+  double verticalFov = 60.0;  // degrees, 1..179 (perspective)
+  // "perspective" (a pinhole) or "equirectangular" (the whole sky, 360 x 180 degrees,
+  // centred on `heading`; pitch and vertical_fov are ignored).
+  std::string projection = "perspective";
 };
 
 // `time` is one instant or a time-lapse range. In a file: a single ISO 8601 string, the
@@ -65,10 +69,50 @@ struct MoonSettings {
   double earthshine = 1.0;  // multiplies the modelled earthshine on the dark limb, 0..100
 };
 
-// Kozlov 3.1 clear-sky geometry (the colours come from the lighting palette).
+// The clear sky: Kozlov 3.1 (colours from the lighting palette, geometry here) or the
+// physically based Hillaire 2020 atmosphere (AtmosphereSettings).
 struct SkySettings {
-  double glowSize = 0.30;    // s, 0..1
-  double hazeHeight = 0.20;  // hmax as a fraction of the dome height, 0.001..1
+  std::string model = "kozlov";  // "kozlov" | "physical"
+  double glowSize = 0.30;        // s, 0..1 (kozlov)
+  double hazeHeight = 0.20;      // hmax as a fraction of the dome height, 0.001..1 (kozlov)
+};
+
+// The planet's atmosphere for sky.model "physical" (Hillaire 2020, Earth defaults from his
+// Table 1). Coefficients are in 1/Mm (10^-6 per metre), heights in km.
+struct AtmosphereSettings {
+  double groundRadiusKm = 6360.0;                        // 100..100000
+  double thicknessKm = 100.0;                            // top radius = ground + this, 1..1000
+  glm::vec3 rayleighScattering{5.802f, 13.558f, 33.1f};  // 1/Mm per channel
+  double rayleighScaleHeightKm = 8.0;                    // 0.01..100
+  double mieScattering = 3.996;                          // 1/Mm
+  double mieExtinction = 4.40;                           // 1/Mm, >= mie_scattering
+  double mieScaleHeightKm = 1.2;                         // 0.01..100
+  double mieAnisotropy = 0.8;                            // g of Cornette-Shanks, -0.99..0.99
+  glm::vec3 ozoneAbsorption{0.650f, 1.881f, 0.085f};     // 1/Mm at the tent's peak
+  double ozoneCenterKm = 25.0;                           // tent centre altitude
+  double ozoneHalfWidthKm = 15.0;                        // tent half width, 0.01..100
+  glm::vec3 groundAlbedo{0.3f};                          // 0..1
+
+  bool operator==(const AtmosphereSettings&) const = default;
+};
+
+// The high-cloud layer (cirrus, cirrostratus, cirrocumulus): a Kozlov coefficient texture and
+// normal map on a sphere at `altitudeM`, scrolled by the wind. See docs/high-clouds.md.
+struct HighCloudSettings {
+  std::string source = "procedural";  // "procedural" (baked, cached) | "image"
+  std::string style = "cirrus";       // "cirrus" | "cirrostratus" | "cirrocumulus" (procedural)
+  double cover = 0.0;                 // 0..1 (procedural); 0: no high clouds
+  std::string coverMap;               // optional greyscale image multiplying `cover`
+  std::string coefficients;           // "image": RGBA PNG/EXR (thin lit, dense, clear, edges)
+  std::string normals;                // "image": tangent-space normal map; "": derived
+  int resolution = 1024;              // baked texture size (square, power of two), 64..4096
+  int seed = 1;                       // procedural noise seed, 0..2^31-1
+  double altitudeM = 9000.0;          // layer altitude above sea level, 1000..20000
+  double tileSizeKm = 30.0;           // ground size of one texture repeat, 0.1..10000
+  double windSpeedMs = 15.0;          // 0..200
+  double windFrom = 270.0;            // direction the wind blows from, degrees from north
+  double edgeGlowDeg = 10.0;          // l: angular width of the edge glow (Kozlov 3.4), 0.5..90
+  double brightness = 1.0;            // multiplies the cloud terms, 0..100
 };
 
 // One palette keyframe: the Kozlov colours at a sun elevation. Colours are scene-linear in
@@ -110,7 +154,14 @@ struct Scene {
   SunSettings sun;
   MoonSettings moon;
   SkySettings sky;
+  AtmosphereSettings atmosphere;
+  HighCloudSettings highClouds;
   LightingSettings lighting;
+  // Not a file key: the folder of the scene file, against which relative paths in it
+  // (high_clouds.coefficients, ...) are resolved. Empty for text not read from a file.
+  std::filesystem::path baseDir;
+  // `path` as written in the scene, resolved against baseDir when relative.
+  std::filesystem::path resolvePath(const std::string& path) const;
 };
 
 }  // namespace sky

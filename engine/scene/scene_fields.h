@@ -11,6 +11,7 @@
 //   field(key, TimeSettings&, description)             an instant or a range (scene.h)
 //   list(key, std::vector<T>&, ListRule, description)  a list of maps, T described by describe()
 //   bothOrNeither(keyA, keyB)                          two optional keys given together
+//   check(key, ok, what)                               a rule across fields (reader only)
 // Keys are the snake_case form of the member names.
 #include "engine/scene/field_rules.h"
 #include "engine/scene/scene.h"
@@ -42,7 +43,12 @@ void describe(V& v, CameraSettings& s) {
   v.field("heading", s.heading, NumberRange{-360, 360},
           "view direction in degrees clockwise from north");
   v.field("pitch", s.pitch, NumberRange{-90, 90}, "view direction in degrees above the horizon");
-  v.field("vertical_fov", s.verticalFov, NumberRange{1, 179}, "vertical field of view in degrees");
+  v.field("vertical_fov", s.verticalFov, NumberRange{1, 179},
+          "vertical field of view in degrees (perspective)");
+  v.field("projection", s.projection,
+          TextRule{1, 0, "^(perspective|equirectangular)$", "perspective or equirectangular"},
+          "perspective (a pinhole camera) or equirectangular (the whole sphere, 360 x 180 "
+          "degrees centred on heading; pitch and vertical_fov are ignored)");
 }
 
 template <class V>
@@ -74,9 +80,81 @@ void describe(V& v, MoonSettings& s) {
 
 template <class V>
 void describe(V& v, SkySettings& s) {
+  v.field("model", s.model, TextRule{1, 0, "^(kozlov|physical)$", "kozlov or physical"},
+          "clear-sky model: kozlov (palette colours, Kozlov 3.1) or physical (Hillaire 2020 "
+          "atmosphere)");
   v.field("glow_size", s.glowSize, NumberRange{0, 1}, "size s of the glow around the sun and moon");
   v.field("haze_height", s.hazeHeight, NumberRange{0.001, 1},
           "haze height hmax as a fraction of the dome height");
+}
+
+template <class V>
+void describe(V& v, AtmosphereSettings& s) {
+  constexpr NumberRange kCoefficient{0, 1e4};
+  constexpr NumberRange kScaleHeight{0.01, 100};
+  v.field("ground_radius_km", s.groundRadiusKm, NumberRange{100, 100000}, "planet radius in km");
+  v.field("thickness_km", s.thicknessKm, NumberRange{1, 1000},
+          "height of the top of the atmosphere above the ground, km");
+  v.field("rayleigh_scattering", s.rayleighScattering, kCoefficient,
+          "Rayleigh scattering at sea level per channel, 1/Mm (10^-6 per metre)");
+  v.field("rayleigh_scale_height_km", s.rayleighScaleHeightKm, kScaleHeight,
+          "Rayleigh density scale height, km");
+  v.field("mie_scattering", s.mieScattering, kCoefficient, "Mie scattering at sea level, 1/Mm");
+  v.field("mie_extinction", s.mieExtinction, kCoefficient,
+          "Mie extinction at sea level, 1/Mm (at least mie_scattering)");
+  v.field("mie_scale_height_km", s.mieScaleHeightKm, kScaleHeight, "Mie density scale height, km");
+  v.field("mie_anisotropy", s.mieAnisotropy, NumberRange{-0.99, 0.99},
+          "Mie phase asymmetry g (Cornette-Shanks)");
+  v.field("ozone_absorption", s.ozoneAbsorption, kCoefficient,
+          "ozone absorption at the peak of its layer per channel, 1/Mm");
+  v.field("ozone_center_km", s.ozoneCenterKm, NumberRange{0, 1000},
+          "altitude of the ozone peak, km");
+  v.field("ozone_half_width_km", s.ozoneHalfWidthKm, NumberRange{0.01, 100},
+          "half width of the ozone tent profile, km");
+  v.field("ground_albedo", s.groundAlbedo, NumberRange{0, 1}, "ground albedo per channel");
+  v.check("mie_extinction", s.mieExtinction >= s.mieScattering,
+          "must be at least mie_scattering (extinction = scattering + absorption)");
+  v.check("ozone_center_km", s.ozoneCenterKm < s.thicknessKm,
+          "must lie below the top of the atmosphere (thickness_km)");
+}
+
+template <class V>
+void describe(V& v, HighCloudSettings& s) {
+  v.field("source", s.source, TextRule{1, 0, "^(procedural|image)$", "procedural or image"},
+          "where the coefficient texture comes from: procedural (baked from noise and "
+          "cover, cached on disk) or image (files given below)");
+  v.field("style", s.style,
+          TextRule{1, 0, "^(cirrus|cirrostratus|cirrocumulus)$",
+                   "cirrus, cirrostratus or cirrocumulus"},
+          "procedural cloud style: cirrus streaks, cirrostratus veil or cirrocumulus ripples");
+  v.field("cover", s.cover, NumberRange{0, 1},
+          "procedural high-cloud cover fraction (0: no high clouds)");
+  v.field("cover_map", s.coverMap, TextRule{0, 4096},
+          "optional greyscale PNG/EXR multiplying cover over one texture tile (relative "
+          "paths are relative to the scene file)");
+  v.field("coefficients", s.coefficients, TextRule{0, 4096},
+          "image source: RGBA PNG/EXR coefficient texture (R thin lit parts, G dense parts, B "
+          "clear sky, A sparse edges)");
+  v.field("normals", s.normals, TextRule{0, 4096},
+          "image source: tangent-space normal map PNG/EXR of the same size (empty: derived "
+          "from the coefficients)");
+  v.field("resolution", s.resolution, NumberRange{64, 4096},
+          "procedural texture size in texels (a power of two)");
+  v.field("seed", s.seed, NumberRange{0, 2147483647}, "procedural noise seed");
+  v.field("altitude_m", s.altitudeM, NumberRange{1000, 20000},
+          "altitude of the high-cloud layer above sea level, metres");
+  v.field("tile_size_km", s.tileSizeKm, NumberRange{0.1, 10000},
+          "ground size of one repeat of the texture, km");
+  v.field("wind_speed_ms", s.windSpeedMs, NumberRange{0, 200},
+          "wind speed at the layer, m/s (moves the texture with time)");
+  v.field("wind_from", s.windFrom, NumberRange{-360, 360},
+          "direction the wind blows from, degrees clockwise from north");
+  v.field("edge_glow_deg", s.edgeGlowDeg, NumberRange{0.5, 90},
+          "angular width l of the glow of sparse edges around the light (Kozlov 3.4), degrees");
+  v.field("brightness", s.brightness, NumberRange{0, 100}, "multiplies the cloud colour terms");
+  v.check("resolution", (s.resolution & (s.resolution - 1)) == 0, "must be a power of two");
+  v.check("coefficients", s.source != "image" || !s.coefficients.empty(),
+          "is required when source is image");
 }
 
 template <class V>
@@ -121,7 +199,11 @@ void describe(V& v, Scene& s) {
           "time-lapse: START/END/STEP or {start, end, step} with a step such as 15m");
   v.section("sun", s.sun, "sun placement and disc");
   v.section("moon", s.moon, "moon placement, disc and earthshine");
-  v.section("sky", s.sky, "clear-sky geometry (Kozlov 3.1)");
+  v.section("sky", s.sky, "clear-sky model and Kozlov 3.1 geometry");
+  v.section("atmosphere", s.atmosphere,
+            "the planet's atmosphere for sky.model physical (Hillaire 2020)");
+  v.section("high_clouds", s.highClouds,
+            "high-cloud layer: coefficient texture, normal map, altitude and wind (Kozlov)");
   v.section("lighting", s.lighting, "refraction, light through the atmosphere, night and palette");
 }
 

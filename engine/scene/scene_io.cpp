@@ -47,7 +47,9 @@ Scene loadSceneText(std::string_view text, ConfigFormat format, const std::strin
 
 Scene loadSceneFile(const std::filesystem::path& path, const std::vector<std::string>& overrides) {
   ConfigFormat format = formatForPath(path);
-  return loadSceneText(readTextFile(path), format, path.string(), overrides);
+  Scene scene = loadSceneText(readTextFile(path), format, path.string(), overrides);
+  scene.baseDir = path.parent_path();
+  return scene;
 }
 
 std::string writeScene(const Scene& scene, ConfigFormat format) {

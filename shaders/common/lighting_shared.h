@@ -42,6 +42,9 @@ struct LightingState {
                           // z: star irradiance per V=0 star above the atmosphere (the star
                           // pass applies the extinction); w: unused
   vec4 equatorialToEnu[3];  // columns of the J2000 equatorial -> east-north-up rotation
+  vec4 sunSpace;            // rgb: sun illuminance above the atmosphere (for models that apply
+                            // their own transmittance, e.g. the physical sky); w: unused
+  vec4 moonSpace;           // rgb: the same for the moon, night lift included; w: unused
 };
 
 SKY_SHARED_END
@@ -49,7 +52,7 @@ SKY_SHARED_END
 #ifdef __cplusplus
 static_assert(sizeof(sky::shared::DirectionalLight) == 32, "std140 layout of DirectionalLight");
 static_assert(sizeof(sky::shared::Palette) == 7 * 16, "std140 layout of Palette");
-static_assert(sizeof(sky::shared::LightingState) == 2 * 32 + 2 * 7 * 16 + 5 * 16 + 3 * 16,
+static_assert(sizeof(sky::shared::LightingState) == 2 * 32 + 2 * 7 * 16 + 5 * 16 + 3 * 16 + 2 * 16,
               "std140 layout of LightingState");
 #endif
 #endif

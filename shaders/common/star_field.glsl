@@ -46,11 +46,20 @@ float starTriangleSolidAngle(vec3 a, vec3 b, vec3 c, float tripleProduct) {
 }
 
 // Exact solid angle (steradians) of the pixel whose centre is `pixel` (integer + 0.5, as
-// for viewDirection) in the pinhole projection of common/view.glsl. The pixel is a rectangle
+// for viewDirection). A pinhole pixel (common/view.glsl) is a rectangle
 // du x dv on the image plane at unit distance, split into two triangles; on that plane each
 // triangle's triple product is exactly du * dv, so no difference of nearly equal angles is
 // taken and the result keeps float precision even for tiny pixels.
+// An equirectangular pixel is a band of latitude: (2 pi / width) (sin top - sin bottom).
 float pixelSolidAngle(ViewState view, vec2 pixel) {
+  if (view.size.z == VIEW_PROJECTION_EQUIRECTANGULAR) {
+    const float pi = 3.14159265358979;
+    float top = (0.5 - (pixel.y - 0.5) / float(view.size.y)) * pi;
+    float bottom = (0.5 - (pixel.y + 0.5) / float(view.size.y)) * pi;
+    // sin a - sin b = 2 cos((a + b) / 2) sin((a - b) / 2): no cancellation for thin bands.
+    return 2.0 * pi / float(view.size.x) * 2.0 * cos(0.5 * (top + bottom)) *
+           sin(0.5 * (top - bottom));
+  }
   vec2 tanHalf = vec2(view.right.w, view.up.w);
   vec2 pixelSize = 2.0 * tanHalf / vec2(view.size.xy);  // du, dv: one pixel on the image plane
   // Image-plane coordinates of the pixel's lower-left corner (v grows upward, rows downward).

@@ -63,6 +63,7 @@ inline void expectSameScene(const Scene& a, const Scene& b) {
   EXPECT_EQ(a.camera.heading, b.camera.heading);
   EXPECT_EQ(a.camera.pitch, b.camera.pitch);
   EXPECT_EQ(a.camera.verticalFov, b.camera.verticalFov);
+  EXPECT_EQ(a.camera.projection, b.camera.projection);
   // IsoTime's == compares the zone and the fraction too: a time that prints back in
   // another zone is a difference.
   EXPECT_EQ(a.time.start, b.time.start);
@@ -78,6 +79,35 @@ inline void expectSameScene(const Scene& a, const Scene& b) {
   EXPECT_EQ(a.moon.earthshine, b.moon.earthshine);
   EXPECT_EQ(a.sky.glowSize, b.sky.glowSize);
   EXPECT_EQ(a.sky.hazeHeight, b.sky.hazeHeight);
+  EXPECT_EQ(a.sky.model, b.sky.model);
+  const AtmosphereSettings &aa = a.atmosphere, &ba = b.atmosphere;
+  EXPECT_EQ(aa.groundRadiusKm, ba.groundRadiusKm);
+  EXPECT_EQ(aa.thicknessKm, ba.thicknessKm);
+  expectSameColor(aa.rayleighScattering, ba.rayleighScattering, "rayleigh_scattering");
+  EXPECT_EQ(aa.rayleighScaleHeightKm, ba.rayleighScaleHeightKm);
+  EXPECT_EQ(aa.mieScattering, ba.mieScattering);
+  EXPECT_EQ(aa.mieExtinction, ba.mieExtinction);
+  EXPECT_EQ(aa.mieScaleHeightKm, ba.mieScaleHeightKm);
+  EXPECT_EQ(aa.mieAnisotropy, ba.mieAnisotropy);
+  expectSameColor(aa.ozoneAbsorption, ba.ozoneAbsorption, "ozone_absorption");
+  EXPECT_EQ(aa.ozoneCenterKm, ba.ozoneCenterKm);
+  EXPECT_EQ(aa.ozoneHalfWidthKm, ba.ozoneHalfWidthKm);
+  expectSameColor(aa.groundAlbedo, ba.groundAlbedo, "ground_albedo");
+  const HighCloudSettings &ah = a.highClouds, &bh = b.highClouds;
+  EXPECT_EQ(ah.source, bh.source);
+  EXPECT_EQ(ah.style, bh.style);
+  EXPECT_EQ(ah.cover, bh.cover);
+  EXPECT_EQ(ah.coverMap, bh.coverMap);
+  EXPECT_EQ(ah.coefficients, bh.coefficients);
+  EXPECT_EQ(ah.normals, bh.normals);
+  EXPECT_EQ(ah.resolution, bh.resolution);
+  EXPECT_EQ(ah.seed, bh.seed);
+  EXPECT_EQ(ah.altitudeM, bh.altitudeM);
+  EXPECT_EQ(ah.tileSizeKm, bh.tileSizeKm);
+  EXPECT_EQ(ah.windSpeedMs, bh.windSpeedMs);
+  EXPECT_EQ(ah.windFrom, bh.windFrom);
+  EXPECT_EQ(ah.edgeGlowDeg, bh.edgeGlowDeg);
+  EXPECT_EQ(ah.brightness, bh.brightness);
   expectSameLighting(a.lighting, b.lighting);
 }
 
@@ -98,6 +128,7 @@ inline Scene unusualScene() {
   s.camera.heading = 1.0 / 3.0;
   s.camera.pitch = -0.0;
   s.camera.verticalFov = 70.00000000000001;
+  s.camera.projection = "equirectangular";
   s.time.start = IsoTime::parse("2024-12-21T05:30:00.125-03:30").value();
   s.time.end = IsoTime::parse("2024-12-21T10:30:00.375+01:00").value();  // another zone
   s.time.stepSeconds = 61.3;
@@ -111,6 +142,33 @@ inline Scene unusualScene() {
   s.moon.earthshine = 100.0;
   s.sky.glowSize = 0.30000000000000004;
   s.sky.hazeHeight = 0.001;
+  s.sky.model = "physical";
+  s.atmosphere.groundRadiusKm = 100.0;
+  s.atmosphere.thicknessKm = 1000.0;
+  s.atmosphere.rayleighScattering = {0.0f, 1e4f, 1.0f / 3.0f};
+  s.atmosphere.rayleighScaleHeightKm = 0.01;
+  s.atmosphere.mieScattering = 0.1 + 0.2;
+  s.atmosphere.mieExtinction = 1e4;
+  s.atmosphere.mieScaleHeightKm = 100.0;
+  s.atmosphere.mieAnisotropy = -0.99;
+  s.atmosphere.ozoneAbsorption = {1e-30f, 2.0f / 3.0f, 9999.999f};
+  s.atmosphere.ozoneCenterKm = 999.9999999999999;
+  s.atmosphere.ozoneHalfWidthKm = 0.01;
+  s.atmosphere.groundAlbedo = {0.0f, 1.0f, 0.1f};
+  s.highClouds.source = "image";
+  s.highClouds.style = "cirrocumulus";
+  s.highClouds.cover = 1.0 / 3.0;
+  s.highClouds.coverMap = "maps/cover \"high\".png";
+  s.highClouds.coefficients = "C:/textures/cirrus coefficients.exr";
+  s.highClouds.normals = "../n\u00e9rmals.png";
+  s.highClouds.resolution = 4096;
+  s.highClouds.seed = 2147483647;
+  s.highClouds.altitudeM = 1000.0;
+  s.highClouds.tileSizeKm = 0.1;
+  s.highClouds.windSpeedMs = 200.0;
+  s.highClouds.windFrom = -359.5;
+  s.highClouds.edgeGlowDeg = 0.5;
+  s.highClouds.brightness = 1e-3;
   s.lighting.pressureHpa = 0.0;
   s.lighting.temperatureC = -40.05;
   s.lighting.turbidity = 4.999999999999999;

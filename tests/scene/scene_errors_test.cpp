@@ -34,10 +34,10 @@ TEST(SceneErrors, UnknownKeys) {
   EXPECT_EQ(yamlError("camera:\n  pitch: 3\n  verticalFov: 50\n"),
             "x.yaml:3:3: unknown key 'camera.verticalFov' (did you mean 'vertical_fov'?)");
   EXPECT_EQ(yamlError("sky:\n  cloudiness: 3\n"),
-            "x.yaml:2:3: unknown key 'sky.cloudiness' (known keys: glow_size, haze_height)");
+            "x.yaml:2:3: unknown key 'sky.cloudiness' (known keys: model, glow_size, haze_height)");
   EXPECT_EQ(jsonError("{\"output\": {}, \"clouds\": {}}"),
             "x.json:1:16: unknown key 'clouds' (known keys: output, camera, time, sun, moon, sky, "
-            "lighting)");
+            "atmosphere, high_clouds, lighting)");
   EXPECT_EQ(fileError("unknown_key.yaml"),
             badPath("unknown_key.yaml") +
                 ":5:3: unknown key 'sky.haze_hieght' (did you mean 'haze_height'?)");
@@ -46,7 +46,7 @@ TEST(SceneErrors, UnknownKeys) {
             "x.yaml:2:3: unknown key 'sun.disc_intensity' (known keys: azimuth, elevation, "
             "angular_diameter, disc_scale)");
   EXPECT_EQ(yamlError("sky:\n  sky_color: [0.1, 0.2, 0.3]\n"),
-            "x.yaml:2:3: unknown key 'sky.sky_color' (known keys: glow_size, haze_height)");
+            "x.yaml:2:3: unknown key 'sky.sky_color' (known keys: model, glow_size, haze_height)");
   EXPECT_EQ(yamlError("moon:\n  earthshne: 2\n"),
             "x.yaml:2:3: unknown key 'moon.earthshne' (did you mean 'earthshine'?)");
   EXPECT_EQ(yamlError("lighting:\n  turbidty: 2\n"),
@@ -495,6 +495,30 @@ TEST(SceneErrors, EveryBadSceneFails) {
     ++count;
   }
   EXPECT_GE(count, 18);
+}
+
+TEST(SceneErrors, AtmosphereAndHighCloudRules) {
+  EXPECT_EQ(yamlError("atmosphere:\n  rayleigh_scale_height_km: -8\n"),
+            "x.yaml:2:29: atmosphere.rayleigh_scale_height_km: -8 is out of range [0.01, 100]");
+  EXPECT_EQ(yamlError("atmosphere:\n  mie_scattering: 5\n  mie_extinction: 4.4\n"),
+            "x.yaml:3:19: atmosphere.mie_extinction: must be at least mie_scattering "
+            "(extinction = scattering + absorption)");
+  // A rule whose key is absent points at the section.
+  EXPECT_EQ(yamlError("atmosphere:\n  mie_scattering: 5\n"),
+            "x.yaml:2:3: atmosphere.mie_extinction: must be at least mie_scattering "
+            "(extinction = scattering + absorption)");
+  EXPECT_EQ(yamlError("sky:\n  model: hillaire\n"),
+            "x.yaml:2:10: sky.model: 'hillaire' is not allowed: use kozlov or physical");
+  EXPECT_EQ(yamlError("high_clouds:\n  resolution: 1000\n"),
+            "x.yaml:2:15: high_clouds.resolution: must be a power of two");
+  EXPECT_EQ(yamlError("high_clouds:\n  source: image\n"),
+            "x.yaml:2:3: high_clouds.coefficients: is required when source is image");
+  EXPECT_EQ(yamlError("high_clouds:\n  style: nimbus\n"),
+            "x.yaml:2:10: high_clouds.style: 'nimbus' is not allowed: use cirrus, cirrostratus or "
+            "cirrocumulus");
+  EXPECT_EQ(yamlError("camera:\n  projection: fisheye\n"),
+            "x.yaml:2:15: camera.projection: 'fisheye' is not allowed: use perspective or "
+            "equirectangular");
 }
 
 }  // namespace

@@ -58,12 +58,15 @@ TEST(SceneFiles, EverySceneInConfigsLoads) {
 TEST(SceneFiles, DefaultYamlIsTheBuiltInSceneWithAnEveningView) {
   // configs/default.yaml is the scene `skyrender render` uses without a file. It writes out
   // every section (the palette in full) so users can edit it, but it only means to differ
-  // from Scene{} in the view and the time: looking west on a summer evening.
+  // from Scene{} in the view, the time and the high clouds: looking west on a summer evening
+  // with some cirrus.
   Scene file = loadSceneFile(configs() / "default.yaml");
   Scene expected;
   expected.camera.heading = 280;
   expected.camera.pitch = 10;
   expected.time.start = IsoTime::parse("2024-06-21T19:00:00+02:00").value();
+  expected.highClouds.cover = 0.35;
+  expected.baseDir = file.baseDir;
   test::expectSameScene(file, expected);
   // The sun and moon follow time and place (no art-directed placement).
   EXPECT_FALSE(file.sun.azimuth.has_value());

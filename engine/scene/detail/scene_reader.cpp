@@ -288,4 +288,10 @@ void SceneReader::bothOrNeither(std::string_view a, std::string_view b) {
                " (give both or neither)");
 }
 
+void SceneReader::check(std::string_view key, bool ok, std::string_view what) {
+  if (ok) return;
+  const ConfigNode* node = mMap.find(key);
+  fail(node ? *node : mMap, childPath(key), std::string(what));
+}
+
 }  // namespace sky::detail

@@ -34,6 +34,7 @@ public:
     keys.emplace_back(key);
   }
   void bothOrNeither(std::string_view, std::string_view) {}
+  void check(std::string_view, bool, std::string_view) {}
 };
 
 class SceneReader {
@@ -69,6 +70,9 @@ public:
   void field(std::string_view key, std::string& value, const TextRule& rule, std::string_view);
   void field(std::string_view key, TimeSettings& value, std::string_view);
   void bothOrNeither(std::string_view a, std::string_view b);
+  // A rule across fields, checked after they are read: fails at `key` (or at this map when
+  // the key is absent) with "<key.path>: <what>".
+  void check(std::string_view key, bool ok, std::string_view what);
 
   // A list of maps: each item must give every key of T (a keyframe with a colour missing
   // is more likely a mistake than a wish for black), and rule.increasingKey must increase.

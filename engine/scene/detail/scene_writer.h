@@ -52,6 +52,8 @@ public:
   }
   // Checked once the section is complete (the pair may be described in any order).
   void bothOrNeither(std::string_view a, std::string_view b) { mPairs.emplace_back(a, b); }
+  // Cross-field rules are checked by the reader only (described in the field texts).
+  void check(std::string_view, bool, std::string_view) {}
 
 private:
   explicit SceneWriter(ConfigNode& map) : mMap(map) {}

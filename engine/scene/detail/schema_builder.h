@@ -67,6 +67,8 @@ public:
     mSchema["properties"][std::string(key)] = std::move(s);
   }
   void bothOrNeither(std::string_view a, std::string_view b);
+  // Cross-field rules are checked by the reader only (described in the field texts).
+  void check(std::string_view, bool, std::string_view) {}
 
 private:
   explicit SchemaBuilder(Json& schema) : mSchema(schema) {}
