@@ -1,0 +1,98 @@
+#include "passes/high_cloud_textures/high_cloud_passes.h"
+
+#include <string>
+
+#include "engine/core/error.h"
+#include "engine/gpu/sampler.h"
+#include "engine/shader/shader_compiler.h"
+
+namespace sky {
+
+HighCloudBakePass::HighCloudBakePass(const Context& ctx, ShaderCompiler& compiler,
+                                     const Sampler& sampler)
+    : HighCloudBakePass(ctx, compiler.compile(std::string(kName) + ".comp"), sampler) {}
+
+HighCloudBakePass::HighCloudBakePass(const Context& ctx, const CompiledShader& shader,
+                                     const Sampler& sampler)
+    : mPipeline(ctx, kName, shader.spirv, shader.reflection),
+      mSourceHash(shader.sourceHash),
+      mSampler(sampler) {}
+
+HighCloudBakePass::Outputs HighCloudBakePass::setup(GraphBuilder& b, const Inputs& in) {
+  const auto& size = in.params.size;
+  if (size.x == 0 || size.z == 0 || size.y + size.z > size.x)
+    internalError("high_cloud_bake: band of rows " + std::to_string(size.y) + "+" +
+                  std::to_string(size.z) + " outside a " + std::to_string(size.x) + " texture");
+  mInputs = in;
+  mInputs.coverMap = b.read(in.coverMap, Access::SampledCompute);
+  // A band writes only its rows; the others keep what earlier bands wrote, which the graph
+  // preserves because imported images keep their layout between graphs.
+  mOutputs.coefficients = b.write(in.coefficients, Access::StorageWriteCompute);
+  b.sideEffect();
+  return mOutputs;
+}
+
+void HighCloudBakePass::execute(PassContext& ctx) const {
+  const auto& size = mInputs.params.size;
+  ctx.dispatch(mPipeline,
+               {Binding::of(HIGH_CLOUD_BAKE_BINDING_PARAMS, ctx.uniform(mInputs.params)),
+                Binding::of(HIGH_CLOUD_BAKE_BINDING_COVER_MAP, mInputs.coverMap, &mSampler),
+                Binding::of(HIGH_CLOUD_BAKE_BINDING_COEFFICIENTS, mOutputs.coefficients)},
+               mPipeline.groupsX(size.x), mPipeline.groupsY(size.z));
+}
+
+HighCloudNormalsPass::HighCloudNormalsPass(const Context& ctx, ShaderCompiler& compiler)
+    : HighCloudNormalsPass(ctx, compiler.compile(std::string(kName) + ".comp")) {}
+
+HighCloudNormalsPass::HighCloudNormalsPass(const Context& ctx, const CompiledShader& shader)
+    : mPipeline(ctx, kName, shader.spirv, shader.reflection), mSourceHash(shader.sourceHash) {}
+
+HighCloudNormalsPass::Outputs HighCloudNormalsPass::setup(GraphBuilder& b, const Inputs& in) {
+  if (in.size == 0) internalError("high_cloud_normals: empty texture");
+  mInputs = in;
+  mInputs.coefficients = b.read(in.coefficients, Access::StorageReadCompute);
+  mOutputs.normals = b.write(in.normals, Access::StorageWriteCompute);
+  b.sideEffect();
+  return mOutputs;
+}
+
+void HighCloudNormalsPass::execute(PassContext& ctx) const {
+  shared::HighCloudNormalsParams push{};
+  push.size = glm::uvec4(mInputs.size, 0, 0, 0);
+  // The relief in texels, so the normals describe the same surface at every resolution.
+  push.relief = glm::vec4(float(HIGH_CLOUD_NORMAL_RELIEF) * float(mInputs.size), 0, 0, 0);
+  ctx.dispatch(mPipeline,
+               {Binding::of(HIGH_CLOUD_NORMALS_BINDING_COEFFICIENTS, mInputs.coefficients),
+                Binding::of(HIGH_CLOUD_NORMALS_BINDING_NORMALS, mOutputs.normals)},
+               mPipeline.groupsX(mInputs.size), mPipeline.groupsY(mInputs.size), 1, &push,
+               sizeof push);
+}
+
+HighCloudReducePass::HighCloudReducePass(const Context& ctx, ShaderCompiler& compiler)
+    : mPipeline([&] {
+        CompiledShader shader = compiler.compile(std::string(kName) + ".comp");
+        return ComputePipeline(ctx, kName, shader.spirv, shader.reflection);
+      }()) {}
+
+HighCloudReducePass::Outputs HighCloudReducePass::setup(GraphBuilder& b, const Inputs& in) {
+  if (in.coarseSize == 0 || in.size < in.coarseSize || in.size % in.coarseSize != 0)
+    internalError("high_cloud_reduce: " + std::to_string(in.size) + " is not a multiple of " +
+                  std::to_string(in.coarseSize));
+  mInputs = in;
+  mInputs.coefficients = b.read(in.coefficients, Access::StorageReadCompute);
+  mOutputs.coarse = b.write(in.coarse, Access::StorageWriteCompute);
+  b.sideEffect();
+  return mOutputs;
+}
+
+void HighCloudReducePass::execute(PassContext& ctx) const {
+  shared::HighCloudReduceParams push{};
+  push.size = glm::uvec4(mInputs.size, mInputs.coarseSize, mInputs.size / mInputs.coarseSize, 0);
+  ctx.dispatch(mPipeline,
+               {Binding::of(HIGH_CLOUD_REDUCE_BINDING_COEFFICIENTS, mInputs.coefficients),
+                Binding::of(HIGH_CLOUD_REDUCE_BINDING_COARSE, mOutputs.coarse)},
+               mPipeline.groupsX(mInputs.coarseSize), mPipeline.groupsY(mInputs.coarseSize), 1,
+               &push, sizeof push);
+}
+
+}  // namespace sky

@@ -1,0 +1,94 @@
+#pragma once
+// The three graph passes behind HighCloudTextures (high_cloud_textures.h). Each writes an
+// imported persistent image and is a side effect: nothing in the bake graphs reads its result.
+#include <cstdint>
+
+#include "engine/gpu/compute_pipeline.h"
+#include "engine/graph/frame_graph.h"
+#include "engine/graph/pass_context.h"
+#include "shaders/common/high_cloud_bake_shared.h"
+
+namespace sky {
+
+class Context;
+class Sampler;
+class ShaderCompiler;
+struct CompiledShader;
+
+// Procedural coefficients for one band of rows (shaders/high_cloud_bake.comp).
+class HighCloudBakePass {
+public:
+  static constexpr const char* kName = "high_cloud_bake";
+  struct Inputs {
+    ImageId coefficients;  // N x N rgba16f, written in rows [size.y, size.y + size.z)
+    ImageId coverMap;      // r16f, sampled with `sampler` (1x1 white when there is none)
+    shared::HighCloudBakeParams params{};
+  };
+  struct Outputs {
+    ImageId coefficients;
+  };
+  // Compiles the shader (once). `sampler` (linear, repeat) must outlive the pass.
+  HighCloudBakePass(const Context& ctx, ShaderCompiler& compiler, const Sampler& sampler);
+  // For cache keys: the shader's preprocessed source with every include (CompiledShader).
+  uint64_t sourceHash() const { return mSourceHash; }
+  Outputs setup(GraphBuilder& builder, const Inputs& inputs);
+  void execute(PassContext& ctx) const;
+
+private:
+  HighCloudBakePass(const Context& ctx, const CompiledShader& shader, const Sampler& sampler);
+  ComputePipeline mPipeline;
+  uint64_t mSourceHash = 0;
+  const Sampler& mSampler;
+  Inputs mInputs;
+  Outputs mOutputs;
+};
+
+// Tangent-space normals from the coefficients' opacity (shaders/high_cloud_normals.comp).
+class HighCloudNormalsPass {
+public:
+  static constexpr const char* kName = "high_cloud_normals";
+  struct Inputs {
+    ImageId coefficients;  // N x N rgba16f
+    ImageId normals;       // N x N rgba16f, overwritten
+    uint32_t size = 0;     // N
+  };
+  struct Outputs {
+    ImageId normals;
+  };
+  HighCloudNormalsPass(const Context& ctx, ShaderCompiler& compiler);
+  uint64_t sourceHash() const { return mSourceHash; }
+  Outputs setup(GraphBuilder& builder, const Inputs& inputs);
+  void execute(PassContext& ctx) const;
+
+private:
+  HighCloudNormalsPass(const Context& ctx, const CompiledShader& shader);
+  ComputePipeline mPipeline;
+  uint64_t mSourceHash = 0;
+  Inputs mInputs;
+  Outputs mOutputs;
+};
+
+// The coarse, box-filtered coefficients (shaders/high_cloud_reduce.comp).
+class HighCloudReducePass {
+public:
+  static constexpr const char* kName = "high_cloud_reduce";
+  struct Inputs {
+    ImageId coefficients;     // N x N rgba16f
+    ImageId coarse;           // C x C rgba16f, overwritten
+    uint32_t size = 0;        // N
+    uint32_t coarseSize = 0;  // C; N must be a multiple of it
+  };
+  struct Outputs {
+    ImageId coarse;
+  };
+  HighCloudReducePass(const Context& ctx, ShaderCompiler& compiler);
+  Outputs setup(GraphBuilder& builder, const Inputs& inputs);
+  void execute(PassContext& ctx) const;
+
+private:
+  ComputePipeline mPipeline;
+  Inputs mInputs;
+  Outputs mOutputs;
+};
+
+}  // namespace sky

@@ -1,0 +1,286 @@
+#include "passes/high_cloud_textures/high_cloud_textures.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <string_view>
+
+#include "engine/core/error.h"
+#include "engine/core/files.h"
+#include "engine/core/paths.h"
+#include "engine/gpu/image_upload.h"
+#include "engine/graph/graph_runtime.h"
+#include "engine/scene/scene.h"
+#include "passes/high_cloud_textures/high_cloud_images.h"
+
+namespace sky {
+namespace {
+namespace fs = std::filesystem;
+using high_clouds::Texture;
+
+// The clear texture of cover 0: the smallest size the textures take.
+constexpr uint32_t kClearSize = high_clouds::kMinSize;
+// Storage for the passes, sampled by the shading pass, transfer for uploads and read-back.
+constexpr VkImageUsageFlags kTextureUsage =
+    VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
+    VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+// Bumped when the meaning of a cache entry changes without its shaders changing.
+constexpr std::string_view kCacheFormat = "high_clouds cache v1";
+
+uint32_t coarseSizeOf(uint32_t n) {
+  return std::max(n / HIGH_CLOUD_COARSE_DIVISOR, HIGH_CLOUD_COARSE_MIN);
+}
+
+// Bands of rows per bake: one per 64 rows, at most 32, so a 512 texture reports progress
+// eight times and no single dispatch grows past 128 rows of a 4096 texture (a GPU watchdog).
+uint32_t bandsFor(uint32_t n) {
+  return std::clamp(n / 64u, 1u, 32u);
+}
+
+uint32_t styleId(const std::string& style) {
+  if (style == "cirrus") return HIGH_CLOUD_STYLE_CIRRUS;
+  if (style == "cirrostratus") return HIGH_CLOUD_STYLE_CIRROSTRATUS;
+  if (style == "cirrocumulus") return HIGH_CLOUD_STYLE_CIRROCUMULUS;
+  inputError("high_clouds.style: '" + style + "' is not cirrus, cirrostratus or cirrocumulus");
+}
+
+uint32_t resolutionOf(const HighCloudSettings& h) {
+  const auto n = static_cast<uint32_t>(h.resolution);
+  if (h.resolution < int(high_clouds::kMinSize) || h.resolution > int(high_clouds::kMaxSize) ||
+      (n & (n - 1)) != 0)
+    inputError("high_clouds.resolution: " + std::to_string(h.resolution) +
+               " must be a power of two from " + std::to_string(high_clouds::kMinSize) + " to " +
+               std::to_string(high_clouds::kMaxSize));
+  return n;
+}
+
+// Exact text of a double, so equal keys mean equal values.
+std::string exact(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
+
+std::vector<float> constantTexture(uint32_t size, glm::vec4 value) {
+  std::vector<float> out(size_t(size) * size * 4);
+  for (size_t i = 0; i < out.size(); i += 4)
+    for (int c = 0; c < 4; ++c) out[i + size_t(c)] = value[c];
+  return out;
+}
+
+PersistentImage makeImage(const Context& ctx, const char* name, VkFormat format, uint32_t width,
+                          uint32_t height, VkImageUsageFlags usage) {
+  ImageDesc desc;
+  desc.name = name;
+  desc.format = format;
+  desc.width = width;
+  desc.height = height;
+  desc.usage = usage;
+  return {Image(ctx, desc), {}};
+}
+
+}  // namespace
+
+HighCloudTextures::HighCloudTextures(const Context& ctx, ShaderCompiler& compiler,
+                                     GraphRuntime& runtime)
+    : mCtx(ctx),
+      mRuntime(runtime),
+      mSampler(ctx, SamplerWrap::Repeat, true),
+      mBakePass(ctx, compiler, mSampler),
+      mNormalsPass(ctx, compiler),
+      mReducePass(ctx, compiler) {}
+
+HighCloudTextures::Outputs HighCloudTextures::addTo(FrameGraph& graph, const Scene& scene) {
+  mActivity = {};
+  const HighCloudSettings& h = scene.highClouds;
+  const std::string sig = signature(scene);
+  if (!mSignature || *mSignature != sig) {
+    // Forget what the images held until the new contents are complete: an error on the way
+    // makes the next call load again.
+    mSignature.reset();
+    if (h.source == "image")
+      loadImages(scene);
+    else if (h.cover <= 0.0)
+      makeClear();
+    else
+      loadProcedural(scene);
+    mSignature = sig;
+  }
+  Outputs out;
+  out.coefficients = graph.importImage(mCoefficients);
+  out.normals = graph.importImage(mNormals);
+  out.coarse = graph.importImage(mCoarse);
+  out.mean = mMean;
+  return out;
+}
+
+std::string HighCloudTextures::signature(const Scene& scene) const {
+  const HighCloudSettings& h = scene.highClouds;
+  auto file = [&](const std::string& path) {
+    if (path.empty()) return std::string("-");
+    const fs::path resolved = scene.resolvePath(path);
+    return resolved.string() + "@" + high_clouds::fileStamp(resolved);
+  };
+  if (h.source == "image") return "image|" + file(h.coefficients) + "|" + file(h.normals);
+  if (h.source != "procedural")
+    inputError("high_clouds.source: '" + h.source + "' is not procedural or image");
+  if (h.cover <= 0.0) return "clear";
+  return "procedural|" + h.style + "|" + exact(h.cover) + "|" + std::to_string(h.seed) + "|" +
+         std::to_string(h.resolution) + "|" + file(h.coverMap);
+}
+
+std::string HighCloudTextures::cacheKey(const Scene& scene) const {
+  const HighCloudSettings& h = scene.highClouds;
+  std::string text(kCacheFormat);
+  text += "|" + h.style + "|" + exact(h.cover) + "|" + std::to_string(h.seed) + "|" +
+          std::to_string(h.resolution) + "|";
+  if (!h.coverMap.empty()) {
+    const fs::path path = scene.resolvePath(h.coverMap);
+    std::error_code ec;
+    if (!fs::exists(path, ec))
+      inputError("high_clouds.cover_map: " + h.coverMap + ": file not found (" + path.string() +
+                 ")");
+    const std::vector<uint8_t> bytes = readBinaryFile(path);
+    text += hex64(hash64({reinterpret_cast<const char*>(bytes.data()), bytes.size()}));
+  }
+  text += "|" + hex64(mBakePass.sourceHash()) + "|" + hex64(mNormalsPass.sourceHash());
+  return hex64(hash64(text));
+}
+
+void HighCloudTextures::allocate(uint32_t size) {
+  if (mSize == size && mCoefficients.image) return;
+  const VkFormat f = VK_FORMAT_R16G16B16A16_SFLOAT;
+  const uint32_t c = coarseSizeOf(size);
+  mCoefficients = makeImage(mCtx, "high_cloud_coefficients", f, size, size, kTextureUsage);
+  mNormals = makeImage(mCtx, "high_cloud_normals", f, size, size, kTextureUsage);
+  mCoarse = makeImage(mCtx, "high_cloud_coarse", f, c, c, kTextureUsage);
+  mSize = size;
+}
+
+void HighCloudTextures::makeClear() {
+  allocate(kClearSize);
+  const glm::vec4 clear(0, 0, 1, 0);
+  uploadImage(mCtx, mCoefficients.image, mCoefficients.state, constantTexture(kClearSize, clear));
+  uploadImage(mCtx, mNormals.image, mNormals.state, constantTexture(kClearSize, {0, 0, 1, 0}));
+  // The box filter of a constant is the constant: no reduce pass needed.
+  uploadImage(mCtx, mCoarse.image, mCoarse.state, constantTexture(coarseSizeOf(kClearSize), clear));
+  mMean = clear;
+}
+
+void HighCloudTextures::loadImages(const Scene& scene) {
+  const HighCloudSettings& h = scene.highClouds;
+  if (h.coefficients.empty())
+    inputError("high_clouds.coefficients: is required when source is image");
+  // Every file is read and checked before the GPU images change.
+  Texture coefficients = high_clouds::readCoefficients(scene.resolvePath(h.coefficients),
+                                                       "high_clouds.coefficients", h.coefficients);
+  Texture normals;
+  if (!h.normals.empty())
+    normals = high_clouds::readNormals(scene.resolvePath(h.normals), "high_clouds.normals",
+                                       h.normals, coefficients.width);
+  allocate(coefficients.width);
+  uploadImage(mCtx, mCoefficients.image, mCoefficients.state, coefficients.pixels);
+  if (!normals.pixels.empty()) uploadImage(mCtx, mNormals.image, mNormals.state, normals.pixels);
+  finish(normals.pixels.empty(), false);
+  mActivity.loadedImages = true;
+}
+
+void HighCloudTextures::loadProcedural(const Scene& scene) {
+  const HighCloudSettings& h = scene.highClouds;
+  const uint32_t size = resolutionOf(h);
+  styleId(h.style);  // a bad style is an error even when the cache would answer
+  const std::string key = cacheKey(scene);
+  const fs::path file = cacheDir() / "high_clouds" / (key + ".exr");
+  mActivity.cacheFile = file;
+  if (std::optional<high_clouds::CacheEntry> entry = high_clouds::readCacheEntry(file, key, size)) {
+    allocate(size);
+    uploadImage(mCtx, mCoefficients.image, mCoefficients.state, entry->coefficients);
+    uploadImage(mCtx, mNormals.image, mNormals.state, entry->normals);
+    finish(false, false);
+    mActivity.loadedCache = true;
+    return;
+  }
+  bake(scene, size, key, file);
+}
+
+void HighCloudTextures::bake(const Scene& scene, uint32_t size, const std::string& key,
+                             const fs::path& file) {
+  const HighCloudSettings& h = scene.highClouds;
+  report(0.0);
+  const bool hasMap = !h.coverMap.empty();
+  const Texture map = hasMap ? high_clouds::readCoverMap(scene.resolvePath(h.coverMap),
+                                                         "high_clouds.cover_map", h.coverMap)
+                             : Texture{1, 1, 1, {1.0f}};
+  if (!mCoverMap.image || mCoverMap.image.desc().width != map.width ||
+      mCoverMap.image.desc().height != map.height)
+    mCoverMap = makeImage(mCtx, "high_cloud_cover_map", VK_FORMAT_R16_SFLOAT, map.width, map.height,
+                          VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
+  uploadImage(mCtx, mCoverMap.image, mCoverMap.state, map.pixels);
+  allocate(size);
+
+  const uint32_t bands = bandsFor(size), rows = size / bands;
+  for (uint32_t b = 0; b < bands; ++b) {
+    FrameGraph graph(mRuntime);
+    HighCloudBakePass::Inputs in;
+    in.coefficients = graph.importImage(mCoefficients);
+    in.coverMap = graph.importImage(mCoverMap);
+    in.params.size = glm::uvec4(size, b * rows, rows, styleId(h.style));
+    in.params.cover = glm::vec4(float(h.cover), hasMap ? 1.0f : 0.0f, 0.0f, 0.0f);
+    in.params.seed = glm::uvec4(static_cast<uint32_t>(h.seed), 0, 0, 0);
+    graph.add(mBakePass, in);
+    addTimings(graph.execute());
+    report(double(b + 1) / double(bands + 1));
+  }
+
+  FrameResult result = finish(true, true);
+  high_clouds::CacheEntry entry{size, std::move(result.outputs[1].pixels),
+                                std::move(result.outputs[2].pixels)};
+  try {
+    high_clouds::writeCacheEntry(file, key, entry);
+    mActivity.wroteCache = true;
+  } catch (const Error&) {
+    // An unwritable cache folder costs a bake next time, not the render.
+  }
+  mActivity.baked = true;
+  report(1.0);
+}
+
+FrameResult HighCloudTextures::finish(bool deriveNormals, bool readAll) {
+  FrameGraph graph(mRuntime);
+  const ImageId coefficients = graph.importImage(mCoefficients);
+  ImageId normals = graph.importImage(mNormals);
+  ImageId coarse = graph.importImage(mCoarse);
+  if (deriveNormals) normals = graph.add(mNormalsPass, {coefficients, normals, mSize}).normals;
+  coarse = graph.add(mReducePass, {coefficients, coarse, mSize, coarseSizeOf(mSize)}).coarse;
+  // Output 0 is always the coarse texture; 1 and 2 the full textures when asked.
+  graph.requestOutput(coarse, "coarse");
+  if (readAll) {
+    graph.requestOutput(coefficients, "coefficients");
+    graph.requestOutput(normals, "normals");
+  }
+  FrameResult result = graph.execute();
+  addTimings(result);
+  // Equal boxes: the mean of the coarse texels is the mean of the texture.
+  const std::vector<float>& px = result.outputs[0].pixels;
+  glm::dvec4 sum(0.0);
+  for (size_t i = 0; i < px.size(); i += 4)
+    sum += glm::dvec4(px[i], px[i + 1], px[i + 2], px[i + 3]);
+  mMean = glm::vec4(sum / double(px.size() / 4));
+  return result;
+}
+
+void HighCloudTextures::addTimings(const FrameResult& result) {
+  for (const PassTiming& t : result.passes) {
+    auto it = std::find_if(mActivity.bakeTimings.begin(), mActivity.bakeTimings.end(),
+                           [&](const PassTiming& p) { return p.name == t.name; });
+    if (it == mActivity.bakeTimings.end())
+      mActivity.bakeTimings.push_back(t);
+    else
+      it->gpuMs += t.gpuMs;
+  }
+}
+
+void HighCloudTextures::report(double fraction) const {
+  if (mProgress) mProgress(fraction);
+}
+
+}  // namespace sky

@@ -1,0 +1,76 @@
+// Parameters, bindings and constants of the high-cloud texture passes in
+// passes/high_cloud_textures (shaders/high_cloud_bake.comp, high_cloud_normals.comp,
+// high_cloud_reduce.comp). The channels and the conventions are in docs/high-clouds.md.
+//
+// All three textures are RGBA16F, row 0 = the north edge, column 0 = the west edge, and tile
+// in both directions.
+//   coefficients (N x N): R thin lit parts, G dense parts, B clear sky (transmittance), A sparse
+//                         edges (Kozlov fig. 3), each in [0, 1]
+//   normals      (N x N): xyz the unit tangent-space normal (x east, y north, z up), w = 0
+//   coarse       (C x C): the coefficients box-filtered over (N / C)^2 texels
+#ifndef SKY_HIGH_CLOUD_BAKE_SHARED_H
+#define SKY_HIGH_CLOUD_BAKE_SHARED_H
+#include "shared_prelude.h"
+
+#define HIGH_CLOUD_GROUP_X 8
+#define HIGH_CLOUD_GROUP_Y 8
+
+#define HIGH_CLOUD_BAKE_BINDING_PARAMS 0
+#define HIGH_CLOUD_BAKE_BINDING_COVER_MAP 1
+#define HIGH_CLOUD_BAKE_BINDING_COEFFICIENTS 2
+
+#define HIGH_CLOUD_NORMALS_BINDING_COEFFICIENTS 0
+#define HIGH_CLOUD_NORMALS_BINDING_NORMALS 1
+
+#define HIGH_CLOUD_REDUCE_BINDING_COEFFICIENTS 0
+#define HIGH_CLOUD_REDUCE_BINDING_COARSE 1
+
+// HighCloudBakeParams.size.w
+#define HIGH_CLOUD_STYLE_CIRRUS 0u
+#define HIGH_CLOUD_STYLE_CIRROSTRATUS 1u
+#define HIGH_CLOUD_STYLE_CIRROCUMULUS 2u
+
+// Optical depth tau at which a texel turns from thin (R) to dense (G): the dense share of the
+// opacity is smoothstep(LO, HI, tau).
+#define HIGH_CLOUD_TAU_DENSE_LO 0.7
+#define HIGH_CLOUD_TAU_DENSE_HI 2.5
+
+// The height field the normals come from is the opacity 1 - B times this relief, in units of
+// the tile's width: 0.015 of a 50 km tile is 750 m of cloud-top relief, the order of a cirrus
+// layer's thickness.
+#define HIGH_CLOUD_NORMAL_RELIEF 0.015
+
+// The coarse texture is N / 16 texels on a side, and never smaller than 4.
+#define HIGH_CLOUD_COARSE_DIVISOR 16u
+#define HIGH_CLOUD_COARSE_MIN 4u
+
+SKY_SHARED_BEGIN
+
+// Uniform of high_cloud_bake.comp; one dispatch fills the band of rows [y0, y0 + rows).
+struct HighCloudBakeParams {
+  uvec4 size;   // x: N; y: first row of the band; z: rows in the band; w: HIGH_CLOUD_STYLE_*
+  vec4 cover;   // x: cover 0..1; y: 1 when the cover map multiplies it, else 0; zw: unused
+  uvec4 seed;   // x: the scene's seed; yzw: unused
+};
+
+// Push constants of high_cloud_normals.comp.
+struct HighCloudNormalsParams {
+  uvec4 size;    // x: N; yzw: unused
+  vec4 relief;   // x: HIGH_CLOUD_NORMAL_RELIEF * N, the height of opacity 1 in texels
+};
+
+// Push constants of high_cloud_reduce.comp.
+struct HighCloudReduceParams {
+  uvec4 size;  // x: N; y: C, the coarse size; z: N / C, the box width; w: unused
+};
+
+SKY_SHARED_END
+
+#ifdef __cplusplus
+static_assert(sizeof(sky::shared::HighCloudBakeParams) == 48,
+              "std140 layout of HighCloudBakeParams");
+static_assert(sizeof(sky::shared::HighCloudNormalsParams) == 32,
+              "layout of HighCloudNormalsParams");
+static_assert(sizeof(sky::shared::HighCloudReduceParams) == 16, "layout of HighCloudReduceParams");
+#endif
+#endif

@@ -1,0 +1,134 @@
+#version 460
+// The procedural high-cloud coefficient texture (Kozlov et al. section 3, fig. 3): an optical
+// depth tau per texel from tileable noise in one of three styles, turned into the four
+// channels (docs/high-clouds.md, "The coefficient texture"). One dispatch fills one band of
+// rows, so a large bake is split into several submits with progress in between.
+#include "common/high_cloud_bake_shared.h"
+#include "common/noise.glsl"
+
+layout(local_size_x = HIGH_CLOUD_GROUP_X, local_size_y = HIGH_CLOUD_GROUP_Y) in;
+
+layout(std140, binding = HIGH_CLOUD_BAKE_BINDING_PARAMS) uniform Params {
+  HighCloudBakeParams params;
+};
+// Greyscale, sampled bilinearly with wrap over one tile; multiplies the cover when used.
+layout(binding = HIGH_CLOUD_BAKE_BINDING_COVER_MAP) uniform sampler2D coverMap;
+layout(rgba16f, binding = HIGH_CLOUD_BAKE_BINDING_COEFFICIENTS) writeonly uniform image2D
+    coefficients;
+
+// The spread of fbmGradient2 at gain 0.5, measured over many seeds and tiles: mean 0 (exactly,
+// over whole periods), standard deviation 0.19 for 3 or more octaves (0.31 for one).
+// rankOf() maps it to an about uniform [0, 1] with the logistic approximation of the normal
+// CDF, Phi(z) ~ 1 / (1 + exp(-1.702 z)), so a cover fraction c can be a threshold at 1 - c.
+const float kFbmSigma = 0.19;
+
+float rankOf(float fbm) {
+  return 1.0 / (1.0 + exp(-1.702 * fbm / kFbmSigma));
+}
+
+// Octaves of base frequency `frequency` (cycles per tile) whose highest stays at or below
+// N / 4 cycles (4 texels a cycle): finer octaves would only alias.
+int octavesFor(float frequency, float n) {
+  return clamp(1 + int(floor(log2(max(n * 0.25 / frequency, 1.0)))), 1, 8);
+}
+
+// How much cloud a point of rank r carries at local cover c: 0 below the threshold 1 - c(1+w),
+// rising over the soft width w. c = 0 gives 0 everywhere, c = 1 gives 1 everywhere, and it
+// never decreases with c, so the mean opacity grows with cover. About a fraction c of the
+// tile lies past the middle of the ramp.
+float presence(float r, float c, float w) {
+  float t = 1.0 - c * (1.0 + w);
+  return smoothstep(t, t + w, r);
+}
+
+// A displacement field of two independent fbm fields (domain warping): periodic, so the
+// warped noise still tiles.
+vec2 warpField(vec2 uv, float frequency, uint seed, float n) {
+  ivec2 period = ivec2(frequency);
+  int oct = octavesFor(frequency, n);
+  return vec2(fbmGradient2(uv * frequency, period, noiseSeed(seed, 0u), oct, 0.5),
+              fbmGradient2(uv * frequency, period, noiseSeed(seed, 1u), oct, 0.5));
+}
+
+// Cirrus: fibrous streaks. The cloud body is fbm stretched 4:1 along u, so thresholding it by
+// cover leaves long streaks rather than round patches; fine fibres stretched 16:1 roughen its
+// edges and striate its inside. Two levels of domain warping bend the streaks and curl their
+// ends into hooks (cirrus uncinus).
+float cirrusTau(vec2 uv, float c, uint seed, float n) {
+  vec2 q = uv + 0.08 * warpField(uv, 2.0, noiseSeed(seed, 11u), n);
+  q += 0.03 * warpField(q, 6.0, noiseSeed(seed, 12u), n);
+  float body = fbmGradient2(q * vec2(2.0, 8.0), ivec2(2, 8), noiseSeed(seed, 10u),
+                            octavesFor(8.0, n), 0.55);
+  float fibres = fbmGradient2(q * vec2(3.0, 48.0), ivec2(3, 48), noiseSeed(seed, 13u),
+                              octavesFor(48.0, n), 0.5);
+  // body + 0.35 fibres has a spread of about 1.06 kFbmSigma.
+  float e = presence(rankOf((body + 0.35 * fibres) / 1.06), c, 0.35);
+  float striation = 1.0 - abs(fibres) / 0.6;  // 1 along a fibre, lower between fibres
+  return 1.6 * e * clamp(0.25 + 0.75 * striation, 0.0, 1.0);
+}
+
+// Cirrostratus: a thin, wide, low-contrast veil with faint fibres stretched 8:1 along u; at
+// full cover it covers the whole tile with tau between about 0.3 and 0.8.
+float cirrostratusTau(vec2 uv, float c, uint seed, float n) {
+  float veil = fbmGradient2(uv * 2.0, ivec2(2), noiseSeed(seed, 20u), octavesFor(2.0, n), 0.5);
+  vec2 q = uv + 0.04 * warpField(uv, 2.0, noiseSeed(seed, 21u), n);
+  float fibres = fbmGradient2(q * vec2(4.0, 32.0), ivec2(4, 32), noiseSeed(seed, 22u),
+                              octavesFor(32.0, n), 0.5);
+  float e = presence(rankOf(veil), c, 0.5);
+  return 0.55 * e * clamp(1.0 + 0.6 * fibres, 0.5, 1.5);
+}
+
+// Cirrocumulus: small lumpy cloudlets (Worley F1, roughened by fbm) on a grid of 40 x 32 cells
+// a tile, modulated by sinusoidal ripples whose 32 crests a tile run along u through the cell
+// centres, so the cloudlets line up in rows (undulatus); gently warped so the rows undulate.
+// The patches' edges follow the cells, so they break up into single cloudlets.
+const float kRippleRows = 32.0;
+float cirrocumulusTau(vec2 uv, float c, uint seed, float n) {
+  vec2 q = uv + 0.01 * warpField(uv, 3.0, noiseSeed(seed, 31u), n);
+  vec2 f = worley2(q * vec2(40.0, kRippleRows), ivec2(40, int(kRippleRows)),
+                   noiseSeed(seed, 32u), 0.7);
+  float lumps = fbmGradient2(q * 80.0, ivec2(80), noiseSeed(seed, 33u), octavesFor(80.0, n), 0.5);
+  float cell = 1.0 - smoothstep(0.1, 0.6, f.x + 0.3 * lumps);
+  // Crests at v = (j + 1/2) / rows, the unjittered cell centres.
+  float ripple = 0.5 - 0.5 * cos(6.28318530718 * kRippleRows * q.y);
+  float puff = cell * (0.15 + 0.85 * ripple);
+  float patches = fbmGradient2(uv * vec2(3.0, 4.0), ivec2(3, 4), noiseSeed(seed, 30u),
+                               octavesFor(4.0, n), 0.5);
+  float e = presence(rankOf(patches + 0.15 * (puff - 0.4)), c, 0.25);
+  return 2.0 * e * puff;
+}
+
+// The four Kozlov channels from the optical depth (docs/high-clouds.md):
+// B = exp(-tau) (Beer-Lambert transmittance, the clear sky seen through the layer),
+// alpha = 1 - B split into thin (R) and dense (G) by the dense share
+// smoothstep(TAU_DENSE_LO, TAU_DENSE_HI, tau), so R + G + B = 1, and
+// A = 27/4 alpha (1 - alpha)^2, the sparse edges: largest (1) where alpha = 1/3, zero in the
+// clear and in opaque cores.
+vec4 coefficientsFromTau(float tau) {
+  float b = exp(-tau);
+  float alpha = 1.0 - b;
+  float dense = smoothstep(HIGH_CLOUD_TAU_DENSE_LO, HIGH_CLOUD_TAU_DENSE_HI, tau);
+  float edges = 6.75 * alpha * (1.0 - alpha) * (1.0 - alpha);
+  return clamp(vec4(alpha * (1.0 - dense), alpha * dense, b, edges), 0.0, 1.0);
+}
+
+void main() {
+  uint n = params.size.x;
+  uvec2 p = uvec2(gl_GlobalInvocationID.x, gl_GlobalInvocationID.y + params.size.y);
+  if (p.x >= n || p.y >= params.size.y + params.size.z || p.y >= n) return;
+  // Texel centres; v grows southwards with the rows (row 0 = north edge).
+  vec2 uv = (vec2(p) + 0.5) / float(n);
+  float c = params.cover.x;
+  if (params.cover.y > 0.5) c *= clamp(textureLod(coverMap, uv, 0.0).r, 0.0, 1.0);
+  uint seed = noiseHash3(uvec3(params.seed.x, 0x68636c64u, 1u)).x;
+  float tau = 0.0;
+  if (c > 0.0) {
+    if (params.size.w == HIGH_CLOUD_STYLE_CIRROSTRATUS)
+      tau = cirrostratusTau(uv, c, seed, float(n));
+    else if (params.size.w == HIGH_CLOUD_STYLE_CIRROCUMULUS)
+      tau = cirrocumulusTau(uv, c, seed, float(n));
+    else
+      tau = cirrusTau(uv, c, seed, float(n));
+  }
+  imageStore(coefficients, ivec2(p), coefficientsFromTau(tau));
+}

@@ -1,0 +1,139 @@
+#pragma once
+// Shared by the high-cloud texture tests: a fixture with its own disk cache folder (so every
+// test really bakes), scenes, and the textures read back through a frame graph.
+#include <atomic>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <unistd.h>
+
+#include <glm/vec4.hpp>
+#include <gtest/gtest.h>
+
+#include "engine/core/paths.h"
+#include "engine/graph/frame_graph.h"
+#include "engine/graph/graph_runtime.h"
+#include "engine/scene/scene.h"
+#include "engine/shader/shader_compiler.h"
+#include "gpu_test.h"
+#include "passes/high_cloud_textures/high_cloud_textures.h"
+
+namespace sky::test {
+
+// tests/data/high_clouds
+inline std::filesystem::path highCloudData() {
+  const char* v = std::getenv("SKY_TEST_DATA");
+  return std::filesystem::path(v ? v : "tests/data") / "high_clouds";
+}
+
+inline Scene proceduralScene(const std::string& style, double cover, int resolution = 128,
+                             int seed = 1) {
+  Scene scene;
+  scene.highClouds.source = "procedural";
+  scene.highClouds.style = style;
+  scene.highClouds.cover = cover;
+  scene.highClouds.resolution = resolution;
+  scene.highClouds.seed = seed;
+  scene.baseDir = highCloudData();
+  return scene;
+}
+
+inline Scene imageScene(const std::string& coefficients, const std::string& normals = "") {
+  Scene scene;
+  scene.highClouds.source = "image";
+  scene.highClouds.coefficients = coefficients;
+  scene.highClouds.normals = normals;
+  scene.baseDir = highCloudData();
+  return scene;
+}
+
+// The three textures as floats (RGBA interleaved, row 0 = north) plus what addTo reported.
+struct Fetched {
+  uint32_t size = 0, coarseSize = 0;
+  std::vector<float> coefficients, normals, coarse;
+  glm::vec4 mean{0.0f};
+  HighCloudTextures::Activity activity;
+  std::vector<std::string> graphPasses;  // the passes addTo left in the caller's graph
+
+  float at(const std::vector<float>& image, uint32_t x, uint32_t y, int c) const {
+    return image[(size_t(y) * size + x) * 4 + size_t(c)];
+  }
+  float opacity(uint32_t x, uint32_t y) const { return 1.0f - at(coefficients, x, y, 2); }
+};
+
+class HighCloudTest : public GpuTest {
+protected:
+  void SetUp() override {
+    // The SPIR-V cache stays shared; the high-cloud cache gets a folder of its own.
+    mSpirvCache = cacheDir() / "spirv";
+    const char* old = std::getenv("SKY_CACHE_DIR");
+    mHadCache = old != nullptr;
+    if (old) mOldCache = old;
+    static std::atomic<int> counter{0};
+    mCache = std::filesystem::temp_directory_path() /
+             ("sky-high-clouds-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
+    std::filesystem::remove_all(mCache);
+    std::filesystem::create_directories(mCache);
+    setenv("SKY_CACHE_DIR", mCache.c_str(), 1);
+    mCompiler = std::make_unique<ShaderCompiler>(shaderDir(), mSpirvCache);
+    mRuntime = std::make_unique<GraphRuntime>(ctx());
+  }
+  void TearDown() override {
+    mRuntime.reset();
+    if (mHadCache)
+      setenv("SKY_CACHE_DIR", mOldCache.c_str(), 1);
+    else
+      unsetenv("SKY_CACHE_DIR");
+    std::error_code ec;
+    std::filesystem::remove_all(mCache, ec);
+  }
+
+  std::unique_ptr<HighCloudTextures> make() {
+    return std::make_unique<HighCloudTextures>(ctx(), *mCompiler, *mRuntime);
+  }
+
+  // addTo on a fresh graph that only reads the three textures back.
+  Fetched fetch(HighCloudTextures& textures, const Scene& scene) {
+    FrameGraph graph(*mRuntime);
+    HighCloudTextures::Outputs out = textures.addTo(graph, scene);
+    Fetched f;
+    for (const PassNode& p : graph.desc().passes) f.graphPasses.push_back(p.name);
+    graph.requestOutput(out.coefficients, "coefficients");
+    graph.requestOutput(out.normals, "normals");
+    graph.requestOutput(out.coarse, "coarse");
+    FrameResult r = graph.execute();
+    f.size = r.output("coefficients").width;
+    f.coarseSize = r.output("coarse").width;
+    f.coefficients = r.output("coefficients").pixels;
+    f.normals = r.output("normals").pixels;
+    f.coarse = r.output("coarse").pixels;
+    f.mean = out.mean;
+    f.activity = textures.lastActivity();
+    return f;
+  }
+
+  const std::filesystem::path& cache() const { return mCache; }
+  GraphRuntime& runtime() { return *mRuntime; }
+
+private:
+  std::filesystem::path mSpirvCache, mCache;
+  std::string mOldCache;
+  bool mHadCache = false;
+  std::unique_ptr<ShaderCompiler> mCompiler;
+  std::unique_ptr<GraphRuntime> mRuntime;
+};
+
+// Largest absolute difference between two images of equal size.
+inline float maxDifference(const std::vector<float>& a, const std::vector<float>& b) {
+  EXPECT_EQ(a.size(), b.size());
+  float worst = 0.0f;
+  for (size_t i = 0; i < a.size() && i < b.size(); ++i)
+    worst = std::max(worst, std::abs(a[i] - b[i]));
+  return worst;
+}
+
+}  // namespace sky::test
