@@ -1,0 +1,96 @@
+#pragma once
+// The physically based atmosphere of Hillaire 2020 ("A Scalable and Production Ready Sky and
+// Atmosphere Rendering Technique") as frame-graph passes: the transmittance and
+// multiple-scattering LUTs (persistent, remade when the atmosphere changes), the sky-view LUTs
+// lit by the sun and by the moon, and the aerial-perspective froxel volume (both every
+// frame). Shaders sample them through shaders/common/atmosphere.glsl; docs/atmosphere.md
+// describes their contents, parametrisations and units.
+#include <cstdint>
+#include <optional>
+
+#include <glm/vec3.hpp>
+
+#include "engine/gpu/compute_pipeline.h"
+#include "engine/gpu/sampler.h"
+#include "engine/graph/frame_graph.h"
+#include "engine/scene/scene.h"
+#include "shaders/common/atmosphere_shared.h"
+#include "shaders/common/view_shared.h"
+
+namespace sky {
+
+class Context;
+class ShaderCompiler;
+
+// The camera is kept this far inside the atmosphere (above the ground, below the top), so
+// every ray from it is well defined (Hillaire's PLANET_RADIUS_OFFSET).
+inline constexpr double kAtmosphereCameraMarginKm = 0.01;
+
+// GPU parameters from the scene's settings: km and 1/km (1/Mm = 1e-3/km). The camera sits at
+// the ground (plus the margin), the lights are off and the view is empty; AtmosphereLuts::addTo
+// fills those per frame. Input error for settings no atmosphere can have (non-positive sizes,
+// Mie extinction below its scattering).
+shared::AtmosphereParams atmosphereParams(const AtmosphereSettings& s);
+
+// `params` with the camera at `altitudeM` above the ground, clamped into the atmosphere.
+void setAtmosphereCamera(shared::AtmosphereParams& params, double altitudeM);
+
+class AtmosphereLuts {
+public:
+  struct Frame {
+    AtmosphereSettings atmosphere;
+    double cameraAltitudeM = 0.0;  // above sea level (= ground radius)
+    shared::ViewState view;        // the camera (shaders/common/view_shared.h) for the AP froxels
+    glm::vec3 sunDirection{0, 0, 1};  // unit, east-north-up (z up)
+    glm::vec3 moonDirection{0, 0, -1};
+    glm::vec3 sunIlluminance{0.0f};  // rgb above the atmosphere, renderer units
+    glm::vec3 moonIlluminance{0.0f};
+  };
+  struct Outputs {
+    ImageId transmittance;      // 256x64, rgb transmittance to the top of the atmosphere
+    ImageId multiScattering;    // 32x32, Hillaire's Psi_ms (per unit illuminance)
+    ImageId skyViewSun;         // 192x108, sky radiance lit by the sun (illuminance applied)
+    ImageId skyViewMoon;        // 192x108, the same lit by the moon
+    ImageId aerialPerspective;  // 32x32x32 RGBA: rgb in-scattered radiance from camera to the
+                                // slice (sun + moon), a: mean transmittance
+  };
+
+  // Pass names (FrameResult timings, graph dumps).
+  static constexpr const char* kTransmittanceName = "atmosphere_transmittance";
+  static constexpr const char* kMultiScatteringName = "atmosphere_multiscattering";
+  static constexpr const char* kSkyViewName = "atmosphere_sky_view";
+  static constexpr const char* kAerialPerspectiveName = "atmosphere_aerial_perspective";
+  static constexpr const char* kSkyProbeName = "atmosphere_sky_probe";
+
+  // Compiles the five shaders and creates the persistent LUT images (once, at start-up).
+  AtmosphereLuts(const Context& ctx, ShaderCompiler& compiler);
+
+  // Adds the passes to `graph`. Transmittance and multiple scattering live in persistent
+  // images and are recomputed (their passes added) only when `frame.atmosphere` differs from
+  // the settings they were last recorded with; sky-view and aerial perspective depend on the
+  // lights and camera and run every frame. Must outlive graph.execute().
+  Outputs addTo(FrameGraph& graph, const Frame& frame);
+
+  // Adds the sky probe: a width x height RGBA32F equirectangular image of the whole sphere
+  // (column 0 north, azimuth eastward; row 0 the zenith) made by skyViewRadiance() from
+  // `luts` (sun + moon) with the parameters of the last addTo. A debug view.
+  ImageId addSkyProbe(FrameGraph& graph, const Outputs& luts, uint32_t width, uint32_t height);
+
+  const shared::AtmosphereParams& params() const { return mParams; }  // those of the last addTo
+  const Sampler& sampler() const { return mSampler; }                 // linear clamp, for every LUT
+
+private:
+  ComputePipeline mTransmittance;
+  ComputePipeline mMultiScattering;
+  ComputePipeline mSkyView;
+  ComputePipeline mAerialPerspective;
+  ComputePipeline mSkyProbe;
+  Sampler mSampler;
+  PersistentImage mTransmittanceLut;
+  PersistentImage mMultiScatteringLut;
+  // The settings the persistent LUTs were last recorded for (set when their passes record).
+  std::optional<AtmosphereSettings> mBaked;
+  shared::AtmosphereParams mParams{};
+};
+
+}  // namespace sky

@@ -1,0 +1,74 @@
+#version 460
+// Sky-view LUTs (Hillaire 2020, section 5.3): the sky's radiance around the camera at its
+// altitude, single and multiple scattering, in the latitude/longitude parametrisation of
+// shaders/common/atmosphere.glsl, once lit by the sun (z = 0) and once by the moon (z = 1),
+// each light's illuminance applied. Below the horizon: the atmosphere in front of the lit
+// ground, and the ground. Made every frame.
+#include "common/atmosphere.glsl"
+
+layout(local_size_x = ATMOSPHERE_GROUP_X, local_size_y = ATMOSPHERE_GROUP_Y) in;
+
+layout(std140, binding = ATMOSPHERE_BINDING_PARAMS) uniform Params {
+  AtmosphereParams params;
+};
+layout(binding = ATMOSPHERE_SKY_VIEW_BINDING_TRANSMITTANCE) uniform sampler2D transmittanceLut;
+layout(binding = ATMOSPHERE_SKY_VIEW_BINDING_MULTISCATTERING) uniform sampler2D multiScatteringLut;
+layout(binding = ATMOSPHERE_SKY_VIEW_BINDING_SUN, rgba32f) uniform writeonly image2D sunImage;
+layout(binding = ATMOSPHERE_SKY_VIEW_BINDING_MOON, rgba32f) uniform writeonly image2D moonImage;
+
+// Radiance reaching the camera along V per unit illuminance of the light L (1/sr).
+vec3 skyRadiance(AtmosphereParams p, vec3 V, vec3 L) {
+  float r0 = p.radii.z, mu = V.z, Rg = p.radii.x;
+  vec3 origin = vec3(0.0, 0.0, r0);
+  bool ground = atmosphereRayHitsGround(p, r0, mu);
+  float tMax = atmosphereRayLength(p, r0, mu);
+  int warp = atmosphereMarchWarp(p, r0, mu);
+  float nu = dot(V, L);
+  vec3 radiance = vec3(0.0), T = vec3(1.0);
+  const int steps = ATMOSPHERE_SKY_VIEW_STEPS;
+  for (int i = 0; i < steps; ++i) {
+    float t0 = atmosphereMarchT(float(i) / steps, tMax, warp);
+    float t1 = atmosphereMarchT(float(i + 1) / steps, tMax, warp);
+    float dt = t1 - t0;
+    vec3 pos = origin + 0.5 * (t0 + t1) * V;
+    float r = length(pos);
+    AtmosphereMedium m = atmosphereMedium(p, r - Rg);
+    vec3 stepT = exp(-m.extinction * dt);
+    vec3 S = atmosphereInScattering(p, transmittanceLut, multiScatteringLut, m, pos, r, nu, L);
+    radiance += T * atmosphereIntegrateStep(S, m.extinction, stepT, dt);
+    T *= stepT;
+  }
+  if (ground) {
+    // Lambertian ground under the light through the atmosphere (Hillaire's ground term).
+    vec3 pos = origin + tMax * V;
+    float muG = max(dot(pos, L) / length(pos), 0.0);
+    radiance += T * p.groundAlbedo.rgb / ATMOSPHERE_PI * muG *
+                atmosphereTransmittanceLut(p, transmittanceLut, Rg, muG);
+  }
+  return radiance;
+}
+
+void main() {
+  uvec3 id = gl_GlobalInvocationID;
+  if (id.x >= ATMOSPHERE_SKY_VIEW_WIDTH || id.y >= ATMOSPHERE_SKY_VIEW_HEIGHT) return;
+  AtmosphereParams p = params;
+  bool moon = id.z == 1u;
+  vec3 light = moon ? p.moonDirection.xyz : p.sunDirection.xyz;
+  vec3 illuminance = moon ? p.moonIlluminance.rgb : p.sunIlluminance.rgb;
+  vec2 unit = vec2(atmosphereTexelToUnit(float(id.x), float(ATMOSPHERE_SKY_VIEW_WIDTH)),
+                   atmosphereTexelToUnit(float(id.y), float(ATMOSPHERE_SKY_VIEW_HEIGHT)));
+  float cosTheta, cosPhi;
+  atmosphereSkyViewParams(p, unit, cosTheta, cosPhi);
+  float sinTheta = sqrt(max(1.0 - cosTheta * cosTheta, 0.0));
+  float sinPhi = sqrt(max(1.0 - cosPhi * cosPhi, 0.0));
+  // In the LUT's own frame the light lies in the x-z plane; only its elevation matters.
+  float muS = clamp(light.z, -1.0, 1.0);
+  vec3 L = vec3(sqrt(max(1.0 - muS * muS, 0.0)), 0.0, muS);
+  vec3 V = vec3(sinTheta * cosPhi, sinTheta * sinPhi, cosTheta);
+  vec4 value = vec4(ATMOSPHERE_RENDERER_SCALE * skyRadiance(p, V, L) * illuminance, 1.0);
+  if (moon) {
+    imageStore(moonImage, ivec2(id.xy), value);
+  } else {
+    imageStore(sunImage, ivec2(id.xy), value);
+  }
+}

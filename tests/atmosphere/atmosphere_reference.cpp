@@ -1,0 +1,255 @@
+#include "atmosphere_reference.h"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+#include <vector>
+
+#include <glm/geometric.hpp>
+
+namespace sky::test {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// Gauss-Legendre nodes and weights on [-1, 1] (Newton's method on P_n).
+std::vector<std::pair<double, double>> gaussLegendre(int n) {
+  std::vector<std::pair<double, double>> out;
+  for (int i = 0; i < n; ++i) {
+    double x = std::cos(kPi * (i + 0.75) / (n + 0.5));
+    double dp = 1.0;
+    for (int iter = 0; iter < 100; ++iter) {
+      double p0 = 1.0, p1 = x;
+      for (int k = 2; k <= n; ++k) {
+        const double p2 = ((2.0 * k - 1.0) * x * p1 - (k - 1.0) * p0) / k;
+        p0 = p1;
+        p1 = p2;
+      }
+      dp = n * (x * p1 - p0) / (x * x - 1.0);
+      const double step = p1 / dp;
+      x -= step;
+      if (std::abs(step) < 1e-15) break;
+    }
+    out.emplace_back(x, 2.0 / ((1.0 - x * x) * dp * dp));
+  }
+  return out;
+}
+
+// Step boundaries along a ray: dense where the air is densest (see atmosphere.glsl: up-going
+// rays start in it, ground-bound rays end in it).
+enum class Warp { Uniform, Start, End };
+
+double warpT(double s, double length, Warp w) {
+  switch (w) {
+    case Warp::Start:
+      return length * s * s;
+    case Warp::End:
+      return length * (1.0 - (1.0 - s) * (1.0 - s));
+    case Warp::Uniform:
+      break;
+  }
+  return length * s;
+}
+
+double rayleighPhase(double c) {
+  return 3.0 / (16.0 * kPi) * (1.0 + c * c);
+}
+
+double cornetteShanks(double g, double c) {
+  const double g2 = g * g;
+  return 3.0 / (8.0 * kPi) * (1.0 - g2) * (1.0 + c * c) /
+         ((2.0 + g2) * std::pow(1.0 + g2 - 2.0 * g * c, 1.5));
+}
+
+}  // namespace
+
+ReferenceAtmosphere::ReferenceAtmosphere(const AtmosphereSettings& s)
+    : groundRadius(s.groundRadiusKm),
+      topRadius(s.groundRadiusKm + s.thicknessKm),
+      rayleigh(glm::dvec3(s.rayleighScattering) * 1e-3),
+      rayleighHeight(s.rayleighScaleHeightKm),
+      mieScattering(s.mieScattering * 1e-3),
+      mieExtinction(s.mieExtinction * 1e-3),
+      mieHeight(s.mieScaleHeightKm),
+      mieG(s.mieAnisotropy),
+      ozone(glm::dvec3(s.ozoneAbsorption) * 1e-3),
+      ozoneCenter(s.ozoneCenterKm),
+      ozoneHalfWidth(s.ozoneHalfWidthKm),
+      albedo(s.groundAlbedo) {}
+
+namespace {
+
+struct Medium {
+  glm::dvec3 rayleigh;
+  double mie;
+  glm::dvec3 extinction;
+};
+
+Medium medium(const ReferenceAtmosphere& a, double altitude) {
+  const double h = std::max(altitude, 0.0);
+  const double dr = std::exp(-h / a.rayleighHeight);
+  const double dm = std::exp(-h / a.mieHeight);
+  const double dO = std::max(0.0, 1.0 - std::abs(h - a.ozoneCenter) / a.ozoneHalfWidth);
+  return {a.rayleigh * dr, a.mieScattering * dm,
+          a.rayleigh * dr + glm::dvec3(a.mieExtinction * dm) + a.ozone * dO};
+}
+
+bool hitsGround(const ReferenceAtmosphere& a, double r, double mu) {
+  return mu < 0.0 && r * r * (mu * mu - 1.0) + a.groundRadius * a.groundRadius >= 0.0;
+}
+
+double distanceToGround(const ReferenceAtmosphere& a, double r, double mu) {
+  const double disc = r * r * (mu * mu - 1.0) + a.groundRadius * a.groundRadius;
+  return std::max(-r * mu - std::sqrt(std::max(disc, 0.0)), 0.0);
+}
+
+double distanceToTop(const ReferenceAtmosphere& a, double r, double mu) {
+  const double disc = r * r * (mu * mu - 1.0) + a.topRadius * a.topRadius;
+  return std::max(-r * mu + std::sqrt(std::max(disc, 0.0)), 0.0);
+}
+
+Warp warpFor(const ReferenceAtmosphere& a, double r, double mu) {
+  return mu >= 0.0 ? Warp::Start : (hitsGround(a, r, mu) ? Warp::End : Warp::Uniform);
+}
+
+}  // namespace
+
+AtmosphereReference::AtmosphereReference(const AtmosphereSettings& s, ReferenceQuality q)
+    : mA(s), mQ(q) {}
+
+glm::dvec3 AtmosphereReference::extinction(double altitude) const {
+  return medium(mA, altitude).extinction;
+}
+
+glm::dvec3 AtmosphereReference::opticalDepth(glm::dvec3 origin, glm::dvec3 dir, double length,
+                                             int steps) const {
+  const double r = glm::length(origin);
+  const Warp w = warpFor(mA, r, glm::dot(origin, dir) / r);
+  glm::dvec3 tau(0.0);
+  for (int i = 0; i < steps; ++i) {
+    const double t0 = warpT(double(i) / steps, length, w);
+    const double t1 = warpT(double(i + 1) / steps, length, w);
+    const glm::dvec3 p = origin + 0.5 * (t0 + t1) * dir;
+    tau += medium(mA, glm::length(p) - mA.groundRadius).extinction * (t1 - t0);
+  }
+  return tau;
+}
+
+double AtmosphereReference::rayLength(double r, double mu) const {
+  return hitsGround(mA, r, mu) ? distanceToGround(mA, r, mu) : distanceToTop(mA, r, mu);
+}
+
+glm::dvec3 AtmosphereReference::transmittanceToLight(glm::dvec3 pos, glm::dvec3 L) const {
+  const double r = glm::length(pos);
+  const double mu = glm::dot(pos, L) / r;
+  if (hitsGround(mA, r, mu)) return glm::dvec3(0.0);
+  return glm::exp(-opticalDepth(pos, L, distanceToTop(mA, r, mu), mQ.lightSteps));
+}
+
+glm::dvec3 AtmosphereReference::psiMs(double r, double muS) const {
+  static thread_local std::vector<std::pair<double, double>> nodes;
+  if (nodes.size() != static_cast<size_t>(mQ.sphereBands)) nodes = gaussLegendre(mQ.sphereBands);
+  const glm::dvec3 origin(0.0, 0.0, r);
+  const glm::dvec3 L(std::sqrt(std::max(1.0 - muS * muS, 0.0)), 0.0, muS);
+  // Split cos(zenith) at the horizon, where the ground cuts the integrand off.
+  const double muH = -std::sqrt(std::max(1.0 - std::pow(mA.groundRadius / r, 2.0), 0.0));
+  const double spans[2][2] = {{-1.0, muH}, {muH, 1.0}};
+  glm::dvec3 l2(0.0), fms(0.0);
+  for (const auto& span : spans) {
+    const double half = 0.5 * (span[1] - span[0]), mid = 0.5 * (span[1] + span[0]);
+    for (const auto& [x, w] : nodes) {
+      const double mu = mid + half * x;
+      const double weight = w * half;
+      const double sinT = std::sqrt(std::max(1.0 - mu * mu, 0.0));
+      const bool ground = hitsGround(mA, r, mu);
+      const double length = ground ? distanceToGround(mA, r, mu) : distanceToTop(mA, r, mu);
+      const Warp warp = warpFor(mA, r, mu);
+      for (int k = 0; k < mQ.sphereAzimuths; ++k) {
+        const double phi = kPi * (k + 0.5) / mQ.sphereAzimuths;
+        const glm::dvec3 dir(sinT * std::cos(phi), sinT * std::sin(phi), mu);
+        glm::dvec3 tau(0.0), lp(0.0), fp(0.0);
+        const int n = mQ.sphereSteps;
+        for (int i = 0; i < n; ++i) {
+          const double t0 = warpT(double(i) / n, length, warp);
+          const double t1 = warpT(double(i + 1) / n, length, warp);
+          const double dt = t1 - t0;
+          const glm::dvec3 p = origin + 0.5 * (t0 + t1) * dir;
+          const Medium m = medium(mA, glm::length(p) - mA.groundRadius);
+          const glm::dvec3 T = glm::exp(-(tau + 0.5 * dt * m.extinction));
+          const glm::dvec3 scattering = m.rayleigh + m.mie;
+          // Hillaire (7) with the isotropic phase function, and (9).
+          lp += T * scattering * (1.0 / (4.0 * kPi)) * transmittanceToLight(p, L) * dt;
+          fp += T * scattering * dt;
+          tau += m.extinction * dt;
+        }
+        if (ground) {
+          const glm::dvec3 p = origin + length * dir;
+          const double muG = std::max(glm::dot(glm::normalize(p), L), 0.0);
+          lp += glm::exp(-tau) * mA.albedo / kPi * muG * transmittanceToLight(p, L);
+        }
+        // (1/4pi) over the sphere: weight in cos(zenith) times pi / n over the half circle,
+        // doubled for the mirror half.
+        const double sphere = weight * 2.0 * (kPi / mQ.sphereAzimuths) / (4.0 * kPi);
+        l2 += lp * sphere;
+        fms += fp * sphere;
+      }
+    }
+  }
+  // Hillaire (10), (11).
+  return l2 / (glm::dvec3(1.0) - fms);
+}
+
+glm::dvec3 AtmosphereReference::march(double r0, glm::dvec3 V, glm::dvec3 L, double length,
+                                      bool withGround, glm::dvec3* transmittance) const {
+  const glm::dvec3 origin(0.0, 0.0, r0);
+  const Warp warp = warpFor(mA, r0, V.z);
+  const double nu = glm::dot(V, L);
+  const double phaseR = rayleighPhase(nu), phaseM = cornetteShanks(mA.mieG, nu);
+
+  // Psi_ms varies slowly along a ray: it is evaluated directly at viewMsSteps + 1 evenly
+  // spaced points of the step parameter and interpolated linearly between them, while the
+  // density, transmittance and sunlight change at every step.
+  std::vector<glm::dvec3> psi(static_cast<size_t>(mQ.viewMsSteps) + 1);
+  for (int j = 0; j <= mQ.viewMsSteps; ++j) {
+    const glm::dvec3 p = origin + warpT(double(j) / mQ.viewMsSteps, length, warp) * V;
+    const double r = std::max(glm::length(p), mA.groundRadius);
+    psi[static_cast<size_t>(j)] = psiMs(r, glm::dot(p, L) / glm::length(p));
+  }
+
+  glm::dvec3 radiance(0.0), tau(0.0);
+  for (int i = 0; i < mQ.viewSteps; ++i) {
+    const double s0 = double(i) / mQ.viewSteps, s1 = double(i + 1) / mQ.viewSteps;
+    const double t0 = warpT(s0, length, warp), t1 = warpT(s1, length, warp);
+    const double dt = t1 - t0;
+    const glm::dvec3 p = origin + 0.5 * (t0 + t1) * V;
+    const Medium m = medium(mA, glm::length(p) - mA.groundRadius);
+    const glm::dvec3 T = glm::exp(-(tau + 0.5 * dt * m.extinction));
+    const double x = 0.5 * (s0 + s1) * mQ.viewMsSteps;
+    const int j = std::min(static_cast<int>(x), mQ.viewMsSteps - 1);
+    const glm::dvec3 psiHere =
+        glm::mix(psi[static_cast<size_t>(j)], psi[static_cast<size_t>(j) + 1], x - j);
+    const glm::dvec3 single = (m.rayleigh * phaseR + m.mie * phaseM) * transmittanceToLight(p, L);
+    radiance += T * (single + (m.rayleigh + m.mie) * psiHere) * dt;
+    tau += m.extinction * dt;
+  }
+  if (transmittance) *transmittance = glm::exp(-tau);
+
+  glm::dvec3 ground(0.0);
+  if (withGround && hitsGround(mA, r0, V.z)) {
+    const glm::dvec3 p = origin + length * V;
+    const double muG = std::max(glm::dot(glm::normalize(p), L), 0.0);
+    ground = glm::exp(-tau) * mA.albedo / kPi * muG * transmittanceToLight(p, L);
+  }
+  return radiance + ground;
+}
+
+glm::dvec3 AtmosphereReference::skyRadiance(double r0, glm::dvec3 V, glm::dvec3 L) const {
+  return march(r0, V, L, rayLength(r0, V.z), true, nullptr);
+}
+
+glm::dvec3 AtmosphereReference::inScattered(double r0, glm::dvec3 V, glm::dvec3 L, double distance,
+                                            glm::dvec3* transmittance) const {
+  return march(r0, V, L, std::min(distance, rayLength(r0, V.z)), false, transmittance);
+}
+
+}  // namespace sky::test
