@@ -1,7 +1,7 @@
 #version 460
-// The final image in scene-linear Rec.709: the clear sky lit by sun and moon (Kozlov 3.1),
-// the star field, and the sun and moon discs. Later layers (high clouds, volumetric clouds,
-// aerial perspective) join here.
+// The final image in scene-linear Rec.709: the clear sky and the high clouds (from
+// passes/sky_high_clouds), the star field and the sun and moon discs behind the clouds.
+// Later layers (volumetric clouds through the aerial perspective) join here.
 #include "common/atmosphere_composite_shared.h"
 #include "common/view.glsl"
 #define LIGHTING_BINDING ATMOSPHERE_COMPOSITE_BINDING_LIGHTING
@@ -15,7 +15,9 @@ layout(std140, binding = ATMOSPHERE_COMPOSITE_BINDING_PARAMS) uniform Params {
   AtmosphereCompositeParams params;
 };
 layout(binding = ATMOSPHERE_COMPOSITE_BINDING_BEAUTY, rgba16f) uniform writeonly image2D beautyImage;
-layout(binding = ATMOSPHERE_COMPOSITE_BINDING_SKY, rgba16f) uniform writeonly image2D skyImage;
+layout(binding = ATMOSPHERE_COMPOSITE_BINDING_SKY, rgba16f) uniform readonly image2D skyImage;
+layout(binding = ATMOSPHERE_COMPOSITE_BINDING_HIGH_CLOUDS, rgba16f) uniform readonly image2D
+    highCloudImage;
 
 // Fraction of a pixel of angular size `pixel` covered by a disc of angular radius `radius`
 // whose centre is `distance` away (a box-filtered edge). A disc smaller than a pixel is
@@ -52,7 +54,8 @@ void main() {
   vec3 V = viewDirection(params.view, pixelCentre);
   LightingState L = lighting;
 
-  vec3 sky = clearSky(L, V);
+  vec3 sky = imageLoad(skyImage, ivec2(p)).rgb;
+  vec4 highClouds = imageLoad(highCloudImage, ivec2(p));  // premultiplied, a = coverage
 
   float pixelAngle = viewPixelAngle(params.view, V);
   // The ground hides what lies below the horizon, pixel by pixel.
@@ -84,6 +87,7 @@ void main() {
   vec3 stars = vec3(starFlux(ivec2(p)) * L.night.z / pixelSolidAngle(params.view, pixelCentre));
   stars *= (1.0 - moonCover) * aboveHorizon;
 
-  imageStore(skyImage, ivec2(p), vec4(sky, 1.0));
-  imageStore(beautyImage, ivec2(p), vec4(sky + stars + sunDisc + moonDisc, 1.0));
+  // What lies beyond the high clouds shows through their clear share.
+  vec3 behind = sky + stars + sunDisc + moonDisc;
+  imageStore(beautyImage, ivec2(p), vec4(behind * (1.0 - highClouds.a) + highClouds.rgb, 1.0));
 }

@@ -2,11 +2,15 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <charconv>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <iostream>
+#include <memory>
 
 #include "cli_args.h"
 #include "default_scene.h"
@@ -52,12 +56,17 @@ render options:
                        sequence (e.g. --set camera.heading=250); repeatable;
                        validated exactly like the file
   --dump-graph FILE    also write the compiled frame graph as Graphviz (dot -Tsvg FILE)
+  --debug-output NAME  also write NAME.<name>.exr; repeatable or comma-separated:
+                       coefficients, normals (high clouds); transmittance_lut,
+                       multiscattering_lut, sky_view_sun_lut, sky_view_moon_lut,
+                       aerial_perspective (sky.model physical)
   --gpu NAME|INDEX     Vulkan device by index or name substring (default: a GPU if
                        present, else lavapipe)
   --ocio FILE          OpenColorIO config (default: $OCIO, else configs/ocio/config.ocio)
 
 outputs:
-  NAME.exr   scene-linear Rec.709, half float: R,G,B,A (beauty) and layers sky.R/G/B
+  NAME.exr   scene-linear Rec.709, half float: R,G,B,A (beauty), layers sky.R/G/B
+             (clear sky) and high_clouds.R/G/B/A (premultiplied, A = coverage)
   NAME.png   8-bit display image through output.display / output.view, exposure applied
   NAME.json  settings, time, sun, moon and light (as `ephemeris` prints them),
              per-pass GPU milliseconds, total, device name
@@ -65,7 +74,8 @@ outputs:
 environment:
   SKY_VALIDATION=1   enable the Vulkan validation layers (messages go to stderr)
   SKY_DATA_DIR       folder holding shaders/ and configs/ (default: the source tree)
-  SKY_CACHE_DIR      SPIR-V cache folder (default: ~/.cache/skylayers)
+  SKY_CACHE_DIR      cache folder for SPIR-V and baked high-cloud textures
+                     (default: ~/.cache/skylayers)
   OCIO               OpenColorIO config used when --ocio is absent
 
 exit codes: 0 success, 2 bad input (scene, arguments, files), 1 internal or device error.
@@ -96,6 +106,15 @@ Scene loadScene(const CliArgs& args, bool required) {
   return loadSceneFile(args.positional()[0], overridesFrom(args));
 }
 
+// "\r[#####.....] text" on stderr: one line that redraws itself.
+void drawBar(double fraction, const std::string& text) {
+  constexpr int kWidth = 30;
+  int filled = std::clamp(static_cast<int>(kWidth * fraction), 0, kWidth);
+  std::fprintf(stderr, "\r[%s%s] %s", std::string(filled, '#').c_str(),
+               std::string(kWidth - filled, '.').c_str(), text.c_str());
+  std::fflush(stderr);
+}
+
 // A one-line progress bar on stderr for time-lapses, only when stderr is a terminal (logs and
 // tests get the final summary line alone).
 class Progress {
@@ -103,12 +122,8 @@ public:
   explicit Progress(int64_t count) : mCount(count), mEnabled(count > 1 && isatty(2)) {}
   void show(int64_t index, const IsoTime& time) const {
     if (!mEnabled) return;
-    constexpr int kWidth = 30;
-    int filled = static_cast<int>(kWidth * index / mCount);
-    std::fprintf(stderr, "\r[%s%s] %lld/%lld %s", std::string(filled, '#').c_str(),
-                 std::string(kWidth - filled, '.').c_str(), static_cast<long long>(index + 1),
-                 static_cast<long long>(mCount), time.format().c_str());
-    std::fflush(stderr);
+    drawBar(static_cast<double>(index) / static_cast<double>(mCount),
+            std::to_string(index + 1) + "/" + std::to_string(mCount) + " " + time.format());
   }
   void done() const {
     if (mEnabled) std::fprintf(stderr, "\r\033[K");  // clear the bar's line
@@ -163,12 +178,45 @@ int ephemerisCommand(const std::vector<std::string>& argv) {
   return 0;
 }
 
+// A bar for a high-cloud bake, on a terminal only and only once the bake has taken a
+// noticeable time (a quick bake draws nothing); it clears its line when the bake ends.
+std::function<void(double)> bakeProgressBar() {
+  if (!isatty(2)) return {};
+  auto start = std::make_shared<std::chrono::steady_clock::time_point>();
+  auto shown = std::make_shared<bool>(false);
+  return [start, shown](double fraction) {
+    auto now = std::chrono::steady_clock::now();
+    if (fraction <= 0.0) *start = now;
+    if (fraction >= 1.0) {
+      if (*shown) std::fprintf(stderr, "\r\033[K");
+      *shown = false;
+      return;
+    }
+    if (now - *start < std::chrono::milliseconds(300)) return;
+    *shown = true;
+    drawBar(fraction,
+            "baking high clouds " + std::to_string(static_cast<int>(fraction * 100)) + "%");
+  };
+}
+
 int renderCommand(const std::vector<std::string>& argv) {
   CliArgs args(argv,
                {"--out", "--name", "--width", "--height", "--time", "--set", "--dump-graph",
-                "--gpu", "--ocio"},
-               {"--set"}, {});
+                "--gpu", "--ocio", "--debug-output"},
+               {"--set", "--debug-output"}, {});
   Scene scene = loadScene(args, false);
+  RenderOptions renderOptions;
+  for (const std::string& v : args.values("--debug-output")) {
+    // Accepts "--debug-output a,b" as well as repeats.
+    size_t start = 0;
+    while (start <= v.size()) {
+      size_t comma = v.find(',', start);
+      if (comma == std::string::npos) comma = v.size();
+      renderOptions.debugOutputs.push_back(v.substr(start, comma - start));
+      start = comma + 1;
+    }
+  }
+  checkDebugOutputs(scene, renderOptions.debugOutputs);
 
   // Check everything the user controls before any GPU work, so bad input fails fast.
   std::optional<fs::path> ocioPath;
@@ -190,6 +238,7 @@ int renderCommand(const std::vector<std::string>& argv) {
   Context ctx(options);
   ShaderCompiler compiler;
   Renderer renderer(ctx, compiler);
+  renderer.setBakeProgress(bakeProgressBar());
 
   const int64_t count = scene.time.frameCount();
   Progress progress(count);
@@ -198,7 +247,7 @@ int renderCommand(const std::vector<std::string>& argv) {
   for (int64_t i = 0; i < count; ++i) {
     const IsoTime time = scene.time.frame(i);
     progress.show(i, time);
-    RenderedFrame frame = renderer.render(scene, time);
+    RenderedFrame frame = renderer.render(scene, time, renderOptions);
     // The graph is the same every frame; the first one is written.
     RenderFiles files =
         writeRenderFiles(outDir, frameStem(scene.output.name, i, count), scene, frame, ocio,

@@ -62,6 +62,22 @@ RenderFiles writeRenderFiles(const std::filesystem::path& dir, const std::string
   for (const ImageLayer& l : frame.image.layers)
     layers.push_back(l.name.empty() ? "beauty" : l.name);
   report["exr_layers"] = layers;
+  nlohmann::ordered_json highClouds;
+  highClouds["baked"] = frame.highClouds.baked;
+  highClouds["loaded_cache"] = frame.highClouds.loadedCache;
+  highClouds["loaded_images"] = frame.highClouds.loadedImages;
+  if (!frame.highClouds.cacheFile.empty())
+    highClouds["cache_file"] = frame.highClouds.cacheFile.string();
+  nlohmann::ordered_json bake = nlohmann::ordered_json::array();
+  for (const PassTiming& t : frame.highClouds.bakeTimings)
+    bake.push_back({{"name", t.name}, {"gpu_ms", t.gpuMs}});
+  highClouds["bake_passes"] = bake;
+  report["high_cloud_textures"] = highClouds;
+  for (const DebugImage& d : frame.debug)
+    files.debug.push_back(dir / (stem + "." + d.name + ".exr"));
+  nlohmann::ordered_json debug = nlohmann::ordered_json::array();
+  for (const std::filesystem::path& p : files.debug) debug.push_back(p.filename().string());
+  report["debug_outputs"] = debug;
   report["settings"] = sceneToJson(scene);
 
   LayeredImage exr = frame.image;
@@ -74,6 +90,10 @@ RenderFiles writeRenderFiles(const std::filesystem::path& dir, const std::string
   });
   set.stage(files.report,
             [&](const std::filesystem::path& tmp) { writeFileAtomic(tmp, report.dump(2) + "\n"); });
+  for (size_t i = 0; i < frame.debug.size(); ++i)
+    set.stage(files.debug[i], [&frame, i](const std::filesystem::path& tmp) {
+      writeExr(tmp, frame.debug[i].image);
+    });
   if (graphPath)
     set.stage(*graphPath,
               [&](const std::filesystem::path& tmp) { writeFileAtomic(tmp, frame.graphDot); });

@@ -1,7 +1,8 @@
 #pragma once
 // Writes a rendered frame as STEM.exr (scene-linear, multi-layer), STEM.png (display-referred
 // through the OCIO display/view) and STEM.json (settings, lighting, per-pass GPU ms, device)
-// — all three or none: each goes to a temporary file first and they are renamed together.
+// and STEM.<name>.exr per requested debug image — all or none: each goes to a temporary
+// file first and they are renamed together.
 // STEM is output.name for a single frame, output.name_0001 ... for a time-lapse.
 #include <filesystem>
 #include <optional>
@@ -16,6 +17,7 @@ class OcioOutput;
 
 struct RenderFiles {
   std::filesystem::path exr, png, report;
+  std::vector<std::filesystem::path> debug;    // STEM.<name>.exr per debug image
   std::optional<std::filesystem::path> graph;  // --dump-graph
 };
 

@@ -1,8 +1,12 @@
 #pragma once
 // Scene in, scene-linear layered image out: builds one frame graph per frame from the
-// passes, executes it and collects the main image and AOVs. Owns the passes' pipelines and
-// the star catalogue on the GPU, so create it once and render many frames.
+// passes, executes it and collects the main image, the AOVs and any debug images. Owns the
+// passes' pipelines, the star catalogue, the high-cloud textures and the atmosphere LUTs on
+// the GPU, so create it once and render many frames: what does not depend on the time of day
+// (baked textures, transmittance and multiple-scattering LUTs) is made once and reused.
+#include <functional>
 #include <string>
+#include <vector>
 
 #include "engine/graph/frame_graph.h"
 #include "engine/graph/graph_runtime.h"
@@ -10,6 +14,9 @@
 #include "engine/lighting/lighting_state.h"
 #include "engine/scene/scene.h"
 #include "passes/atmosphere_composite/atmosphere_composite.h"
+#include "passes/atmosphere_luts/atmosphere_luts.h"
+#include "passes/high_cloud_textures/high_cloud_textures.h"
+#include "passes/sky_high_clouds/sky_high_clouds.h"
 #include "passes/star_field/star_field.h"
 
 namespace sky {
@@ -17,11 +24,33 @@ namespace sky {
 class Context;
 class ShaderCompiler;
 
+// Extra images a render can write besides the frame (the debug view): the high-cloud
+// coefficient texture and normal map, and the physical sky's LUTs.
+struct DebugOutputInfo {
+  const char* name;
+  const char* description;
+  bool physicalOnly;  // exists only with sky.model physical
+};
+const std::vector<DebugOutputInfo>& debugOutputs();
+// BadInput naming the first unknown name, or one that `scene` does not produce.
+void checkDebugOutputs(const Scene& scene, const std::vector<std::string>& names);
+
+struct RenderOptions {
+  std::vector<std::string> debugOutputs;  // names from debugOutputs(), checked
+};
+
+struct DebugImage {
+  std::string name;    // e.g. "transmittance_lut"
+  LayeredImage image;  // main layer; a 3D image has its depth slices side by side
+};
+
 struct RenderedFrame {
-  LayeredImage image;      // layer "" = beauty (R,G,B,A); "sky" = clear sky (R,G,B)
+  LayeredImage image;      // "" = beauty (R,G,B,A); "sky" (R,G,B); "high_clouds" (R,G,B,A)
   FrameResult frame;       // per-pass GPU timings, wall time
   std::string graphDot;    // the compiled graph with timings (for --dump-graph)
   LightingState lighting;  // the sun, moon, palette and night state the frame was lit by
+  HighCloudTextures::Activity highClouds;  // whether the textures were baked, loaded or kept
+  std::vector<DebugImage> debug;           // as requested in RenderOptions
 };
 
 class Renderer {
@@ -30,14 +59,19 @@ public:
   Renderer(const Context& ctx, ShaderCompiler& compiler);
   // Renders `scene` at its output size as seen at `time` (one frame of scene.time).
   // Errors: sky::Error (BadInput when the size is impossible on this device or does not fit
-  // in memory).
-  RenderedFrame render(const Scene& scene, const IsoTime& time);
+  // in memory, or a high-cloud image is missing or malformed).
+  RenderedFrame render(const Scene& scene, const IsoTime& time, const RenderOptions& options = {});
   // The first (or only) frame of the scene's time.
   RenderedFrame render(const Scene& scene) { return render(scene, scene.time.start); }
+  // Called with the share done (0..1) while a high-cloud texture bakes.
+  void setBakeProgress(std::function<void(double)> progress);
 
 private:
   GraphRuntime mRuntime;
   StarFieldPass mStars;
+  HighCloudTextures mHighCloudTextures;
+  AtmosphereLuts mAtmosphere;
+  SkyHighCloudsPass mSky;
   AtmosphereCompositePass mComposite;
 };
 

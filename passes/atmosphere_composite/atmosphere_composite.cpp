@@ -18,14 +18,14 @@ AtmosphereCompositePass::AtmosphereCompositePass(const Context& ctx, ShaderCompi
 AtmosphereCompositePass::Outputs AtmosphereCompositePass::setup(GraphBuilder& b, const Inputs& in) {
   mInputs = in;
   b.read(in.starFlux, Access::StorageReadCompute);
+  b.read(in.sky, Access::StorageReadCompute);
+  b.read(in.highClouds, Access::StorageReadCompute);
   ImageDesc desc;
   desc.format = VK_FORMAT_R16G16B16A16_SFLOAT;
   desc.width = in.params.view.size.x;
   desc.height = in.params.view.size.y;
   desc.name = "beauty";
   mOutputs.beauty = b.write(b.create(desc), Access::StorageWriteCompute);
-  desc.name = "sky";
-  mOutputs.sky = b.write(b.create(desc), Access::StorageWriteCompute);
   return mOutputs;
 }
 
@@ -34,7 +34,8 @@ void AtmosphereCompositePass::execute(PassContext& ctx) const {
   ctx.dispatch(mPipeline,
                {Binding::of(ATMOSPHERE_COMPOSITE_BINDING_PARAMS, ctx.uniform(mInputs.params)),
                 Binding::of(ATMOSPHERE_COMPOSITE_BINDING_BEAUTY, mOutputs.beauty),
-                Binding::of(ATMOSPHERE_COMPOSITE_BINDING_SKY, mOutputs.sky),
+                Binding::of(ATMOSPHERE_COMPOSITE_BINDING_SKY, mInputs.sky),
+                Binding::of(ATMOSPHERE_COMPOSITE_BINDING_HIGH_CLOUDS, mInputs.highClouds),
                 Binding::of(ATMOSPHERE_COMPOSITE_BINDING_LIGHTING, ctx.uniform(mInputs.lighting)),
                 Binding::of(ATMOSPHERE_COMPOSITE_BINDING_STARS, mInputs.starFlux)},
                mPipeline.groupsX(size.x), mPipeline.groupsY(size.y));

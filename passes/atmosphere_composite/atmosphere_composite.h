@@ -1,7 +1,7 @@
 #pragma once
-// The atmosphere composite: the final scene-linear image. The Kozlov 3.1 clear sky lit by
-// sun and moon, the star field, and the sun and moon discs, all from the frame's
-// LightingState; later issues add high clouds, volumetric clouds and aerial perspective.
+// The atmosphere composite: the final scene-linear image. The clear sky and high clouds of
+// passes/sky_high_clouds, the star field, and the sun and moon discs from the frame's
+// LightingState, seen through the high clouds; the volumetric clouds join here later.
 #include "engine/gpu/compute_pipeline.h"
 #include "engine/graph/frame_graph.h"
 #include "engine/graph/pass_context.h"
@@ -20,10 +20,11 @@ public:
     shared::AtmosphereCompositeParams params;  // the view
     shared::LightingState lighting;            // this frame's lights and palette
     BufferId starFlux;                         // from StarFieldPass
+    ImageId sky;                               // from SkyHighCloudsPass
+    ImageId highClouds;                        // from SkyHighCloudsPass
   };
   struct Outputs {
     ImageId beauty;  // RGBA16F scene-linear, alpha 1
-    ImageId sky;     // the clear sky alone (no sun disc), an AOV
   };
 
   // Compiles the shader and builds the pipeline (once, at renderer start-up).

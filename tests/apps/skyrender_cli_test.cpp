@@ -99,8 +99,8 @@ TEST_F(SkyrenderCli, RendersTheDefaultSceneIntoExrPngAndReport) {
     passNames.push_back(p["name"]);
     EXPECT_GE(p["gpu_ms"].get<double>(), 0.0);
   }
-  EXPECT_THAT(passNames, ::testing::ElementsAre("star_clear", "star_field", "atmosphere_composite",
-                                                "readback"));
+  EXPECT_THAT(passNames, ::testing::ElementsAre("star_clear", "star_field", "sky_high_clouds",
+                                                "atmosphere_composite", "readback"));
   EXPECT_EQ(report["light"]["key"], "sun");
   EXPECT_EQ(report["time"], "2024-06-21T19:00:00+02:00");
   EXPECT_TRUE(report.contains("gpu_ms_total"));
@@ -343,12 +343,71 @@ TEST_F(SkyrenderCli, DayTimeLapseHasNoJumpsBetweenFrames) {
   EXPECT_EQ(keys, (std::vector<std::string>{"sun", "moon", "sun"}));
 }
 
+TEST_F(SkyrenderCli, BadHighCloudAndAtmosphereInputExitsTwo) {
+  const std::string tiny = "--width 16 --height 9 ";
+  expectBadInput(tiny + "--set high_clouds.source=image --set high_clouds.coefficients=" +
+                     (mDir / "none.png").string(),
+                 {"high_clouds.coefficients", "none.png"});
+  // An RGB image where RGBA is needed, and a non-square one.
+  LayeredImage flat;
+  flat.width = 16;
+  flat.height = 16;
+  flat.layers.push_back({"", {"R", "G", "B"}, std::vector<float>(16 * 16 * 3, 0.5f)});
+  writeExr(mDir / "rgb.exr", flat);
+  expectBadInput(tiny + "--set high_clouds.source=image --set high_clouds.coefficients=" +
+                     (mDir / "rgb.exr").string(),
+                 {"high_clouds.coefficients", "rgb.exr", "RGBA"});
+  flat.width = 32;
+  flat.layers[0] = {"", {"R", "G", "B", "A"}, std::vector<float>(32 * 16 * 4, 0.5f)};
+  writeExr(mDir / "wide.exr", flat);
+  expectBadInput(tiny + "--set high_clouds.source=image --set high_clouds.coefficients=" +
+                     (mDir / "wide.exr").string(),
+                 {"high_clouds.coefficients", "wide.exr", "square"});
+  expectBadInput(tiny + "--set atmosphere.mie_scale_height_km=-1.2",
+                 {"atmosphere.mie_scale_height_km", "out of range"});
+  expectBadInput(tiny + "--set high_clouds.resolution=300",
+                 {"high_clouds.resolution", "power of two"});
+  expectBadInput(tiny + "--debug-output transmittance_lut",
+                 {"transmittance_lut", "sky.model physical"});
+  expectBadInput(tiny + "--debug-output nope", {"--debug-output nope", "known"});
+}
+
+TEST_F(SkyrenderCli, DebugOutputsAreWrittenBesideTheFrame) {
+  CliRun r =
+      run("render --width 32 --height 18 --name dbg --set sky.model=physical "
+          "--set high_clouds.cover=0.5 --set high_clouds.resolution=64 "
+          "--debug-output coefficients,normals --debug-output transmittance_lut "
+          "--debug-output multiscattering_lut,sky_view_sun_lut,sky_view_moon_lut "
+          "--debug-output aerial_perspective --out " +
+          out());
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const fs::path dir = out();
+  EXPECT_EQ(readExr(dir / "dbg.coefficients.exr").width, 64);
+  EXPECT_EQ(readExr(dir / "dbg.normals.exr").height, 64);
+  LayeredImage t = readExr(dir / "dbg.transmittance_lut.exr");
+  EXPECT_EQ(t.width, 256);
+  EXPECT_EQ(t.height, 64);
+  EXPECT_EQ(readExr(dir / "dbg.multiscattering_lut.exr").width, 32);
+  EXPECT_EQ(readExr(dir / "dbg.sky_view_sun_lut.exr").width, 192);
+  EXPECT_EQ(readExr(dir / "dbg.sky_view_moon_lut.exr").height, 108);
+  LayeredImage ap = readExr(dir / "dbg.aerial_perspective.exr");
+  EXPECT_EQ(ap.width, 32 * 32);
+  EXPECT_EQ(ap.height, 32);
+  LayeredImage frame = readExr(dir / "dbg.exr");
+  ASSERT_NE(frame.find("high_clouds"), nullptr);
+  EXPECT_EQ(frame.find("high_clouds")->channels.size(), 4u);
+  const nlohmann::json report = nlohmann::json::parse(readTextFile(dir / "dbg.json"));
+  EXPECT_EQ(report["debug_outputs"].size(), 7u);
+  EXPECT_TRUE(report["high_cloud_textures"].contains("baked"));
+}
+
 TEST_F(SkyrenderCli, HelpDocumentsEveryOption) {
   CliRun r = run("render --help");
   EXPECT_EQ(r.rc, 0);
-  for (const char* opt : {"--out", "--name", "--width", "--height", "--time", "--set",
-                          "--dump-graph", "--gpu", "--ocio", "ephemeris", "--lat", "--lon",
-                          "--height-m", "--pressure-hpa", "--temperature-c", "START/END/STEP"})
+  for (const char* opt :
+       {"--out", "--name", "--width", "--height", "--time", "--set", "--dump-graph", "--gpu",
+        "--ocio", "ephemeris", "--lat", "--lon", "--height-m", "--pressure-hpa", "--temperature-c",
+        "START/END/STEP", "--debug-output", "high_clouds.R/G/B/A", "aerial_perspective"})
     EXPECT_THAT(r.out, HasSubstr(opt));
 }
 

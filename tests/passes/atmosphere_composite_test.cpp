@@ -18,30 +18,14 @@
 #include "engine/scene/scene_io.h"
 #include "engine/shader/shader_compiler.h"
 #include "gpu_test.h"
+#include "kozlov_reference.h"
 
 namespace sky {
 namespace {
 namespace fs = std::filesystem;
 
-glm::vec3 referenceDirection(const CameraSettings& cam, int w, int h, int x, int y) {
-  shared::ViewState v = makeViewState(cam, w, h);
-  const float nx = (x + 0.5f) / w * 2 - 1, ny = (y + 0.5f) / h * 2 - 1;
-  return glm::normalize(glm::vec3(v.forward) + nx * v.right.w * glm::vec3(v.right) -
-                        ny * v.up.w * glm::vec3(v.up));
-}
-
-// Kozlov 3.1, written independently of shaders/common/kozlov_sky.glsl.
-glm::vec3 referenceKozlov(glm::vec3 v, glm::vec3 s, const PaletteKey& p, const SkySettings& sky) {
-  const float l = static_cast<float>(sky.glowSize) * std::pow(std::max(glm::dot(v, s), 0.0f), 2.0f);
-  const float h = std::min(std::max(v.z, 0.0f) / static_cast<float>(sky.hazeHeight), 1.0f);
-  return (p.skyColor * h + p.fogColor * (1.0f - h)) * (1.0f - l) + p.glowColor * l;
-}
-
-// The clear sky of a frame: the daylit sky around the sun plus the moonlit one around the moon.
-glm::vec3 referenceClearSky(glm::vec3 v, const LightingState& st, const SkySettings& sky) {
-  return referenceKozlov(v, glm::vec3(st.sun.direction), st.palette, sky) +
-         referenceKozlov(v, glm::vec3(st.moon.direction), st.moonPalette, sky);
-}
+using test::referenceClearSky;
+using test::referenceDirection;
 
 // Solid angle of pixel (x, y) of a pinhole image: p^2 cos^3 t at angle t off axis.
 double pixelSolidAngle(const CameraSettings& cam, int w, int h, int x, int y) {

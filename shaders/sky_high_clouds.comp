@@ -1,0 +1,137 @@
+#version 460
+// The upper layer: the clear sky (Kozlov 3.1 from the palette, or the physical sky-view LUTs
+// with SKY_PHYSICAL_SKY) and the high-cloud layer, a coefficient texture and normal map on a
+// sphere at the layer's altitude, shaded by Kozlov 3.2-3.4 for the sun and the moon.
+// Writes the sky alone and the clouds premultiplied (rgb radiance, a coverage = 1 - clear).
+#include "common/sky_high_clouds_shared.h"
+#include "common/view.glsl"
+#define LIGHTING_BINDING SKY_HIGH_CLOUDS_BINDING_LIGHTING
+#include "common/lighting.glsl"
+#include "common/kozlov_clouds.glsl"
+#if SKY_PHYSICAL_SKY
+#include "common/atmosphere.glsl"
+#endif
+
+layout(local_size_x = SKY_HIGH_CLOUDS_GROUP_X, local_size_y = SKY_HIGH_CLOUDS_GROUP_Y) in;
+
+layout(std140, binding = SKY_HIGH_CLOUDS_BINDING_PARAMS) uniform Params {
+  SkyHighCloudsParams params;
+};
+layout(binding = SKY_HIGH_CLOUDS_BINDING_SKY, rgba16f) uniform writeonly image2D skyImage;
+layout(binding = SKY_HIGH_CLOUDS_BINDING_CLOUDS, rgba16f) uniform writeonly image2D cloudImage;
+layout(binding = SKY_HIGH_CLOUDS_BINDING_COEFFICIENTS) uniform sampler2D coefficientTexture;
+layout(binding = SKY_HIGH_CLOUDS_BINDING_NORMALS) uniform sampler2D normalTexture;
+layout(binding = SKY_HIGH_CLOUDS_BINDING_COARSE) uniform sampler2D coarseTexture;
+#if SKY_PHYSICAL_SKY
+layout(std140, binding = SKY_HIGH_CLOUDS_BINDING_ATMOSPHERE) uniform AtmosphereBlock {
+  AtmosphereParams atmosphere;
+};
+layout(binding = SKY_HIGH_CLOUDS_BINDING_TRANSMITTANCE) uniform sampler2D transmittanceLut;
+layout(binding = SKY_HIGH_CLOUDS_BINDING_SKY_VIEW_SUN) uniform sampler2D skyViewSunLut;
+layout(binding = SKY_HIGH_CLOUDS_BINDING_SKY_VIEW_MOON) uniform sampler2D skyViewMoonLut;
+#endif
+
+// The clear sky in direction V, without discs or stars (the composite adds those).
+vec3 skyRadiance(LightingState L, vec3 V) {
+#if SKY_PHYSICAL_SKY
+  // Hillaire 2020: the sky-view LUTs already carry each light's illuminance.
+  return skyViewRadiance(atmosphere, skyViewSunLut, V, L.sun.direction.xyz) +
+         skyViewRadiance(atmosphere, skyViewMoonLut, V, L.moon.direction.xyz);
+#else
+  return clearSky(L, V);  // Kozlov 3.1 around the sun and the moon
+#endif
+}
+
+// Distance along V from the camera (at height cameraR above the centre, on the z axis) to the
+// sphere of radius `radius`, the nearest hit ahead, or -1 if none.
+float sphereHit(float cameraR, vec3 V, float radius) {
+  float b = cameraR * V.z;
+  float c = cameraR * cameraR - radius * radius;
+  float disc = b * b - c;
+  if (disc < 0.0) return -1.0;
+  float s = sqrt(disc);
+  // Camera inside the sphere: the far root; outside: the near root if it is ahead.
+  if (c < 0.0) return -b + s;
+  float t = -b - s;
+  return t > 0.0 ? t : -1.0;
+}
+
+// The light's illuminance arriving at the layer point `up` (unit, from the planet's centre).
+vec3 lightAtLayer(vec3 up, vec3 S, vec3 kozlovValue, vec3 above) {
+#if SKY_PHYSICAL_SKY
+  // Per pixel through the transmittance LUT (zero where the planet hides the light); the
+  // atmosphere works in km.
+  return above * transmittanceToTop(atmosphere, transmittanceLut, params.layer.z * 1e-3, dot(up, S));
+#else
+  return kozlovValue;  // computed on the CPU for the layer's altitude
+#endif
+}
+
+void main() {
+  uvec2 p = gl_GlobalInvocationID.xy;
+  if (any(greaterThanEqual(p, params.view.size.xy))) return;
+  vec3 V = viewDirection(params.view, vec2(p) + 0.5);
+  LightingState L = lighting;
+  vec3 sky = skyRadiance(L, V);
+  imageStore(skyImage, ivec2(p), vec4(sky, 1.0));
+
+  vec4 clouds = vec4(0.0);
+  float planetR = params.layer.x, cameraR = params.layer.y, layerR = params.layer.z;
+  float t = params.layer.w > 0.0 ? sphereHit(cameraR, V, layerR) : -1.0;
+  // The ground hides the layer behind it (looking down from below the layer).
+  float ground = sphereHit(cameraR, V, planetR);
+  if (t > 0.0 && (ground < 0.0 || ground > t)) {
+    vec3 hit = vec3(0.0, 0.0, cameraR) + t * V;  // from the planet's centre
+    vec3 up = normalize(hit);
+    // The layer's tangent frame: east and north at the hit point (u east, v north).
+    vec3 east = normalize(vec3(1.0, 0.0, 0.0) - up * up.x);
+    vec3 north = cross(up, east);
+
+    // Texture coordinates: ground distance east/north of the camera plus the wind's drift,
+    // in tiles. Row 0 of the texture is its north edge, so v runs south.
+    vec2 metres = hit.xy * (layerR / length(hit)) + params.texture.xy;
+    vec2 uv = vec2(metres.x, -metres.y) / params.texture.z;
+
+    // Texture footprint of this pixel: a pixel angle at distance t, stretched by the grazing
+    // angle. Past one texel the detail is sub-pixel: blend to the 16x box-filtered level, and
+    // past 16 texels to the texture's mean, so the horizon does not shimmer (the textures have
+    // no mip chain).
+    float grazing = max(abs(dot(V, up)), 0.02);
+    float footprintM = viewPixelAngle(params.view, V) * t / grazing;
+    float texels = footprintM * params.texture.w / params.texture.z;
+    float toCoarse = clamp(log2(max(texels, 1e-6)) / 4.0, 0.0, 1.0);
+    float coarseTexels = texels * params.shading.z / params.texture.w;
+    float toMean = clamp(log2(max(coarseTexels, 1e-6)) / 4.0, 0.0, 1.0);
+    vec4 c = mix(mix(texture(coefficientTexture, uv), texture(coarseTexture, uv), toCoarse),
+                 params.meanCoefficients, toMean);
+    c = clamp(c, 0.0, 1.0);
+    vec3 n = normalize(mix(texture(normalTexture, uv).xyz, vec3(0.0, 0.0, 1.0), toCoarse));
+
+    vec3 rgb = vec3(0.0);
+    float edgeWidth = params.shading.y;
+    {
+      vec3 S = L.sun.direction.xyz;
+      vec3 St = vec3(dot(S, east), dot(S, north), dot(S, up));
+      vec3 E = lightAtLayer(up, S, params.sunAtLayer.rgb, L.sunSpace.rgb);
+      rgb += kozlovCloudTerms(c, n, St, dot(V, S), E, L.palette, edgeWidth);
+    }
+    {
+      vec3 M = L.moon.direction.xyz;
+      vec3 Mt = vec3(dot(M, east), dot(M, north), dot(M, up));
+      vec3 E = lightAtLayer(up, M, params.moonAtLayer.rgb, L.moonSpace.rgb);
+      rgb += kozlovCloudTerms(c, n, Mt, dot(V, M), E, L.moonPalette, edgeWidth);
+    }
+    rgb *= params.shading.x;
+    float coverage = 1.0 - c.b;  // the clear-sky channel is the layer's transmittance
+
+    // Air between the camera and the layer: the clouds fade into the sky toward the horizon.
+#if SKY_PHYSICAL_SKY
+    vec3 through = transmittanceAlong(atmosphere, transmittanceLut, V, t * 1e-3);
+#else
+    // Kozlov 3.1's haze: h = min(z / hmax, 1) is how much of the sky colour is not fog.
+    vec3 through = vec3(min(max(V.z, 0.0) / L.palette.fog.w, 1.0));
+#endif
+    clouds = vec4(rgb * through + coverage * (1.0 - through) * sky, coverage);
+  }
+  imageStore(cloudImage, ivec2(p), clouds);
+}
