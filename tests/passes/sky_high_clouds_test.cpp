@@ -238,6 +238,31 @@ TEST_F(SkyHighCloudsTest, CirrostratusIsLitByTheFullMoon) {
   (void)farNone;
 }
 
+TEST_F(SkyHighCloudsTest, LayerSeenFromAboveIsNotLostInHaze) {
+  // From an aircraft above the layer the clouds lie below the horizon; 3.1's haze must count
+  // the downward path, not hide the whole layer as fog.
+  Scene scene = testScene("cirrostratus_full_moon", {"camera.altitude_m=11000", "camera.pitch=-40",
+                                                     "time=2024-06-21T13:00:00+02:00"});
+  RenderedFrame frame = render(scene);
+  const ImageLayer* clouds = frame.image.find("high_clouds");
+  const ImageLayer* sky = frame.image.find("sky");
+  const size_t n = static_cast<size_t>(frame.image.width) * frame.image.height;
+  double differs = 0.0;
+  int count = 0;
+  for (size_t i = 0; i < n; ++i) {
+    const float a = clouds->pixels[i * 4 + 3];
+    if (a < 0.3f) continue;
+    // Lost in haze, the layer would be its coverage times the sky behind it.
+    const float fog[3] = {a * sky->pixels[i * 3], a * sky->pixels[i * 3 + 1],
+                          a * sky->pixels[i * 3 + 2]};
+    differs += std::abs(luminance(&clouds->pixels[i * 4]) - luminance(fog)) /
+               std::max(luminance(fog), 1e-6);
+    ++count;
+  }
+  ASSERT_GT(count, static_cast<int>(n / 4)) << "the layer fills the view below";
+  EXPECT_GT(differs / count, 0.1) << "the clouds are drawn, not replaced by haze";
+}
+
 // ---- No re-bake when the light moves -----------------------------------------------------
 
 bool hasPass(const RenderedFrame& f, const std::string& name) {
