@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include "engine/scene/iso_time.h"
@@ -35,6 +36,11 @@ struct CameraSettings {
   // "perspective" (a pinhole) or "equirectangular" (the whole sky, 360 x 180 degrees,
   // centred on `heading`; pitch and vertical_fov are ignored).
   std::string projection = "perspective";
+  // "observer": a camera at latitude/longitude/altitude_m looking along heading/pitch.
+  // "geographic_topdown": the weather region mapped exactly onto the image (row 0 = north
+  // edge, column 0 = west edge, equal lat/lon spacing), rays straight down from above the
+  // top cloud layer; the other camera keys are ignored.
+  std::string mode = "observer";
 };
 
 // `time` is one instant or a time-lapse range. In a file: a single ISO 8601 string, the
@@ -115,6 +121,70 @@ struct HighCloudSettings {
   double brightness = 1.0;            // multiplies the cloud terms, 0..100
 };
 
+// A volumetric cloud layer: a spherical shell between two altitudes above sea level.
+struct CloudLayerSettings {
+  double baseM = 0.0;  // 0..30000
+  double topM = 0.0;   // > baseM
+
+  bool operator==(const CloudLayerSettings&) const = default;
+};
+
+// The volumetric low and mid clouds (Lu et al. 2023, Tang et al. 2019), raymarched through
+// the shells of `low` and `mid`, with cover and type from the weather map. See docs/clouds.md.
+struct CloudSettings {
+  std::string model = "lu2023";         // "lu2023" | "tang2019": density and noise model
+  std::string coverage = "calibrated";  // "calibrated" | "paper": how cover sets the remap
+  double extinction = 0.04;             // sigma_t per metre at density 1, 1e-5..1
+  double g = 0.6;                       // Henyey-Greenstein asymmetry, Lu (23), -0.99..0.99
+  std::string phase = "dual_lobe";      // "hg" | "dual_lobe" (adds a back-scattering lobe)
+  double gBack = -0.3;                  // the back lobe's asymmetry, -0.99..0
+  double backWeight = 0.2;              // the back lobe's share, 0..1
+  double attenuationClamp = 0.15;       // Lu's ac, 0..1, Lu (22)
+  double stepM = 60.0;                  // view-ray step near the camera, metres
+  double stepGrowth = 0.004;            // extra step length per metre of distance
+  int maxSteps = 256;                   // per view ray
+  int lightSteps = 5;                   // short steps toward the light (plus one long one)
+  double lightDistanceM = 1200.0;       // length covered by the short light steps, metres
+  double transmittanceCutoff = 0.01;    // stop marching below this transmittance
+  bool energyConserving = true;         // Hillaire 2016's integration of each step
+  int scatteringOctaves = 3;            // multiple-scattering octaves (Wrenninge); 1 = single
+  double shapeScaleKm = 16.0;           // ground size of one repeat of the shape noise
+  double detailScaleKm = 2.0;           // ground size of one repeat of the detail noise
+  double windSpeedMs = 10.0;            // moves the noise with time, 0..200
+  double windFrom = 270.0;              // degrees clockwise from north
+  CloudLayerSettings low{500.0, 2500.0};
+  CloudLayerSettings mid{3000.0, 6500.0};
+};
+
+// The weather region: latitudes [south, north] and longitudes [west, east] in degrees.
+struct WeatherRegion {
+  glm::dvec2 lat{45.0, 50.0};
+  glm::dvec2 lon{5.0, 12.0};
+
+  bool operator==(const WeatherRegion&) const = default;
+};
+
+// The weather map the volumetric clouds read: per lat/lon cell the low and mid cover (Lu's
+// CMc), the cloud type and a density scale. See docs/weather.md.
+struct WeatherSettings {
+  std::string source = "procedural";  // "procedural" | "image"
+  WeatherRegion region;
+  // procedural: fbm cover around a mean, per layer.
+  double coverLow = 0.0;   // mean low-layer cover, 0..1 (0: no low clouds)
+  double coverMid = 0.0;   // mean mid-layer cover, 0..1
+  double spread = 0.5;     // how far cover varies around the mean, 0..1
+  double scaleKm = 150.0;  // feature size of the cover pattern, km
+  int seed = 1;            // 0..2^31-1
+  int resolution = 256;    // map texels along its longer side, 8..8192
+  // "stratus" | "stratocumulus" | "cumulus" | "altostratus" | "altocumulus": the map's type
+  // channel (0 stratiform, 0.5 cellular, 1 convective), shared by both layers.
+  std::string cloudType = "cumulus";
+  // image: RGBA PNG/EXR over the region (R low cover, G mid cover, B type, A density scale).
+  std::string image;
+
+  bool operator==(const WeatherSettings&) const = default;
+};
+
 // One palette keyframe: the Kozlov colours at a sun elevation. Colours are scene-linear in
 // the renderer's units (1 = 10^4 cd/m^2) as they should appear after the night exposure
 // lift (see docs/lighting.md), so night keyframes are small numbers.
@@ -156,6 +226,8 @@ struct Scene {
   SkySettings sky;
   AtmosphereSettings atmosphere;
   HighCloudSettings highClouds;
+  CloudSettings clouds;
+  WeatherSettings weather;
   LightingSettings lighting;
   // Not a file key: the folder of the scene file, against which relative paths in it
   // (high_clouds.coefficients, ...) are resolved. Empty for text not read from a file.

@@ -7,6 +7,8 @@
 //   section(key, settingsStruct, description)          a nested map, described by describe()
 //   field(key, int|double|glm::vec3&, NumberRange, description)
 //   field(key, std::optional<double>&, NumberRange, description)   absent unless given
+//   field(key, glm::dvec2&, NumberRange, description)  a pair [from, to] (e.g. a lat range)
+//   field(key, bool&, description)                     true or false
 //   field(key, std::string&, TextRule, description)
 //   field(key, TimeSettings&, description)             an instant or a range (scene.h)
 //   list(key, std::vector<T>&, ListRule, description)  a list of maps, T described by describe()
@@ -49,6 +51,11 @@ void describe(V& v, CameraSettings& s) {
           TextRule{1, 0, "^(perspective|equirectangular)$", "perspective or equirectangular"},
           "perspective (a pinhole camera) or equirectangular (the whole sphere, 360 x 180 "
           "degrees centred on heading; pitch and vertical_fov are ignored)");
+  v.field("mode", s.mode,
+          TextRule{1, 0, "^(observer|geographic_topdown)$", "observer or geographic_topdown"},
+          "observer (a camera at latitude, longitude and altitude_m) or geographic_topdown (the "
+          "weather region mapped exactly onto the image, row 0 north, column 0 west, looking "
+          "straight down from above the clouds)");
 }
 
 template <class V>
@@ -158,6 +165,91 @@ void describe(V& v, HighCloudSettings& s) {
 }
 
 template <class V>
+void describe(V& v, CloudLayerSettings& s) {
+  v.field("base_m", s.baseM, NumberRange{0, 30000}, "layer base above sea level, metres");
+  v.field("top_m", s.topM, NumberRange{0, 30000}, "layer top above sea level, metres");
+  v.check("top_m", s.topM > s.baseM, "must be above base_m");
+}
+
+template <class V>
+void describe(V& v, CloudSettings& s) {
+  v.field("model", s.model, TextRule{1, 0, "^(lu2023|tang2019)$", "lu2023 or tang2019"},
+          "density and noise model: lu2023 (Lu et al. 2023) or tang2019 (Tang et al. 2019)");
+  v.field("coverage", s.coverage, TextRule{1, 0, "^(calibrated|paper)$", "calibrated or paper"},
+          "how cover sets the noise threshold: calibrated (the covered area equals the cover) "
+          "or paper (Lu's remap with 1 - CMc)");
+  v.field("extinction", s.extinction, NumberRange{1e-5, 1},
+          "extinction coefficient per metre at density 1 (Lu's beta)");
+  v.field("g", s.g, NumberRange{-0.99, 0.99}, "Henyey-Greenstein asymmetry (Lu (23))");
+  v.field("phase", s.phase, TextRule{1, 0, "^(hg|dual_lobe)$", "hg or dual_lobe"},
+          "phase function: hg (Lu (23)) or dual_lobe (adds a back-scattering lobe)");
+  v.field("g_back", s.gBack, NumberRange{-0.99, 0}, "asymmetry of the back-scattering lobe");
+  v.field("back_weight", s.backWeight, NumberRange{0, 1}, "share of the back-scattering lobe");
+  v.field("attenuation_clamp", s.attenuationClamp, NumberRange{0, 1},
+          "Lu's ac (22): the light's attenuation is at most that of this fraction of the "
+          "densest possible path toward the light (1: no clamp)");
+  v.field("step_m", s.stepM, NumberRange{1, 10000}, "view-ray step near the camera, metres");
+  v.field("step_growth", s.stepGrowth, NumberRange{0, 1},
+          "extra step length per metre of distance (steps grow linearly)");
+  v.field("max_steps", s.maxSteps, NumberRange{1, 4096}, "most steps along one view ray");
+  v.field("light_steps", s.lightSteps, NumberRange{1, 64},
+          "short steps toward the light, followed by one long step");
+  v.field("light_distance_m", s.lightDistanceM, NumberRange{1, 100000},
+          "distance toward the light covered by the short steps, metres");
+  v.field("transmittance_cutoff", s.transmittanceCutoff, NumberRange{0, 1},
+          "stop marching a ray once its transmittance falls below this");
+  v.field("energy_conserving", s.energyConserving,
+          "integrate each step's scattering analytically (Hillaire 2016)");
+  v.field("scattering_octaves", s.scatteringOctaves, NumberRange{1, 8},
+          "multiple-scattering octaves (Wrenninge); 1 is single scattering");
+  v.field("shape_scale_km", s.shapeScaleKm, NumberRange{0.1, 1000},
+          "ground size of one repeat of the shape noise, km");
+  v.field("detail_scale_km", s.detailScaleKm, NumberRange{0.01, 100},
+          "ground size of one repeat of the detail noise, km");
+  v.field("wind_speed_ms", s.windSpeedMs, NumberRange{0, 200},
+          "wind speed moving the cloud noise, m/s");
+  v.field("wind_from", s.windFrom, NumberRange{-360, 360},
+          "direction the wind blows from, degrees clockwise from north");
+  v.section("low", s.low, "the low cloud layer (stratus, stratocumulus, cumulus)");
+  v.section("mid", s.mid, "the mid cloud layer (altostratus, altocumulus)");
+  v.check("mid", s.mid.baseM >= s.low.topM, "base_m must not lie below low.top_m");
+}
+
+template <class V>
+void describe(V& v, WeatherRegion& s) {
+  v.field("lat", s.lat, NumberRange{-90, 90}, "[south, north] latitudes in degrees");
+  v.field("lon", s.lon, NumberRange{-180, 360}, "[west, east] longitudes in degrees");
+  v.check("lat", s.lat[0] < s.lat[1], "south (first) must be below north (second)");
+  v.check("lon", s.lon[0] < s.lon[1] && s.lon[1] - s.lon[0] <= 360,
+          "west (first) must be below east (second), at most 360 degrees apart");
+}
+
+template <class V>
+void describe(V& v, WeatherSettings& s) {
+  v.field("source", s.source, TextRule{1, 0, "^(procedural|image)$", "procedural or image"},
+          "where the weather map comes from: procedural (fbm cover) or image (painted)");
+  v.section("region", s.region, "the map's lat/lon bounds");
+  v.field("cover_low", s.coverLow, NumberRange{0, 1}, "procedural: mean low-layer cover");
+  v.field("cover_mid", s.coverMid, NumberRange{0, 1}, "procedural: mean mid-layer cover");
+  v.field("spread", s.spread, NumberRange{0, 1},
+          "procedural: how far the cover varies around its mean (0: uniform)");
+  v.field("scale_km", s.scaleKm, NumberRange{1, 100000},
+          "procedural: feature size of the cover pattern, km");
+  v.field("seed", s.seed, NumberRange{0, 2147483647}, "procedural: noise seed");
+  v.field("resolution", s.resolution, NumberRange{8, 8192},
+          "procedural: map texels along the region's longer side");
+  v.field("cloud_type", s.cloudType,
+          TextRule{1, 0, "^(stratus|stratocumulus|cumulus|altostratus|altocumulus)$",
+                   "stratus, stratocumulus, cumulus, altostratus or altocumulus"},
+          "procedural: cloud type (the type channel: stratus and altostratus 0, "
+          "stratocumulus and altocumulus 0.5, cumulus 1)");
+  v.field("image", s.image, TextRule{0, 4096},
+          "image source: RGBA PNG/EXR over the region (R low cover, G mid cover, B type, A "
+          "density scale); row 0 is the north edge");
+  v.check("image", s.source != "image" || !s.image.empty(), "is required when source is image");
+}
+
+template <class V>
 void describe(V& v, PaletteKey& s) {
   constexpr NumberRange kColor{0, 1e6};
   v.field("sun_elevation", s.sunElevation, NumberRange{-90, 90},
@@ -204,6 +296,9 @@ void describe(V& v, Scene& s) {
             "the planet's atmosphere for sky.model physical (Hillaire 2020)");
   v.section("high_clouds", s.highClouds,
             "high-cloud layer: coefficient texture, normal map, altitude and wind (Kozlov)");
+  v.section("clouds", s.clouds,
+            "volumetric low and mid clouds: model, lighting and raymarch (Lu, Tang)");
+  v.section("weather", s.weather, "the weather map: region, cover and cloud type");
   v.section("lighting", s.lighting, "refraction, light through the atmosphere, night and palette");
 }
 

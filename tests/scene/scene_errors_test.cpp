@@ -35,9 +35,9 @@ TEST(SceneErrors, UnknownKeys) {
             "x.yaml:3:3: unknown key 'camera.verticalFov' (did you mean 'vertical_fov'?)");
   EXPECT_EQ(yamlError("sky:\n  cloudiness: 3\n"),
             "x.yaml:2:3: unknown key 'sky.cloudiness' (known keys: model, glow_size, haze_height)");
-  EXPECT_EQ(jsonError("{\"output\": {}, \"clouds\": {}}"),
-            "x.json:1:16: unknown key 'clouds' (known keys: output, camera, time, sun, moon, sky, "
-            "atmosphere, high_clouds, lighting)");
+  EXPECT_EQ(jsonError("{\"output\": {}, \"fog\": {}}"),
+            "x.json:1:16: unknown key 'fog' (known keys: output, camera, time, sun, moon, sky, "
+            "atmosphere, high_clouds, clouds, weather, lighting)");
   EXPECT_EQ(fileError("unknown_key.yaml"),
             badPath("unknown_key.yaml") +
                 ":5:3: unknown key 'sky.haze_hieght' (did you mean 'haze_height'?)");
@@ -519,6 +519,32 @@ TEST(SceneErrors, AtmosphereAndHighCloudRules) {
   EXPECT_EQ(yamlError("camera:\n  projection: fisheye\n"),
             "x.yaml:2:15: camera.projection: 'fisheye' is not allowed: use perspective or "
             "equirectangular");
+}
+
+TEST(SceneErrors, CloudAndWeatherRules) {
+  EXPECT_EQ(yamlError("clouds:\n  low:\n    base_m: 3000\n    top_m: 2000\n"),
+            "x.yaml:4:12: clouds.low.top_m: must be above base_m");
+  EXPECT_EQ(yamlError("clouds:\n  mid:\n    base_m: 2000\n"),
+            "x.yaml:3:5: clouds.mid: base_m must not lie below low.top_m");
+  EXPECT_EQ(yamlError("weather:\n  cover_low: 1.5\n"),
+            "x.yaml:2:14: weather.cover_low: 1.5 is out of range [0, 1]");
+  EXPECT_EQ(yamlError("weather:\n  region:\n    lat: [50, 45]\n"),
+            "x.yaml:3:10: weather.region.lat: south (first) must be below north (second)");
+  EXPECT_EQ(yamlError("weather:\n  region:\n    lon: [5]\n"),
+            "x.yaml:3:10: weather.region.lon: expected a list of 2 numbers [from, to], got a list "
+            "of 1");
+  EXPECT_EQ(yamlError("weather:\n  region:\n    lat: [-95, 4]\n"),
+            "x.yaml:3:11: weather.region.lat[0]: -95 is out of range [-90, 90]");
+  EXPECT_EQ(yamlError("clouds:\n  model: schneider\n"),
+            "x.yaml:2:10: clouds.model: 'schneider' is not allowed: use lu2023 or tang2019");
+  EXPECT_EQ(yamlError("clouds:\n  energy_conserving: yes\n"),
+            "x.yaml:2:22: clouds.energy_conserving: expected true or false, got 'yes'");
+  EXPECT_EQ(jsonError("{\"clouds\": {\"energy_conserving\": 1}}"),
+            "x.json:1:13: clouds.energy_conserving: expected true or false, got '1'");
+  EXPECT_EQ(yamlError("weather:\n  source: image\n"),
+            "x.yaml:2:3: weather.image: is required when source is image");
+  EXPECT_EQ(yamlError("camera:\n  mode: orbit\n"),
+            "x.yaml:2:9: camera.mode: 'orbit' is not allowed: use observer or geographic_topdown");
 }
 
 }  // namespace

@@ -343,6 +343,7 @@ private:
     if (type == "array") return v.is_array();
     if (type == "string") return v.is_string();
     if (type == "number") return v.is_number();
+    if (type == "boolean") return v.is_boolean();
     // JSON Schema counts 360.0 as an integer; nlohmann keeps integers apart.
     if (type == "integer")
       return v.is_number_integer() ||

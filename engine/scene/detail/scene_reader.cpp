@@ -119,6 +119,40 @@ void SceneReader::field(std::string_view key, glm::vec3& value, NumberRange rang
   value = result;
 }
 
+void SceneReader::field(std::string_view key, glm::dvec2& value, NumberRange range,
+                        std::string_view) {
+  const ConfigNode* node = mMap.find(key);
+  if (!node) return;
+  std::string path = childPath(key);
+  if (node->kind != ConfigNode::Kind::Sequence || node->children.size() != 2) {
+    fail(*node, path,
+         "expected a list of 2 numbers [from, to], got " +
+             (node->kind == ConfigNode::Kind::Sequence
+                  ? "a list of " + std::to_string(node->children.size())
+                  : node->describeKind()));
+  }
+  for (int i = 0; i < 2; ++i)
+    value[i] = number(node->children[static_cast<size_t>(i)], path + "[" + std::to_string(i) + "]",
+                      range, "a number");
+}
+
+void SceneReader::field(std::string_view key, bool& value, std::string_view) {
+  const ConfigNode* node = mMap.find(key);
+  if (!node) return;
+  // JSON true/false, or the plain YAML words true/false (not yes/no/on/off: YAML 1.2).
+  const bool typed =
+      node->kind == ConfigNode::Kind::Scalar &&
+      (node->style == ConfigNode::Style::Bool || node->style == ConfigNode::Style::Plain) &&
+      (node->text == "true" || node->text == "false");
+  if (!typed) {
+    fail(*node, childPath(key),
+         "expected true or false, got " + (node->kind == ConfigNode::Kind::Scalar
+                                               ? "'" + messageText(node->text) + "'"
+                                               : node->describeKind()));
+  }
+  value = node->text == "true";
+}
+
 void SceneReader::field(std::string_view key, std::string& value, const TextRule& rule,
                         std::string_view) {
   const ConfigNode* node = mMap.find(key);

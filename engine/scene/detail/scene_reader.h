@@ -7,6 +7,7 @@
 #include <string_view>
 #include <vector>
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include "engine/scene/config_tree.h"
@@ -67,6 +68,8 @@ public:
   void field(std::string_view key, std::optional<double>& value, NumberRange range,
              std::string_view);
   void field(std::string_view key, glm::vec3& value, NumberRange range, std::string_view);
+  void field(std::string_view key, glm::dvec2& value, NumberRange range, std::string_view);
+  void field(std::string_view key, bool& value, std::string_view);
   void field(std::string_view key, std::string& value, const TextRule& rule, std::string_view);
   void field(std::string_view key, TimeSettings& value, std::string_view);
   void bothOrNeither(std::string_view a, std::string_view b);

@@ -133,6 +133,18 @@ void SceneWriter::field(std::string_view key, const glm::vec3& value, NumberRang
   mMap.add(std::string(key), {}, std::move(list));
 }
 
+void SceneWriter::field(std::string_view key, const glm::dvec2& value, NumberRange,
+                        std::string_view) {
+  ConfigNode list = ConfigNode::makeSequence({});
+  for (int i = 0; i < 2; ++i) list.children.push_back(number(formatDouble(value[i])));
+  mMap.add(std::string(key), {}, std::move(list));
+}
+
+void SceneWriter::field(std::string_view key, const bool& value, std::string_view) {
+  mMap.add(std::string(key), {},
+           ConfigNode::makeScalar(value ? "true" : "false", ConfigNode::Style::Bool, {}));
+}
+
 void SceneWriter::field(std::string_view key, const std::string& value, const TextRule&,
                         std::string_view) {
   mMap.add(std::string(key), {}, ConfigNode::makeScalar(value, ConfigNode::Style::String, {}));

@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <nlohmann/json.hpp>
 
@@ -38,6 +39,8 @@ public:
   void field(std::string_view key, const std::optional<double>& value, NumberRange,
              std::string_view);
   void field(std::string_view key, const glm::vec3& value, NumberRange, std::string_view);
+  void field(std::string_view key, const glm::dvec2& value, NumberRange, std::string_view);
+  void field(std::string_view key, const bool& value, std::string_view);
   void field(std::string_view key, const std::string& value, const TextRule&, std::string_view);
   void field(std::string_view key, const TimeSettings& value, std::string_view);
   template <class T>

@@ -85,6 +85,30 @@ void SchemaBuilder::field(std::string_view key, const glm::vec3& value, NumberRa
   mSchema["properties"][std::string(key)] = std::move(s);
 }
 
+void SchemaBuilder::field(std::string_view key, const glm::dvec2& value, NumberRange range,
+                          std::string_view description) {
+  Json s = Json::object();
+  s["description"] = std::string(description);
+  s["type"] = "array";
+  Json item = Json::object();
+  item["type"] = "number";
+  item["minimum"] = numberJson(range.min);
+  item["maximum"] = numberJson(range.max);
+  s["items"] = std::move(item);
+  s["minItems"] = 2;
+  s["maxItems"] = 2;
+  s["default"] = Json::array({numberJson(value.x), numberJson(value.y)});
+  mSchema["properties"][std::string(key)] = std::move(s);
+}
+
+void SchemaBuilder::field(std::string_view key, const bool& value, std::string_view description) {
+  Json s = Json::object();
+  s["description"] = std::string(description);
+  s["type"] = "boolean";
+  s["default"] = value;
+  mSchema["properties"][std::string(key)] = std::move(s);
+}
+
 void SchemaBuilder::field(std::string_view key, const std::string& value, const TextRule& rule,
                           std::string_view description) {
   Json s = Json::object();

@@ -5,6 +5,7 @@
 #include <string>
 #include <string_view>
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <nlohmann/json.hpp>
 
@@ -45,6 +46,9 @@ public:
              std::string_view description);
   void field(std::string_view key, const glm::vec3& value, NumberRange range,
              std::string_view description);
+  void field(std::string_view key, const glm::dvec2& value, NumberRange range,
+             std::string_view description);
+  void field(std::string_view key, const bool& value, std::string_view description);
   void field(std::string_view key, const std::string& value, const TextRule& rule,
              std::string_view description);
   void field(std::string_view key, const TimeSettings& value, std::string_view description);
