@@ -22,6 +22,7 @@
 #include "engine/render/renderer.h"
 #include "engine/scene/scene_io.h"
 #include "engine/shader/shader_compiler.h"
+#include "engine/weather/coverage_metrics.h"
 
 namespace sky {
 namespace fs = std::filesystem;
@@ -41,6 +42,12 @@ usage:
                                        key light as JSON (defaults: 0 m, 1010 hPa, 10 C)
   skyrender schema                     print the JSON Schema of scene files
   skyrender devices                    list the Vulkan devices and which one is picked
+  skyrender dsc RENDER.exr [--cell PX] [--threshold T]
+                                       compare a camera.mode geographic_topdown render's
+                                       cloud opacity with its weather map's cover over
+                                       PX x PX blocks (default 8): Dice of the blocks
+                                       above T (default 0.1; Lu (28)), mean absolute
+                                       error, correlation, block count
   skyrender --help                     this text
 
 render options:
@@ -301,6 +308,29 @@ int devicesCommand(const std::vector<std::string>& argv) {
     std::printf("%u: %s (Vulkan %u.%u)%s\n", d.index, d.name.c_str(),
                 VK_API_VERSION_MAJOR(d.apiVersion), VK_API_VERSION_MINOR(d.apiVersion),
                 d.name == ctx.deviceName() ? "  <- picked" : "");
+  return 0;
+}
+
+int dscCommand(const std::vector<std::string>& argv) {
+  CliArgs args(argv, {"--cell", "--threshold"}, {}, {});
+  if (args.positional().empty())
+    inputError("dsc needs the render's EXR (skyrender dsc RENDER.exr [--cell PX] [--threshold T])");
+  if (args.positional().size() > 1)
+    inputError("dsc takes one render EXR, got also '" + args.positional()[1] + "'");
+  CoverageOptions options;
+  const double cell = numberOption(args, "--cell", 1, 4096, options.cell);
+  if (cell != std::floor(cell))
+    inputError("--cell '" + *args.value("--cell") + "': expected a whole number");
+  options.cell = static_cast<int>(cell);
+  options.threshold = numberOption(args, "--threshold", 0, 1, options.threshold);
+  if (options.threshold >= 1.0)
+    inputError("--threshold " + *args.value("--threshold") +
+               ": must be below 1 (no block could be cloudy)");
+  const RenderCoverage render = readRenderCoverage(args.positional()[0]);
+  const CoverageMetrics m =
+      compareCoverage(render.opacity, render.cover, render.width, render.height, options);
+  std::printf("dsc %.3f\nmae %.3f\ncorrelation %.3f\nblocks %llu\n", m.dice, m.meanAbsoluteError,
+              m.correlation, static_cast<unsigned long long>(m.blocks));
   return 0;
 }
 

@@ -10,6 +10,7 @@ int validateCommand(const std::vector<std::string>& args);
 int ephemerisCommand(const std::vector<std::string>& args);
 int schemaCommand(const std::vector<std::string>& args);
 int devicesCommand(const std::vector<std::string>& args);
+int dscCommand(const std::vector<std::string>& args);
 const char* usageText();
 
 }  // namespace sky

@@ -1,0 +1,212 @@
+#include "engine/weather/weather_map.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <thread>
+
+#include <glm/common.hpp>
+#include <glm/trigonometric.hpp>
+
+#include "engine/core/error.h"
+#include "engine/io/exr.h"
+#include "engine/io/png.h"
+#include "engine/weather/detail/cover_noise.h"
+#include "engine/weather/geo.h"
+
+namespace sky {
+namespace {
+namespace fs = std::filesystem;
+using namespace weather_detail;
+
+// Cover = clamp(s + kSpreadAmplitude * spread * z, 0, 1) with z the standardised fbm: at
+// spread 1 a mean-0.5 map runs from 0 to 1 over z in [-1, 1] (about two thirds of the map)
+// and is clamped beyond, so it holds clear sky, overcast and everything between.
+constexpr double kSpreadAmplitude = 0.5;
+
+// Noise streams of the two layers: decorrelated fields from one seed.
+constexpr uint32_t kLowStream = 0x4c4f57u;  // "LOW"
+constexpr uint32_t kMidStream = 0x4d4944u;  // "MID"
+
+[[noreturn]] void imageError(const std::string& written, const std::string& what) {
+  inputError("weather.image: " + written + ": " + what);
+}
+
+std::string lowerExtension(const fs::path& path) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
+
+WeatherMap readImageMap(const Scene& scene) {
+  const std::string& written = scene.weather.image;
+  if (written.empty()) inputError("weather.image: is required when source is image");
+  const fs::path path = scene.resolvePath(written);
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) imageError(written, "file not found (" + path.string() + ")");
+  const std::string ext = lowerExtension(path);
+  if (ext != ".png" && ext != ".exr") imageError(written, "must be a PNG or EXR file");
+
+  WeatherMap map;
+  map.region = scene.weather.region;
+  std::vector<float> pixels;
+  size_t channels = 0;
+  try {
+    if (ext == ".png") {
+      const Image8 png = readPng(path);
+      map.width = uint32_t(png.width);
+      map.height = uint32_t(png.height);
+      channels = size_t(png.channels);
+      pixels.resize(png.pixels.size());
+      for (size_t i = 0; i < pixels.size(); ++i) pixels[i] = float(png.pixels[i]) / 255.0f;
+    } else {
+      LayeredImage exr = readExr(path);
+      // The main layer (R, G, B, A), or the only layer of a file written with a prefix.
+      const ImageLayer* layer = exr.find("");
+      if (!layer && exr.layers.size() == 1) layer = &exr.layers.front();
+      if (!layer) imageError(written, "has no main layer (channels R, G, B, A)");
+      map.width = uint32_t(exr.width);
+      map.height = uint32_t(exr.height);
+      channels = layer->channels.size();
+      pixels = layer->pixels;
+    }
+  } catch (const Error& e) {
+    // The reader names the resolved path; keep one short line that names the key instead.
+    std::string what = e.what();
+    const std::string prefix = path.string() + ": ";
+    if (what.rfind(prefix, 0) == 0) what = what.substr(prefix.size());
+    imageError(written, what);
+  }
+  if (channels != 4)
+    imageError(written,
+               "must be RGBA (4 channels: low cover, mid cover, type, density "
+               "scale), has " +
+                   std::to_string(channels));
+  if (map.width == 0 || map.height == 0) imageError(written, "is empty");
+
+  static const char* kNames[4] = {"R (low cover)", "G (mid cover)", "B (cloud type)",
+                                  "A (density scale)"};
+  map.texels.resize(size_t(map.width) * map.height);
+  for (size_t i = 0; i < map.texels.size(); ++i) {
+    for (int c = 0; c < 4; ++c) {
+      const float v = pixels[i * 4 + size_t(c)];
+      const bool bad = !std::isfinite(v) || v < 0.0f || (c < 3 && v > 1.0f);
+      if (bad) {
+        char text[160];
+        std::snprintf(text, sizeof text, "%s value %g at pixel (%zu, %zu) is outside %s", kNames[c],
+                      double(v), i % map.width, i / map.width, c < 3 ? "[0, 1]" : "[0, inf)");
+        imageError(written, text);
+      }
+      map.texels[i][c] = v;
+    }
+  }
+  return map;
+}
+
+// Runs body(row) for every row on a few threads: a large map's fbm takes seconds on one.
+template <class F>
+void forEachRow(uint32_t rows, F body) {
+  const uint32_t workers =
+      std::clamp(std::thread::hardware_concurrency(), 1u, std::max(1u, rows / 16u));
+  std::vector<std::thread> threads;
+  for (uint32_t w = 0; w < workers; ++w)
+    threads.emplace_back([=, &body] {
+      for (uint32_t row = w; row < rows; row += workers) body(row);
+    });
+  for (std::thread& t : threads) t.join();
+}
+
+WeatherMap proceduralMap(const Scene& scene) {
+  const WeatherSettings& w = scene.weather;
+  if (!(w.scaleKm > 0.0)) inputError("weather.scale_km: must be above 0");
+  const glm::uvec2 size = proceduralMapSize(w);
+  WeatherMap map;
+  map.region = w.region;
+  map.width = size.x;
+  map.height = size.y;
+  const size_t count = size_t(size.x) * size.y;
+  const float type = cloudTypeValue(w.cloudType);
+
+  // Standardised fbm per layer at every texel centre, then calibrated to the asked mean.
+  std::vector<float> low(count, 0.0f), mid(count, 0.0f);
+  const bool needLow = w.coverLow > 0.0 && w.coverLow < 1.0 && w.spread > 0.0;
+  const bool needMid = w.coverMid > 0.0 && w.coverMid < 1.0 && w.spread > 0.0;
+  if (needLow || needMid) {
+    const uint32_t lowSeed = hashIntegers({uint32_t(w.seed), kLowStream});
+    const uint32_t midSeed = hashIntegers({uint32_t(w.seed), kMidStream});
+    forEachRow(size.y, [&](uint32_t y) {
+      const double lat = w.region.lat[1] - (y + 0.5) / size.y * (w.region.lat[1] - w.region.lat[0]);
+      for (uint32_t x = 0; x < size.x; ++x) {
+        const double lon =
+            w.region.lon[0] + (x + 0.5) / size.x * (w.region.lon[1] - w.region.lon[0]);
+        const glm::dvec3 unit = enuToEcefRotation(lat, lon)[2];
+        const size_t i = size_t(y) * size.x + x;
+        if (needLow) low[i] = float(standardFbmOnEarth(unit, w.scaleKm, lowSeed));
+        if (needMid) mid[i] = float(standardFbmOnEarth(unit, w.scaleKm, midSeed));
+      }
+    });
+  }
+  const double amplitude = kSpreadAmplitude * w.spread;
+  calibrateCover(low, w.coverLow, amplitude);
+  calibrateCover(mid, w.coverMid, amplitude);
+
+  map.texels.resize(count);
+  for (size_t i = 0; i < count; ++i) map.texels[i] = glm::vec4(low[i], mid[i], type, 1.0f);
+  return map;
+}
+
+}  // namespace
+
+glm::vec4 WeatherMap::sample(double latDeg, double lonDeg) const {
+  if (width == 0 || height == 0 || texels.size() != size_t(width) * height) return glm::vec4(0.0f);
+  glm::dvec2 uv;
+  regionUv(region, latDeg, lonDeg, uv);
+  // Texel centres at (i + 0.5) / size: the continuous texel coordinate is uv * size - 0.5,
+  // clamped like a clamp-to-edge sampler.
+  const double fx = std::clamp(uv.x * width - 0.5, 0.0, double(width - 1));
+  const double fy = std::clamp(uv.y * height - 0.5, 0.0, double(height - 1));
+  const uint32_t x0 = uint32_t(fx), y0 = uint32_t(fy);
+  const uint32_t x1 = std::min(x0 + 1, width - 1), y1 = std::min(y0 + 1, height - 1);
+  const float tx = float(fx - x0), ty = float(fy - y0);
+  return glm::mix(glm::mix(at(x0, y0), at(x1, y0), tx), glm::mix(at(x0, y1), at(x1, y1), tx), ty);
+}
+
+glm::vec2 WeatherMap::maxCover() const {
+  glm::vec2 m(0.0f);
+  for (const glm::vec4& t : texels) m = glm::max(m, glm::vec2(t));
+  return m;
+}
+
+float cloudTypeValue(const std::string& name) {
+  if (name == "stratus" || name == "altostratus") return 0.0f;
+  if (name == "stratocumulus" || name == "altocumulus") return 0.5f;
+  if (name == "cumulus") return 1.0f;
+  inputError("weather.cloud_type: '" + name +
+             "' is not stratus, stratocumulus, cumulus, altostratus or altocumulus");
+}
+
+glm::uvec2 proceduralMapSize(const WeatherSettings& weather) {
+  if (weather.resolution < 2) inputError("weather.resolution: must be at least 2");
+  const glm::dvec2 km = regionSizeKm(weather.region);
+  const double longer = std::max(km.x, km.y), shorter = std::min(km.x, km.y);
+  const auto n = uint32_t(weather.resolution);
+  const auto other = uint32_t(std::max(2.0, std::round(n * shorter / longer)));
+  return km.x >= km.y ? glm::uvec2(n, other) : glm::uvec2(other, n);
+}
+
+WeatherMap makeWeatherMap(const Scene& scene) {
+  const WeatherSettings& w = scene.weather;
+  const WeatherRegion& r = w.region;
+  if (!(r.lat[0] < r.lat[1]) || r.lat[0] < -90.0 || r.lat[1] > 90.0)
+    inputError("weather.region.lat: [south, north] must rise within [-90, 90]");
+  if (!(r.lon[0] < r.lon[1]) || r.lon[1] - r.lon[0] > 360.0)
+    inputError("weather.region.lon: [west, east] must rise and span at most 360 degrees");
+  if (w.source == "image") return readImageMap(scene);
+  if (w.source == "procedural") return proceduralMap(scene);
+  inputError("weather.source: '" + w.source + "' is not procedural or image");
+}
+
+}  // namespace sky

@@ -1,0 +1,49 @@
+#pragma once
+// The weather map the volumetric clouds read: a lat/lon grid over a region whose texels hold
+// R = low-layer cover (Lu's CMc, 0..1), G = mid-layer cover, B = cloud type (0 stratiform,
+// 0.5 cellular, 1 convective), A = density scale (1 = normal). Row 0 is the north edge,
+// column 0 the west edge, equal lat/lon spacing, texel (i, j) centred at
+// ((i + 0.5) / width, (j + 0.5) / height) of the region (engine/weather/geo.h regionUv).
+// Every source (procedural, image, and the GRIB2/NetCDF readers later) produces this.
+// See docs/weather.md.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/vec2.hpp>
+#include <glm/vec4.hpp>
+
+#include "engine/scene/scene.h"
+
+namespace sky {
+
+struct WeatherMap {
+  WeatherRegion region;
+  uint32_t width = 0, height = 0;  // texels
+  std::vector<glm::vec4> texels;   // row-major, row 0 north
+
+  // Bilinear between texel centres, clamped at the edges (what a linear clamp-to-edge
+  // sampler returns); points outside the region take the nearest edge. An empty map gives 0.
+  glm::vec4 sample(double latDeg, double lonDeg) const;
+  // The largest low (x) and mid (y) cover anywhere on the map: a layer whose maximum is 0 has
+  // no clouds at all.
+  glm::vec2 maxCover() const;
+  const glm::vec4& at(uint32_t x, uint32_t y) const { return texels[size_t(y) * width + x]; }
+};
+
+// The type channel's value of a cloud type: stratus and altostratus 0 (stratiform),
+// stratocumulus and altocumulus 0.5 (cellular), cumulus 1 (convective). BadInput naming
+// weather.cloud_type for any other name.
+float cloudTypeValue(const std::string& name);
+
+// The map of `scene.weather`: "procedural" (fbm cover, see weather_map.cpp and
+// docs/weather.md) or "image" (an RGBA PNG/EXR over the region, resolved with
+// scene.resolvePath). Bad settings or files are BadInput errors naming weather.<key> and
+// the file.
+WeatherMap makeWeatherMap(const Scene& scene);
+
+// The procedural map's size: `resolution` texels along the region's longer side in km, the
+// other side in proportion (at least 2).
+glm::uvec2 proceduralMapSize(const WeatherSettings& weather);
+
+}  // namespace sky
