@@ -1,0 +1,41 @@
+#include "passes/cloud_noise/cloud_noise_passes.h"
+
+#include <memory>
+
+#include "engine/core/error.h"
+#include "engine/graph/pass_context.h"
+#include "engine/shader/shader_compiler.h"
+
+namespace sky {
+
+CloudNoiseBakePass::CloudNoiseBakePass(const Context& ctx, ShaderCompiler& compiler,
+                                       const std::string& name)
+    : CloudNoiseBakePass(ctx, compiler.compile(name + ".comp"), name) {}
+
+CloudNoiseBakePass::CloudNoiseBakePass(const Context& ctx, const CompiledShader& shader,
+                                       const std::string& name)
+    : mName(name),
+      mPipeline(ctx, name, shader.spirv, shader.reflection),
+      mSourceHash(shader.sourceHash) {}
+
+CloudNoiseBakePass::Outputs CloudNoiseBakePass::addTo(FrameGraph& graph,
+                                                      const Inputs& inputs) const {
+  if (inputs.params.size.x == 0) internalError(mName + ": empty texture");
+  // The execute callback owns this use's inputs; setup's handle goes in once it exists.
+  auto use = std::make_shared<Inputs>(inputs);
+  GraphBuilder b = graph.addPass(inputs.label ? inputs.label : mName,
+                                 [this, use](PassContext& ctx) { execute(ctx, *use); });
+  use->target = b.write(inputs.target, Access::StorageWriteCompute);
+  b.sideEffect();
+  return {use->target};
+}
+
+void CloudNoiseBakePass::execute(PassContext& ctx, const Inputs& inputs) const {
+  const uint32_t n = inputs.params.size.x;
+  const bool volume = ctx.image(inputs.target).desc().dim == ImageDim::Tex3D;
+  ctx.dispatch(mPipeline, {Binding::of(CLOUD_NOISE_BINDING_OUT, inputs.target)},
+               mPipeline.groupsX(n), mPipeline.groupsY(n), volume ? mPipeline.groupsZ(n) : 1,
+               &inputs.params, sizeof inputs.params);
+}
+
+}  // namespace sky
