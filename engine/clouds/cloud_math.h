@@ -1,0 +1,171 @@
+#pragma once
+// The C++ twins of shaders/common/cloud_density.glsl, cloud_lighting.glsl and
+// cloud_light_march.glsl: same names, same float maths, so the CPU (coverage calibration,
+// tests) and the GPU agree. tests/clouds compares every function with its GLSL twin; the
+// comments on the GLSL side say what each equation is. All functions are pure.
+#include <algorithm>
+#include <cmath>
+
+#include <glm/common.hpp>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+namespace sky::clouds {
+
+// --- Density, cloud_density.glsl: Lu (3)-(18), cloud types, Tang ---
+// Defined here (inline) so that the coverage calibration's inner loop inlines them.
+// luCloudDensity: Lu (12)-(18) composed, 0 outside ph in [0, 1]; threshold 1 - cmc ('paper') or
+// the LUT's. cloudTypeRange: [bottom, top] layer fractions of a cloud of type t (0 stratiform,
+// 0.5 cellular, 1 convective) in layer 0 (low) or 1 (mid). cloudHeightFraction: Lu's ph inside
+// that range (< 0 or > 1 outside the cloud). tang*: Tang's density and its parts.
+inline float luRemap(float v, float lo, float ho, float ln, float hn) {
+  return ln + (v - lo) * (hn - ln) / (ho - lo);  // Lu (3)
+}
+
+inline float luSat(float v) {
+  return std::clamp(v, 0.0f, 1.0f);  // Lu (4)
+}
+
+inline float luLerp(float v0, float v1, float t) {
+  return (1.0f - t) * v0 + t * v1;  // Lu (16)
+}
+
+inline float luGSb(float ph) {
+  return luSat(luRemap(ph, 0.0f, 0.07f, 0.0f, 1.0f));  // Lu (5)
+}
+
+inline float luGSt(float ph, float cmc) {
+  if (cmc <= 0.0f) return 0.0f;                            // the limit of an empty remap range
+  return luSat(luRemap(ph, cmc * 0.2f, cmc, 1.0f, 0.0f));  // Lu (6)
+}
+
+inline float luGS(float ph, float cmc) {
+  return luGSb(ph) * luGSt(ph, cmc);  // Lu (7)
+}
+
+inline float luGDb(float ph) {
+  return ph * luSat(luRemap(ph, 0.0f, 0.15f, 0.0f, 1.0f));  // Lu (8)
+}
+
+inline float luGDt(float ph) {
+  return luSat(luRemap(ph, 0.9f, 1.0f, 1.0f, 0.0f));  // Lu (9)
+}
+
+inline float luGD(float ph, float cmc) {
+  return luGDb(ph) * luGDt(ph) * cmc * 2.0f;  // Lu (10)
+}
+
+inline float luFbm(float n1, float n2, float n3) {
+  return 0.625f * n1 + 0.25f * n2 + 0.125f * n3;  // Lu (11)
+}
+
+inline float luNStex(glm::vec4 shape) {
+  return luRemap(shape.r, luFbm(shape.g, shape.b, shape.a) - 1.0f, 1.0f, 0.0f, 1.0f);  // Lu (12)
+}
+
+inline float luNSfinal(float nstex, float gs, float threshold) {
+  if (threshold >= 1.0f) return 0.0f;
+  return luSat(luRemap(nstex * gs, threshold, 1.0f, 0.0f, 1.0f));  // Lu (17)
+}
+
+inline float luNS(float nstex, float gs, float threshold, float gd) {
+  return luNSfinal(nstex, gs, threshold) * gd;  // Lu (13)
+}
+
+inline float luNDfbm(glm::vec3 detail) {
+  return luFbm(detail.r, detail.g, detail.b);  // Lu (14)
+}
+
+inline float luNDmod(float ndfbm, float cmc, float ph) {
+  return 0.35f * std::exp(-cmc * 0.75f) * luLerp(ndfbm, 1.0f - ndfbm, luSat(ph * 5.0f));  // Lu (15)
+}
+
+inline float luDensity(float nsfinal, float ndmod, float gd) {
+  return luSat(luRemap(nsfinal, ndmod, 1.0f, 0.0f, 1.0f)) * gd;  // Lu (18)
+}
+
+inline float luCloudDensity(glm::vec4 shape, glm::vec3 detail, float ph, float cmc,
+                            float threshold) {
+  if (ph < 0.0f || ph > 1.0f) return 0.0f;
+  const float nstex = luNStex(shape);                                // Lu (12)
+  const float nsfinal = luNSfinal(nstex, luGS(ph, cmc), threshold);  // Lu (17), (7)
+  const float ndmod = luNDmod(luNDfbm(detail), cmc, ph);             // Lu (14), (15)
+  return luDensity(nsfinal, ndmod, luGD(ph, cmc));                   // Lu (18), (10)
+}
+
+inline glm::vec2 cloudTypeRange(int layer, float t) {
+  const glm::vec2 k0 = layer == 0 ? glm::vec2(0.0f, 0.25f) : glm::vec2(0.1f, 0.45f);
+  const glm::vec2 k1 = layer == 0 ? glm::vec2(0.0f, 0.45f) : glm::vec2(0.15f, 0.4f);
+  const glm::vec2 k2 = layer == 0 ? glm::vec2(0.0f, 1.0f) : glm::vec2(0.1f, 0.75f);
+  const float s = std::clamp(t, 0.0f, 1.0f) * 2.0f;
+  return s < 1.0f ? glm::mix(k0, k1, s) : glm::mix(k1, k2, s - 1.0f);
+}
+
+inline float cloudHeightFraction(float layerFraction, glm::vec2 range) {
+  return (layerFraction - range.x) / (range.y - range.x);
+}
+
+inline float tangTypeGradient(float ph, float type) {
+  const float s = std::clamp(type, 0.0f, 1.0f) * 2.0f;
+  const glm::vec2 k = s < 1.0f ? glm::mix(glm::vec2(0.1f, 0.75f), glm::vec2(0.2f, 0.55f), s)
+                               : glm::mix(glm::vec2(0.2f, 0.55f), glm::vec2(0.1f, 0.5f), s - 1.0f);
+  return luSat(luRemap(ph, 0.0f, k.x, 0.0f, 1.0f)) * luSat(luRemap(ph, k.y, 1.0f, 1.0f, 0.0f));
+}
+
+inline float tangBaseShape(glm::vec4 shape, float ph, float type) {
+  return luNStex(shape) * tangTypeGradient(ph, type);
+}
+
+inline float tangErosion(float ndfbm, float ph) {
+  return luLerp(ndfbm, 1.0f - ndfbm, luSat(ph * 10.0f)) * 0.2f;
+}
+
+inline float tangDensity(float base, float erosion, float cover, float threshold) {
+  if (threshold >= 1.0f) return 0.0f;
+  const float covered = luSat(luRemap(base, threshold, 1.0f, 0.0f, 1.0f));
+  return luSat(luRemap(covered, erosion, 1.0f, 0.0f, 1.0f)) * cover;
+}
+
+inline float tangCloudDensity(glm::vec4 shape, glm::vec3 detail, float ph, float cover, float type,
+                              float threshold) {
+  if (ph < 0.0f || ph > 1.0f) return 0.0f;
+  return tangDensity(tangBaseShape(shape, ph, type), tangErosion(luNDfbm(detail), ph), cover,
+                     threshold);
+}
+
+// --- Lighting, cloud_lighting.glsl ---
+float beerLambert(float b, float ds);                 // Lu (21)
+float beerClamped(float b, float ds, float dsClamp);  // Lu (22)
+float henyeyGreenstein(float cosTheta, float g);      // Lu (23), Tang (3)
+float dualLobeHG(float cosTheta, float gForward, float gBack, float backWeight);
+float expIntegralEi(float x);  // x < 0; Tang (7)
+float slabAmbient(float a);    // Tang (6)(7), a = -sigmaT H
+glm::vec3 cloudAmbient(glm::vec3 top, glm::vec3 bottom, float sigmaT, float hTopM, float hBottomM);
+// Wrenninge 2013 octaves of Lu (22) * (23); phaseKind 0 HG, 1 dual lobe.
+float cloudInScatter(float tauToLight, float tauClamp, float cosTheta, float g, float gBack,
+                     float backWeight, int phaseKind, int octaves);
+glm::vec3 integrateStep(glm::vec3 S, float sigmaT, float dt);  // Hillaire 2016
+glm::vec3 integrateStepRiemann(glm::vec3 S, float dt);
+
+// --- Light march schedule, cloud_lighting.glsl and cloud_light_march.glsl ---
+float lightStepStart(int i, int n, float distance);
+float lightStepLength(int i, int n, float distance);
+float lightLongStepDistance(float distance);
+float lightLongStepLength(float distance);
+float lightMarchReach(float distance);  // the march's whole length
+
+// Lu (24)'s ds toward the light: `density(glm::vec3)` plays cloudDensityForLight.
+template <class DensityFn>
+float lightMarchDensity(glm::vec3 p, glm::vec3 L, float distance, int n, DensityFn&& density) {
+  float ds = 0.0f;
+  for (int i = 0; i < n; ++i) {
+    const float start = lightStepStart(i, n, distance);
+    const float len = lightStepLength(i, n, distance);
+    ds += density(p + L * (start + 0.5f * len)) * len;
+  }
+  ds += density(p + L * lightLongStepDistance(distance)) * lightLongStepLength(distance);
+  return ds;
+}
+
+}  // namespace sky::clouds

@@ -1,0 +1,73 @@
+#pragma once
+// The 'calibrated' coverage mode (clouds.coverage: calibrated): per cover value, the remap
+// threshold of Lu (13)/(17) (or of Tang's coverage remap) at which the mean opacity of
+// vertical columns through the layer, seen from above, equals the cover. Lu's own threshold
+// 1 - CMc lets only sparse noise peaks through at low cover, so a 30 % cell renders nearly
+// clear. The height profile and the erosion stay as the papers describe; only the threshold
+// moves (and, where the caller asks, the CMc Lu's profile sees: profileCover).
+// docs/cloud-model.md shows the tables and the figures.
+#include <array>
+#include <string>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+#include "engine/clouds/noise_volume.h"
+
+namespace sky::clouds {
+
+// How a vertical column through a layer samples the noise. Noise coordinates are the position
+// in metres divided by the scale along all three axes (as the raymarch samples them), the
+// height measured from the layer base.
+struct CoverageColumn {
+  double thicknessM = 2000.0;                           // layer thickness (top - base)
+  double shapeScaleM = 16000.0, detailScaleM = 2000.0;  // size of one texture repeat
+  double extinction = 0.04;                             // per metre at density 1
+  glm::vec2 typeRange{0.0f, 1.0f};                      // cloudTypeRange(layer, type)
+  std::string model = "lu2023";                         // "lu2023" | "tang2019"
+  float type = 1.0f;  // the map's type channel, for tang2019's type gradient
+  // lu2023: the CMc that GS (6), GD (10) and NDmod (15) get. Below 0 (default): the cell's
+  // cover, as Lu writes it; then low cover means low, faint clouds, and the calibrated
+  // threshold goes negative to spread a faint layer over the whole cell. 1: full-height clouds
+  // whose area the threshold sets (docs/cloud-model.md compares the two). The raymarch must
+  // pass the same value to luCloudDensity.
+  float profileCover = -1.0f;
+};
+
+// Thresholds for cover i / (kCoverageLutSize - 1).
+inline constexpr int kCoverageLutSize = 64;
+using CoverageLut = std::array<float, kCoverageLutSize>;
+
+// The thresholds whose mean column opacity 1 - exp(-extinction * integral of density dz) over
+// 48 x 48 columns spread over the shape tile (24 heights each, trilinear noise) equals each
+// cover: 1 (no cloud) at cover 0; where even the lowest threshold (-1) stays below the cover,
+// -1. Deterministic (threads split the covers). Budget 0.3 s on 2 cores: the caller caches by
+// column. Throws inputError for an unknown model, internalError for an empty volume.
+CoverageLut calibrateCoverage(const NoiseVolume& shape, const NoiseVolume& detail,
+                              const CoverageColumn& column);
+
+// The threshold for `cover` in [0, 1], linear between the LUT's entries.
+float coverageThreshold(const CoverageLut& lut, float cover);
+
+// Trilinear sample of a repeating RGBA8 volume at uvw (texel i's centre at (i + 0.5) / size),
+// channels byte / 255 as the GPU's UNORM sampler returns them.
+glm::vec4 sampleNoise(const NoiseVolume& volume, glm::vec3 uvw);
+
+// Where meanColumnOpacity looks: columnsPerSide^2 columns on a 2D low-discrepancy (R2)
+// sequence over the shape tile, shifted by `offset` (tile fractions), `heights` midpoint
+// samples over the cloud's range.
+struct OpacityGrid {
+  int columnsPerSide = 32;
+  int heights = 32;
+  glm::vec2 offset{0.0f, 0.0f};
+};
+
+// The mean column opacity seen from above for a cell of uniform `cover` with the remap
+// `threshold`, straight through luCloudDensity / tangCloudDensity (the reference the fast
+// calibration is tested against).
+double meanColumnOpacity(const NoiseVolume& shape, const NoiseVolume& detail,
+                         const CoverageColumn& column, float cover, float threshold,
+                         const OpacityGrid& grid = {});
+
+}  // namespace sky::clouds

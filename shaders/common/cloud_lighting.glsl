@@ -1,0 +1,149 @@
+// Lighting maths for the volumetric clouds: Beer-Lambert with Lu's clamp (Lu (21)(22)), the
+// Henyey-Greenstein phase (Lu (23), Tang (3)) and a dual-lobe mix (Tang's stated next step),
+// Tang's slab ambient with the exponential integral (Tang (6)(7)), multiple-scattering octaves
+// (Wrenninge 2013), the energy-conserving step integral (Hillaire 2016) and the light-march
+// schedule. Every function has a C++ twin of the same name in engine/clouds/cloud_math.h,
+// compared in tests/clouds. See docs/cloud-model.md.
+#ifndef SKY_CLOUD_LIGHTING_GLSL
+#define SKY_CLOUD_LIGHTING_GLSL
+
+#define CLOUD_PI 3.14159265358979
+#define CLOUD_EULER_GAMMA 0.5772156649015329
+
+// Lu (21): transmittance for extinction b over the accumulated density ds (density x metres).
+float beerLambert(float b, float ds) {
+  return exp(-b * ds);
+}
+
+// Lu (22): Beer-Lambert with the attenuation clamped; dsClamp is Lu's ac times the densest
+// accumulated density the light march can see (the caller's choice), so no point goes darker
+// than exp(-b * dsClamp).
+float beerClamped(float b, float ds, float dsClamp) {
+  return max(beerLambert(b, ds), beerLambert(b, dsClamp));
+}
+
+// Lu (23) / Tang (3): Henyey-Greenstein, normalised to 1 over the sphere. cosTheta is
+// dot(view ray direction, direction to the light): 1 when looking into the light, where the
+// forward peak of g > 0 lies.
+float henyeyGreenstein(float cosTheta, float g) {
+  float denom = 1.0 + g * g - 2.0 * g * cosTheta;
+  return (1.0 - g * g) / (4.0 * CLOUD_PI * denom * sqrt(denom));
+}
+
+// Tang's stated next step (a phase with stronger back-scattering than HG): a normalised mix of
+// a forward lobe and a back lobe (gBack < 0), backWeight the back lobe's share.
+float dualLobeHG(float cosTheta, float gForward, float gBack, float backWeight) {
+  return mix(henyeyGreenstein(cosTheta, gForward), henyeyGreenstein(cosTheta, gBack), backWeight);
+}
+
+// The exponential integral Ei(x) for x < 0, where Ei(x) = -E1(-x). For |x| < 1.5 the power
+// series E1(z) = -gamma - ln z - sum_k (-z)^k / (k k!) (16 terms); above, the continued fraction
+// E1(z) = e^-z / (z + 1 - 1/(z + 3 - 4/(z + 5 - ...))) evaluated from a fixed depth of 15
+// (Abramowitz & Stegun 5.1.11, 5.1.22). Both are good to 1e-7 relative in exact arithmetic
+// over [-60, -1e-4]; float rounding brings it to a few 1e-6.
+float expIntegralEi(float x) {
+  float z = -x;
+  if (z < 1.5) {
+    float term = 1.0, sum = 0.0;
+    for (int k = 1; k <= 16; ++k) {
+      term *= -z / float(k);
+      sum += term / float(k);
+    }
+    return CLOUD_EULER_GAMMA + log(z) + sum;
+  }
+  float t = z + 31.0;
+  for (int k = 15; k >= 1; --k) t = z + float(2 * k - 1) - float(k * k) / t;
+  return -exp(-z) / t;
+}
+
+// Tang (6)(7): the share of isotropic ambient light that reaches a point at optical depth
+// -a = sigmaT * H inside an infinite homogeneous slab, max(0, exp(a) - a Ei(a)) (this is the
+// exponential integral E2(sigmaT H)). 1 at the slab's face (the limit a -> 0, where a Ei(a) -> 0),
+// decreasing with depth.
+float slabAmbient(float a) {
+  if (a >= 0.0) return 1.0;
+  return max(0.0, exp(a) - a * expIntegralEi(a));
+}
+
+// Tang (6)(7): the ambient light at a point hTopM below the layer top and hBottomM above its
+// bottom: the top colour (sun and sky from above) through the slab above the point plus the
+// bottom colour (ground reflection) through the slab below it.
+vec3 cloudAmbient(vec3 top, vec3 bottom, float sigmaT, float hTopM, float hBottomM) {
+  return top * slabAmbient(-sigmaT * hTopM) + bottom * slabAmbient(-sigmaT * hBottomM);
+}
+
+// Multiple scattering as octaves (Wrenninge 2013, "Oz: the great and volumetric"): octave i
+// scatters with b^i of the energy, sees a^i of the optical depth toward the light and a phase
+// whose asymmetry is c^i times smaller. a = b = c = 0.5 (Wrenninge's suggested values, which
+// keep the sum of b^i below 2). Each octave keeps Lu (22)'s clamp; octave 0 is exactly
+// Lu (22) * (23). tauToLight = b * ds toward the light, tauClamp = b * dsClamp.
+// phaseKind 0: Henyey-Greenstein with g; 1: dualLobeHG(g, gBack, backWeight).
+#define CLOUD_OCTAVE_ATTENUATION 0.5
+#define CLOUD_OCTAVE_CONTRIBUTION 0.5
+#define CLOUD_OCTAVE_ECCENTRICITY 0.5
+float cloudInScatter(float tauToLight, float tauClamp, float cosTheta, float g, float gBack,
+                     float backWeight, int phaseKind, int octaves) {
+  float sum = 0.0;
+  float a = 1.0, b = 1.0, c = 1.0;
+  for (int i = 0; i < octaves; ++i) {
+    float phase = phaseKind == 1 ? dualLobeHG(cosTheta, c * g, c * gBack, backWeight)
+                                 : henyeyGreenstein(cosTheta, c * g);
+    sum += b * beerClamped(1.0, a * tauToLight, a * tauClamp) * phase;  // Lu (22) * (23)
+    a *= CLOUD_OCTAVE_ATTENUATION;
+    b *= CLOUD_OCTAVE_CONTRIBUTION;
+    c *= CLOUD_OCTAVE_ECCENTRICITY;
+  }
+  return sum;
+}
+
+// Hillaire 2016 ("Physically based sky, atmosphere and cloud rendering in Frostbite"): the
+// in-scattered light S integrated over a step of length dt with the step's own extinction,
+// (S - S exp(-sigmaT dt)) / sigmaT. Summed over steps with the transmittance before each, a
+// homogeneous medium gives the exact answer for any step length. For sigmaT dt < 0.01 the
+// series dt (1 - x/2 + x^2/6 - x^3/24) replaces 1 - exp(-x), which float cannot resolve there;
+// sigmaT -> 0 gives S dt.
+vec3 integrateStep(vec3 S, float sigmaT, float dt) {
+  float x = sigmaT * dt;
+  if (x < 0.01) return S * (dt * (1.0 - x * (0.5 - x * (1.0 / 6.0 - x * (1.0 / 24.0)))));
+  return (S - S * exp(-x)) / sigmaT;
+}
+
+// The plain Riemann sum of the same step, S dt, for comparison (biased for long steps).
+vec3 integrateStepRiemann(vec3 S, float dt) {
+  return S * dt;
+}
+
+// --- Light march schedule -------------------------------------------------------------------
+// n short steps toward the light whose lengths double, so the first samples sit close to the
+// point (self-shadowing detail) and the last ones reach far; together they cover exactly
+// `distance`. Then one long step over [distance, 5 distance], sampled at its middle (3
+// distance), for the shadow of distant cloud (Schneider 2015 takes one far sample the same way).
+
+// Where short step i starts: distance (2^i - 1) / (2^n - 1); distance itself for i >= n.
+float lightStepStart(int i, int n, float distance) {
+  if (i >= n) return distance;
+  return distance * (float(1 << i) - 1.0) / (float(1 << n) - 1.0);
+}
+
+// The length of short step i of n (n <= 30); the n lengths sum to `distance`.
+float lightStepLength(int i, int n, float distance) {
+  return lightStepStart(i + 1, n, distance) - lightStepStart(i, n, distance);
+}
+
+// Where the long step samples: 3 distance from the point.
+float lightLongStepDistance(float distance) {
+  return 3.0 * distance;
+}
+
+// The long step's length: it spans [distance, 5 distance].
+float lightLongStepLength(float distance) {
+  return 4.0 * distance;
+}
+
+// How far the whole march reaches (5 distance): the length of the densest path it can see,
+// for Lu (22)'s clamp (dsClamp = ac * the largest density * this).
+float lightMarchReach(float distance) {
+  return distance + lightLongStepLength(distance);
+}
+
+#endif
