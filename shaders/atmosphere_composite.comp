@@ -1,7 +1,8 @@
 #version 460
 // The final image in scene-linear Rec.709: the clear sky and the high clouds (from
-// passes/sky_high_clouds), the star field and the sun and moon discs behind the clouds.
-// Later layers (volumetric clouds through the aerial perspective) join here.
+// passes/sky_high_clouds), the star field and the sun and moon discs behind the clouds, and
+// the volumetric low and mid clouds (passes/volumetric_clouds) in front of them — or behind
+// the high clouds when the camera flies above those. Aerial perspective joins here later.
 #include "common/atmosphere_composite_shared.h"
 #include "common/view.glsl"
 #define LIGHTING_BINDING ATMOSPHERE_COMPOSITE_BINDING_LIGHTING
@@ -18,6 +19,7 @@ layout(binding = ATMOSPHERE_COMPOSITE_BINDING_BEAUTY, rgba16f) uniform writeonly
 layout(binding = ATMOSPHERE_COMPOSITE_BINDING_SKY, rgba16f) uniform readonly image2D skyImage;
 layout(binding = ATMOSPHERE_COMPOSITE_BINDING_HIGH_CLOUDS, rgba16f) uniform readonly image2D
     highCloudImage;
+layout(binding = ATMOSPHERE_COMPOSITE_BINDING_CLOUDS, rgba16f) uniform readonly image2D cloudImage;
 
 // Fraction of a pixel of angular size `pixel` covered by a disc of angular radius `radius`
 // whose centre is `distance` away (a box-filtered edge). A disc smaller than a pixel is
@@ -87,7 +89,14 @@ void main() {
   vec3 stars = vec3(starFlux(ivec2(p)) * L.night.z / pixelSolidAngle(params.view, pixelCentre));
   stars *= (1.0 - moonCover) * aboveHorizon;
 
-  // What lies beyond the high clouds shows through their clear share.
-  vec3 behind = sky + stars + sunDisc + moonDisc;
-  imageStore(beautyImage, ivec2(p), vec4(behind * (1.0 - highClouds.a) + highClouds.rgb, 1.0));
+  // Premultiplied "over": what lies beyond each cloud layer shows through its clear share.
+  vec3 beyond = sky + stars + sunDisc + moonDisc;
+  vec4 clouds = params.layers.x != 0u ? imageLoad(cloudImage, ivec2(p)) : vec4(0.0);
+  vec4 nearer = highClouds, farther = clouds;
+  if (params.layers.y == 0u) {  // below the high clouds: the volumetric clouds are nearer
+    nearer = clouds;
+    farther = highClouds;
+  }
+  beyond = beyond * (1.0 - farther.a) + farther.rgb;
+  imageStore(beautyImage, ivec2(p), vec4(beyond * (1.0 - nearer.a) + nearer.rgb, 1.0));
 }

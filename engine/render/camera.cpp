@@ -16,6 +16,15 @@ glm::vec3 directionFromAzEl(double az, double el) {
 }
 
 shared::ViewState makeViewState(const CameraSettings& cam, uint32_t width, uint32_t height) {
+  if (cam.mode == "geographic_topdown") {
+    // Straight down everywhere; the cloud pass maps pixels onto the weather region.
+    shared::ViewState v{};
+    v.forward = glm::vec4(0.0f, 0.0f, -1.0f, static_cast<float>(1e-3));
+    v.right = glm::vec4(1.0f, 0.0f, 0.0f, 0.0f);
+    v.up = glm::vec4(0.0f, 1.0f, 0.0f, 0.0f);
+    v.size = glm::uvec4(width, height, VIEW_PROJECTION_TOPDOWN, 0);
+    return v;
+  }
   if (cam.projection == "equirectangular") {
     shared::ViewState v{};
     v.forward =

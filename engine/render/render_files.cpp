@@ -73,6 +73,13 @@ RenderFiles writeRenderFiles(const std::filesystem::path& dir, const std::string
     bake.push_back({{"name", t.name}, {"gpu_ms", t.gpuMs}});
   highClouds["bake_passes"] = bake;
   report["high_cloud_textures"] = highClouds;
+  nlohmann::ordered_json clouds;
+  clouds["present"] = frame.clouds;
+  clouds["noise_baked"] = frame.cloudNoise.baked;
+  clouds["noise_loaded_cache"] = frame.cloudNoise.loadedCache;
+  if (!frame.cloudNoise.cacheFile.empty())
+    clouds["noise_cache_file"] = frame.cloudNoise.cacheFile.string();
+  report["volumetric_clouds"] = clouds;
   for (const DebugImage& d : frame.debug)
     files.debug.push_back(dir / (stem + "." + d.name + ".exr"));
   nlohmann::ordered_json debug = nlohmann::ordered_json::array();

@@ -28,22 +28,67 @@ ImageLayer toLayer(const ReadbackImage& img, std::string name, std::vector<std::
 
 const std::vector<std::string> kRgb = {"R", "G", "B"};
 const std::vector<std::string> kRgba = {"R", "G", "B", "A"};
+const std::vector<std::string> kSteps = {"view", "light"};
+
+// The "clouds" layer: premultiplied radiance, opacity and the transmittance-weighted depth
+// (m); all zero when the scene has no volumetric clouds.
+ImageLayer cloudLayer(const ReadbackImage* clouds, const ReadbackImage* depth, uint32_t width,
+                      uint32_t height) {
+  ImageLayer layer{"clouds", {"R", "G", "B", "A", "depth"}, {}};
+  const size_t n = size_t(width) * height;
+  layer.pixels.assign(n * 5, 0.0f);
+  if (!clouds || !depth) return layer;
+  for (size_t i = 0; i < n; ++i) {
+    for (size_t k = 0; k < 4; ++k)
+      layer.pixels[i * 5 + k] = clouds->pixels[i * clouds->channels + k];
+    layer.pixels[i * 5 + 4] = depth->pixels[i * depth->channels];
+  }
+  return layer;
+}
+
+// The "weather" layer of a top-down render: the map's low and mid cover at each pixel's
+// centre (row 0 the north edge, column 0 the west edge), for `skyrender dsc`.
+ImageLayer weatherCoverLayer(const WeatherMap& map, const WeatherRegion& region, uint32_t width,
+                             uint32_t height) {
+  ImageLayer layer{"weather", {"cover_low", "cover_mid"}, {}};
+  layer.pixels.resize(size_t(width) * height * 2);
+  for (uint32_t y = 0; y < height; ++y)
+    for (uint32_t x = 0; x < width; ++x) {
+      const double lat = region.lat[1] + (region.lat[0] - region.lat[1]) * (y + 0.5) / height;
+      const double lon = region.lon[0] + (region.lon[1] - region.lon[0]) * (x + 0.5) / width;
+      const glm::vec4 w = map.sample(lat, lon);
+      const size_t i = (size_t(y) * width + x) * 2;
+      layer.pixels[i] = w.r;
+      layer.pixels[i + 1] = w.g;
+    }
+  return layer;
+}
 
 }  // namespace
 
 const std::vector<DebugOutputInfo>& debugOutputs() {
   static const std::vector<DebugOutputInfo> outputs = {
       {"coefficients", "high-cloud coefficient texture (R thin lit, G dense, B clear, A edges)",
-       false},
-      {"normals", "high-cloud tangent-space normal map (xyz in -1..1)", false},
-      {"transmittance_lut", "transmittance to the top of the atmosphere, 256x64", true},
-      {"multiscattering_lut", "multiple-scattering contribution Psi_ms, 32x32", true},
-      {"sky_view_sun_lut", "sky radiance lit by the sun, 192x108", true},
-      {"sky_view_moon_lut", "sky radiance lit by the moon, 192x108", true},
+       false, false},
+      {"normals", "high-cloud tangent-space normal map (xyz in -1..1)", false, false},
+      {"transmittance_lut", "transmittance to the top of the atmosphere, 256x64", true, false},
+      {"multiscattering_lut", "multiple-scattering contribution Psi_ms, 32x32", true, false},
+      {"sky_view_sun_lut", "sky radiance lit by the sun, 192x108", true, false},
+      {"sky_view_moon_lut", "sky radiance lit by the moon, 192x108", true, false},
       {"aerial_perspective",
        "in-scattering (rgb) and transmittance (a), 32x32x32, slices "
        "side by side",
-       true},
+       true, false},
+      {"cloud_steps",
+       "volumetric clouds: density samples per pixel along the view ray (R) and in the light "
+       "marches (G), a heat map of the raymarch's cost",
+       false, true},
+      {"cloud_density_slice",
+       "volumetric clouds: a vertical cut along the camera's heading, 60 km ahead (across) by "
+       "sea level to above the clouds (down), 512x128: R density, G cover, B type, A layer",
+       false, true},
+      {"weather_map",
+       "the weather map over its region: R low cover, G mid cover, B type, A density", false, true},
   };
   return outputs;
 }
@@ -70,6 +115,9 @@ Renderer::Renderer(const Context& ctx, ShaderCompiler& compiler)
       mHighCloudTextures(ctx, compiler, mRuntime),
       mAtmosphere(ctx, compiler),
       mSky(ctx, compiler),
+      mClouds(ctx, compiler, mRuntime),
+      mVolumetric(ctx, compiler),
+      mSlice(ctx, compiler),
       mComposite(ctx, compiler) {}
 
 void Renderer::setBakeProgress(std::function<void(double)> progress) {
@@ -80,11 +128,25 @@ RenderedFrame Renderer::render(const Scene& scene, const IsoTime& time,
                                const RenderOptions& options) {
   checkDebugOutputs(scene, options.debugOutputs);
   RenderedFrame out;
-  out.lighting = computeLighting(scene, time);
+  // A top-down view is lit as seen from the middle of the weather region.
+  const CloudFrameGeometry geometry = cloudFrameGeometry(scene);
+  Scene litScene = scene;
+  litScene.camera.latitude = geometry.latDeg;
+  litScene.camera.longitude = geometry.lonDeg;
+  out.lighting = computeLighting(litScene, time);
   const uint32_t width = static_cast<uint32_t>(scene.output.width);
   const uint32_t height = static_cast<uint32_t>(scene.output.height);
   const shared::ViewState view = makeViewState(scene.camera, width, height);
   const bool physical = scene.sky.model == "physical";
+  const bool topDown = geometry.topDown;
+  const WeatherMap& weather = mClouds.weatherMap(scene);
+  const glm::vec2 maxCover = weather.maxCover();
+  out.clouds = maxCover.x > 0.0f || maxCover.y > 0.0f;
+  for (const std::string& name : options.debugOutputs)
+    for (const DebugOutputInfo& info : debugOutputs())
+      if (name == info.name && info.cloudsOnly && !out.clouds)
+        inputError("--debug-output " + name +
+                   ": the scene has no low or mid clouds (weather cover is 0 everywhere)");
 
   FrameGraph graph(mRuntime);
   StarFieldPass::Frame stars;
@@ -123,8 +185,35 @@ RenderedFrame Renderer::render(const Scene& scene, const IsoTime& time,
   }
   const SkyHighCloudsPass::Outputs skyOut = graph.add(mSky, sky);
 
+  // The volumetric clouds, when the map has any low or mid cover.
+  VolumetricCloudsPass::Outputs clouds{};
+  CloudLayers::Frame cloudFrame;
+  if (out.clouds) {
+    cloudFrame = mClouds.addTo(graph, scene);
+    out.cloudNoise = mClouds.noiseActivity();
+    VolumetricCloudsPass::Inputs in;
+    in.params = cloudParams(scene, out.lighting, time, view, cloudFrame.maxCover,
+                            cloudFrame.weatherSize, cloudFrame.coverage);
+    in.lighting = out.lighting.gpu;
+    in.textures = cloudFrame.textures;
+    clouds = graph.add(mVolumetric, in);
+    graph.requestOutput(clouds.clouds, "clouds");
+    graph.requestOutput(clouds.depth, "clouds_depth");
+    for (const std::string& name : options.debugOutputs) {
+      if (name == "cloud_steps") graph.requestOutput(clouds.steps, "debug:" + name);
+      if (name == "weather_map") graph.requestOutput(cloudFrame.textures.weather, "debug:" + name);
+      if (name == "cloud_density_slice") {
+        CloudDensitySlicePass::Inputs slice{in.params, in.textures};
+        graph.requestOutput(graph.add(mSlice, slice).slice, "debug:" + name);
+      }
+    }
+  }
+
   AtmosphereCompositePass::Inputs composite{};
   composite.params.view = view;
+  // High clouds lie in front of the volumetric ones when the camera flies above them.
+  composite.params.layers.y = !topDown && scene.camera.altitudeM > scene.highClouds.altitudeM;
+  if (out.clouds) composite.clouds = clouds.clouds;
   composite.lighting = out.lighting.gpu;
   composite.starFlux = starOut.flux;
   composite.sky = skyOut.sky;
@@ -138,7 +227,9 @@ RenderedFrame Renderer::render(const Scene& scene, const IsoTime& time,
     const char* name;
     ImageId image;
     const std::vector<std::string>* channels;
+    bool requested = false;  // already requested where its pass was added
   };
+  // The cloud debug images were requested above (they exist only with clouds).
   const DebugSource sources[] = {
       {"coefficients", textures.coefficients, &kRgba},
       {"normals", textures.normals, &kRgb},
@@ -147,10 +238,13 @@ RenderedFrame Renderer::render(const Scene& scene, const IsoTime& time,
       {"sky_view_sun_lut", luts.skyViewSun, &kRgb},
       {"sky_view_moon_lut", luts.skyViewMoon, &kRgb},
       {"aerial_perspective", luts.aerialPerspective, &kRgba},
+      {"cloud_steps", clouds.steps, &kSteps, true},
+      {"cloud_density_slice", ImageId{}, &kRgba, true},
+      {"weather_map", cloudFrame.textures.weather, &kRgba, true},
   };
   for (const std::string& name : options.debugOutputs)
     for (const DebugSource& s : sources)
-      if (name == s.name) graph.requestOutput(s.image, "debug:" + name);
+      if (name == s.name && !s.requested) graph.requestOutput(s.image, "debug:" + name);
 
   out.frame = graph.execute();
   out.graphDot = graph.toDot(&out.frame);
@@ -160,6 +254,11 @@ RenderedFrame Renderer::render(const Scene& scene, const IsoTime& time,
   out.image.layers.push_back(toLayer(out.frame.output("beauty"), "", kRgba));
   out.image.layers.push_back(toLayer(out.frame.output("sky"), "sky", kRgb));
   out.image.layers.push_back(toLayer(out.frame.output("high_clouds"), "high_clouds", kRgba));
+  out.image.layers.push_back(cloudLayer(out.clouds ? &out.frame.output("clouds") : nullptr,
+                                        out.clouds ? &out.frame.output("clouds_depth") : nullptr,
+                                        width, height));
+  if (topDown)
+    out.image.layers.push_back(weatherCoverLayer(weather, scene.weather.region, width, height));
   for (const std::string& name : options.debugOutputs)
     for (const DebugSource& s : sources)
       if (name == s.name) {

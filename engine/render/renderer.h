@@ -14,10 +14,12 @@
 #include "engine/lighting/lighting_state.h"
 #include "engine/scene/scene.h"
 #include "passes/atmosphere_composite/atmosphere_composite.h"
+#include "engine/render/cloud_layers.h"
 #include "passes/atmosphere_luts/atmosphere_luts.h"
 #include "passes/high_cloud_textures/high_cloud_textures.h"
 #include "passes/sky_high_clouds/sky_high_clouds.h"
 #include "passes/star_field/star_field.h"
+#include "passes/volumetric_clouds/volumetric_clouds.h"
 
 namespace sky {
 
@@ -25,11 +27,13 @@ class Context;
 class ShaderCompiler;
 
 // Extra images a render can write besides the frame (the debug view): the high-cloud
-// coefficient texture and normal map, and the physical sky's LUTs.
+// coefficient texture and normal map, the physical sky's LUTs, and the volumetric clouds'
+// step counts, density slice and weather map.
 struct DebugOutputInfo {
   const char* name;
   const char* description;
   bool physicalOnly;  // exists only with sky.model physical
+  bool cloudsOnly;    // exists only when the weather map has low or mid cover
 };
 const std::vector<DebugOutputInfo>& debugOutputs();
 // BadInput naming the first unknown name, or one that `scene` does not produce.
@@ -45,11 +49,15 @@ struct DebugImage {
 };
 
 struct RenderedFrame {
-  LayeredImage image;      // "" = beauty (R,G,B,A); "sky" (R,G,B); "high_clouds" (R,G,B,A)
+  // "" = beauty (R,G,B,A); "sky" (R,G,B); "high_clouds" (R,G,B,A); "clouds" (R,G,B,A,depth);
+  // with camera.mode geographic_topdown also "weather" (cover_low, cover_mid).
+  LayeredImage image;
   FrameResult frame;       // per-pass GPU timings, wall time
   std::string graphDot;    // the compiled graph with timings (for --dump-graph)
   LightingState lighting;  // the sun, moon, palette and night state the frame was lit by
   HighCloudTextures::Activity highClouds;  // whether the textures were baked, loaded or kept
+  bool clouds = false;                     // the weather map has low or mid cover
+  CloudNoise::Activity cloudNoise;         // whether the cloud noise was baked, loaded or kept
   std::vector<DebugImage> debug;           // as requested in RenderOptions
 };
 
@@ -72,6 +80,9 @@ private:
   HighCloudTextures mHighCloudTextures;
   AtmosphereLuts mAtmosphere;
   SkyHighCloudsPass mSky;
+  CloudLayers mClouds;
+  VolumetricCloudsPass mVolumetric;
+  CloudDensitySlicePass mSlice;
   AtmosphereCompositePass mComposite;
 };
 

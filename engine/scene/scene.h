@@ -139,7 +139,7 @@ struct CloudSettings {
   std::string phase = "dual_lobe";      // "hg" | "dual_lobe" (adds a back-scattering lobe)
   double gBack = -0.3;                  // the back lobe's asymmetry, -0.99..0
   double backWeight = 0.2;              // the back lobe's share, 0..1
-  double attenuationClamp = 0.15;       // Lu's ac, 0..1, Lu (22)
+  double attenuationClamp = 0.02;       // Lu's ac, 0..1, Lu (22)
   double stepM = 60.0;                  // view-ray step near the camera, metres
   double stepGrowth = 0.004;            // extra step length per metre of distance
   int maxSteps = 256;                   // per view ray
@@ -148,8 +148,8 @@ struct CloudSettings {
   double transmittanceCutoff = 0.01;    // stop marching below this transmittance
   bool energyConserving = true;         // Hillaire 2016's integration of each step
   int scatteringOctaves = 3;            // multiple-scattering octaves (Wrenninge); 1 = single
-  double shapeScaleKm = 16.0;           // ground size of one repeat of the shape noise
-  double detailScaleKm = 2.0;           // ground size of one repeat of the detail noise
+  double shapeScaleKm = 8.0;            // ground size of one repeat of the shape noise
+  double detailScaleKm = 1.5;           // ground size of one repeat of the detail noise
   double windSpeedMs = 10.0;            // moves the noise with time, 0..200
   double windFrom = 270.0;              // degrees clockwise from north
   CloudLayerSettings low{500.0, 2500.0};

@@ -17,7 +17,9 @@ AtmosphereCompositePass::AtmosphereCompositePass(const Context& ctx, ShaderCompi
 
 AtmosphereCompositePass::Outputs AtmosphereCompositePass::setup(GraphBuilder& b, const Inputs& in) {
   mInputs = in;
+  mInputs.params.layers.x = in.clouds ? 1u : 0u;
   b.read(in.starFlux, Access::StorageReadCompute);
+  if (in.clouds) b.read(*in.clouds, Access::StorageReadCompute);
   b.read(in.sky, Access::StorageReadCompute);
   b.read(in.highClouds, Access::StorageReadCompute);
   ImageDesc desc;
@@ -37,7 +39,11 @@ void AtmosphereCompositePass::execute(PassContext& ctx) const {
                 Binding::of(ATMOSPHERE_COMPOSITE_BINDING_SKY, mInputs.sky),
                 Binding::of(ATMOSPHERE_COMPOSITE_BINDING_HIGH_CLOUDS, mInputs.highClouds),
                 Binding::of(ATMOSPHERE_COMPOSITE_BINDING_LIGHTING, ctx.uniform(mInputs.lighting)),
-                Binding::of(ATMOSPHERE_COMPOSITE_BINDING_STARS, mInputs.starFlux)},
+                Binding::of(ATMOSPHERE_COMPOSITE_BINDING_STARS, mInputs.starFlux),
+                // Without volumetric clouds the slot holds the high clouds, unread (layers.x 0):
+                // a binding must name some image.
+                Binding::of(ATMOSPHERE_COMPOSITE_BINDING_CLOUDS,
+                            mInputs.clouds.value_or(mInputs.highClouds))},
                mPipeline.groupsX(size.x), mPipeline.groupsY(size.y));
 }
 

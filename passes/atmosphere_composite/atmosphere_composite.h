@@ -1,7 +1,9 @@
 #pragma once
 // The atmosphere composite: the final scene-linear image. The clear sky and high clouds of
 // passes/sky_high_clouds, the star field, and the sun and moon discs from the frame's
-// LightingState, seen through the high clouds; the volumetric clouds join here later.
+// LightingState, seen through the high clouds and the volumetric clouds.
+#include <optional>
+
 #include "engine/gpu/compute_pipeline.h"
 #include "engine/graph/frame_graph.h"
 #include "engine/graph/pass_context.h"
@@ -17,11 +19,12 @@ class AtmosphereCompositePass {
 public:
   static constexpr const char* kName = "atmosphere_composite";
   struct Inputs {
-    shared::AtmosphereCompositeParams params;  // the view
+    shared::AtmosphereCompositeParams params;  // the view; layers.y: camera above high clouds
     shared::LightingState lighting;            // this frame's lights and palette
     BufferId starFlux;                         // from StarFieldPass
     ImageId sky;                               // from SkyHighCloudsPass
     ImageId highClouds;                        // from SkyHighCloudsPass
+    std::optional<ImageId> clouds;             // from VolumetricCloudsPass (none: clear)
   };
   struct Outputs {
     ImageId beauty;  // RGBA16F scene-linear, alpha 1

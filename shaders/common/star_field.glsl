@@ -52,6 +52,8 @@ float starTriangleSolidAngle(vec3 a, vec3 b, vec3 c, float tripleProduct) {
 // taken and the result keeps float precision even for tiny pixels.
 // An equirectangular pixel is a band of latitude: (2 pi / width) (sin top - sin bottom).
 float pixelSolidAngle(ViewState view, vec2 pixel) {
+  // A top-down view sees no sky; any positive size keeps the (zero) star term finite.
+  if (view.size.z == VIEW_PROJECTION_TOPDOWN) return view.forward.w * view.forward.w;
   if (view.size.z == VIEW_PROJECTION_EQUIRECTANGULAR) {
     const float pi = 3.14159265358979;
     float top = (0.5 - (pixel.y - 0.5) / float(view.size.y)) * pi;

@@ -8,6 +8,7 @@
 // World (east-north-up) direction through `pixel` (pixel centre = integer + 0.5).
 vec3 viewDirection(ViewState view, vec2 pixel) {
   vec2 uv = pixel / vec2(view.size.xy);
+  if (view.size.z == VIEW_PROJECTION_TOPDOWN) return vec3(0.0, 0.0, -1.0);
   if (view.size.z == VIEW_PROJECTION_EQUIRECTANGULAR) {
     float azimuth = (uv.x - 0.5) * 2.0 * VIEW_PI;  // clockwise from the heading
     float elevation = (0.5 - uv.y) * VIEW_PI;
@@ -23,6 +24,10 @@ vec3 viewDirection(ViewState view, vec2 pixel) {
 // (unit); false when no pixel sees it (behind a pinhole camera).
 bool viewPixel(ViewState view, vec3 d, out vec2 pixel) {
   vec2 size = vec2(view.size.xy);
+  if (view.size.z == VIEW_PROJECTION_TOPDOWN) {
+    pixel = vec2(0.0);
+    return false;  // the sky is never in view
+  }
   if (view.size.z == VIEW_PROJECTION_EQUIRECTANGULAR) {
     float azimuth = atan(dot(d, view.right.xyz), dot(d, view.forward.xyz));
     float elevation = asin(clamp(dot(d, view.up.xyz), -1.0, 1.0));
@@ -43,6 +48,7 @@ bool viewPixel(ViewState view, vec3 d, out vec2 pixel) {
 // p cos^2 (radially) by p cos (tangentially) at an angle off the axis; an equirectangular one
 // spans (2 pi / width) cos(elevation) by (pi / height).
 float viewPixelAngle(ViewState view, vec3 V) {
+  if (view.size.z == VIEW_PROJECTION_TOPDOWN) return view.forward.w;
   if (view.size.z == VIEW_PROJECTION_EQUIRECTANGULAR) {
     float across = 2.0 * VIEW_PI / float(view.size.x) * max(sqrt(1.0 - V.z * V.z), 1e-3);
     return sqrt(across * VIEW_PI / float(view.size.y));

@@ -7,6 +7,8 @@
 // ViewState.size.z: how pixels map to directions.
 #define VIEW_PROJECTION_PERSPECTIVE 0u      // a pinhole camera
 #define VIEW_PROJECTION_EQUIRECTANGULAR 1u  // the whole sphere: azimuth across, elevation down
+#define VIEW_PROJECTION_TOPDOWN 2u          // every pixel looks straight down (camera.mode
+                                            // geographic_topdown: the cloud pass places the rays)
 
 SKY_SHARED_BEGIN
 

@@ -1,0 +1,115 @@
+#include "engine/render/cloud_layers.h"
+
+#include <filesystem>
+#include <sstream>
+
+#include "engine/clouds/cloud_math.h"
+#include "engine/clouds/coverage_calibration.h"
+
+namespace sky {
+namespace {
+
+// What the weather map depends on: its settings and, for an image, the file's size and time
+// (a repainted map is read again).
+std::string mapSignature(const Scene& scene) {
+  const WeatherSettings& w = scene.weather;
+  std::ostringstream s;
+  s.precision(17);
+  s << w.source << '|' << w.region.lat[0] << ',' << w.region.lat[1] << ',' << w.region.lon[0] << ','
+    << w.region.lon[1] << '|' << w.coverLow << '|' << w.coverMid << '|' << w.spread << '|'
+    << w.scaleKm << '|' << w.seed << '|' << w.resolution << '|' << w.cloudType;
+  if (w.source == "image") {
+    const std::filesystem::path file = scene.resolvePath(w.image);
+    std::error_code ec;
+    s << '|' << file.string() << '|' << std::filesystem::file_size(file, ec) << '|'
+      << std::filesystem::last_write_time(file, ec).time_since_epoch().count();
+  }
+  return s.str();
+}
+
+}  // namespace
+
+CloudLayers::CloudLayers(const Context& ctx, ShaderCompiler& compiler, GraphRuntime& runtime)
+    : mNoise(ctx, compiler, runtime), mWeather(ctx) {}
+
+const WeatherMap& CloudLayers::weatherMap(const Scene& scene) {
+  const std::string signature = mapSignature(scene);
+  if (!mMap || signature != mMapSignature) {
+    mMap.reset();  // a failed load leaves nothing stale behind
+    mMap = makeWeatherMap(scene);
+    mMapSignature = signature;
+    ++mMapRevision;
+  }
+  return *mMap;
+}
+
+CoverageTables CloudLayers::coverageTables(const Scene& scene, const WeatherMap& map) {
+  const CloudSettings& c = scene.clouds;
+  CoverageTables tables{};
+  // Until calibrated (and for the paper's remap) each entry is Lu's 1 - CMc.
+  for (auto& layer : tables)
+    for (auto& type : layer)
+      for (int i = 0; i < CLOUD_COVERAGE_LUT_SIZE; ++i)
+        type[static_cast<size_t>(i)] = 1.0f - static_cast<float>(i) / (CLOUD_COVERAGE_LUT_SIZE - 1);
+  mLastCalibrations = 0;
+  if (c.coverage != "calibrated") return tables;
+
+  // Only the layers with cover, and only the type keys the map comes near.
+  const glm::vec2 maxCover = map.maxCover();
+  bool typeUsed[CLOUD_COVERAGE_TYPE_KEYS] = {};
+  for (const glm::vec4& t : map.texels) {
+    const float k = glm::clamp(t.b, 0.0f, 1.0f) * (CLOUD_COVERAGE_TYPE_KEYS - 1);
+    typeUsed[static_cast<int>(std::floor(k))] = true;
+    typeUsed[std::min(static_cast<int>(std::ceil(k)), CLOUD_COVERAGE_TYPE_KEYS - 1)] = true;
+  }
+  for (int layer = 0; layer < 2; ++layer) {
+    if ((layer == 0 ? maxCover.x : maxCover.y) <= 0.0f) continue;
+    const CloudLayerSettings& l = layer == 0 ? c.low : c.mid;
+    for (int k = 0; k < CLOUD_COVERAGE_TYPE_KEYS; ++k) {
+      if (!typeUsed[k]) continue;
+      clouds::CoverageColumn column;
+      column.thicknessM = l.topM - l.baseM;
+      column.shapeScaleM = c.shapeScaleKm * 1000.0;
+      column.detailScaleM = c.detailScaleKm * 1000.0;
+      column.extinction = c.extinction;
+      column.type = static_cast<float>(k) / (CLOUD_COVERAGE_TYPE_KEYS - 1);
+      column.typeRange = clouds::cloudTypeRange(layer, column.type);
+      column.model = c.model;
+      // As the shader does in calibrated mode (shaders/common/cloud_field.glsl): Lu's height
+      // profile and erosion at full cover, the cover carried by the threshold alone.
+      column.profileCover = 1.0f;
+      std::ostringstream key;
+      key.precision(17);
+      key << column.model << '|' << layer << '|' << column.type << '|' << column.thicknessM << '|'
+          << column.shapeScaleM << '|' << column.detailScaleM << '|' << column.extinction << '|'
+          << column.profileCover;
+      auto it = mLuts.find(key.str());
+      if (it == mLuts.end()) {
+        it = mLuts
+                 .emplace(key.str(), clouds::calibrateCoverage(mNoise.shapeVolume(),
+                                                               mNoise.detailVolume(), column))
+                 .first;
+        ++mLastCalibrations;
+      }
+      for (int i = 0; i < CLOUD_COVERAGE_LUT_SIZE; ++i)
+        tables[static_cast<size_t>(layer)][static_cast<size_t>(k)][static_cast<size_t>(i)] =
+            it->second[static_cast<size_t>(i)];
+    }
+  }
+  return tables;
+}
+
+CloudLayers::Frame CloudLayers::addTo(FrameGraph& graph, const Scene& scene) {
+  const WeatherMap& map = weatherMap(scene);
+  Frame f;
+  const CloudNoise::Outputs noise = mNoise.addTo(graph, scene.clouds.model);
+  const WeatherTexture::Outputs weather = mWeather.addTo(graph, map, mMapRevision);
+  f.textures = {noise.shape, noise.detail,   noise.curl,         &mNoise.sampler(),
+                weather.map, weather.coarse, &mWeather.sampler()};
+  f.coverage = coverageTables(scene, map);
+  f.maxCover = map.maxCover();
+  f.weatherSize = glm::uvec2(map.width, map.height);
+  return f;
+}
+
+}  // namespace sky

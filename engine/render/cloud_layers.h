@@ -1,0 +1,53 @@
+#pragma once
+// What the volumetric clouds need besides their pass, kept across frames: the baked noise
+// (passes/cloud_noise), the weather map built from the scene and uploaded (engine/weather),
+// and the calibrated coverage tables (engine/clouds), each remade only when its inputs change.
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+
+#include "engine/clouds/coverage_calibration.h"
+#include "engine/weather/weather_map.h"
+#include "engine/weather/weather_texture.h"
+#include "passes/cloud_noise/cloud_noise.h"
+#include "passes/volumetric_clouds/volumetric_clouds.h"
+
+namespace sky {
+
+class CloudLayers {
+public:
+  CloudLayers(const Context& ctx, ShaderCompiler& compiler, GraphRuntime& runtime);
+
+  // The weather map of `scene` (rebuilt when the weather settings or the image file change).
+  // BadInput for bad settings or files, naming weather.<key>.
+  const WeatherMap& weatherMap(const Scene& scene);
+
+  struct Frame {
+    CloudTextures textures;
+    CoverageTables coverage{};
+    glm::vec2 maxCover{0.0f};
+    glm::uvec2 weatherSize{0};
+  };
+  // Imports the noise and weather textures into `graph` (baking or loading the noise on first
+  // use of a model) and returns them with the coverage tables for `scene`. Call only when
+  // weatherMap(scene) has cover.
+  Frame addTo(FrameGraph& graph, const Scene& scene);
+
+  const CloudNoise::Activity& noiseActivity() const { return mNoise.lastActivity(); }
+  // How many coverage tables were calibrated in the last addTo (0 when cached).
+  int lastCalibrations() const { return mLastCalibrations; }
+
+private:
+  CoverageTables coverageTables(const Scene& scene, const WeatherMap& map);
+
+  CloudNoise mNoise;
+  WeatherTexture mWeather;
+  std::optional<WeatherMap> mMap;
+  std::string mMapSignature;
+  uint64_t mMapRevision = 0;
+  std::map<std::string, clouds::CoverageLut> mLuts;  // by model, layer, type and column
+  int mLastCalibrations = 0;
+};
+
+}  // namespace sky

@@ -1,0 +1,201 @@
+#include "passes/volumetric_clouds/volumetric_clouds.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "engine/core/error.h"
+#include "engine/gpu/sampler.h"
+#include "engine/shader/shader_compiler.h"
+#include "engine/weather/geo.h"
+#include "passes/sky_high_clouds/sky_high_clouds.h"
+
+namespace sky {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kDeg = kPi / 180.0;
+
+// Tang's curl noise bends the detail lookup by up to this many detail repeats.
+constexpr float kCurlStrength = 0.1f;
+// Top-down rays start this far above the highest layer.
+constexpr double kTopDownMarginM = 500.0;
+
+ComputePipeline buildPipeline(const Context& ctx, ShaderCompiler& compiler, const char* file,
+                              const char* name) {
+  CompiledShader shader = compiler.compile(file);
+  return ComputePipeline(ctx, name, shader.spirv, shader.reflection);
+}
+
+void readTextures(GraphBuilder& b, const CloudTextures& t) {
+  if (!t.noiseSampler || !t.weatherSampler) internalError("volumetric clouds: no sampler");
+  for (ImageId id : {t.shape, t.detail, t.curl, t.weather, t.weatherCoarse})
+    b.read(id, Access::SampledCompute);
+}
+
+float luminance(const glm::vec3& c) {
+  return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b;
+}
+
+}  // namespace
+
+CloudFrameGeometry cloudFrameGeometry(const Scene& scene) {
+  if (scene.camera.mode == "geographic_topdown") {
+    const WeatherRegion& r = scene.weather.region;
+    const double top = std::max(scene.clouds.low.topM, scene.clouds.mid.topM);
+    return {0.5 * (r.lat[0] + r.lat[1]), 0.5 * (r.lon[0] + r.lon[1]), top + kTopDownMarginM, true};
+  }
+  return {scene.camera.latitude, scene.camera.longitude, scene.camera.altitudeM, false};
+}
+
+shared::CloudParams cloudParams(const Scene& scene, const LightingState& lighting,
+                                const IsoTime& time, const shared::ViewState& view,
+                                const glm::vec2& maxCover, const glm::uvec2& weatherSize,
+                                const CoverageTables& coverage) {
+  const CloudSettings& c = scene.clouds;
+  const WeatherRegion& region = scene.weather.region;
+  const CloudFrameGeometry g = cloudFrameGeometry(scene);
+  shared::CloudParams p{};
+  p.view = view;
+  p.geo = geoFrame({g.latDeg, g.lonDeg, g.altitudeM});
+  p.region = geoRegion(region);
+  p.frame = glm::uvec4(g.topDown ? CLOUD_FRAME_TOPDOWN : CLOUD_FRAME_OBSERVER,
+                       static_cast<uint32_t>(c.maxSteps), static_cast<uint32_t>(c.lightSteps),
+                       static_cast<uint32_t>(c.scatteringOctaves));
+  p.options = glm::uvec4(c.phase == "dual_lobe" ? 1u : 0u, c.energyConserving ? 1u : 0u,
+                         c.coverage == "calibrated" ? 1u : 0u, c.model == "tang2019" ? 1u : 0u);
+  p.layers = glm::vec4(static_cast<float>(c.low.baseM), static_cast<float>(c.low.topM),
+                       static_cast<float>(c.mid.baseM), static_cast<float>(c.mid.topM));
+  // March only through the layers that have cover somewhere on the map.
+  const bool low = maxCover.x > 0.0f, mid = maxCover.y > 0.0f;
+  const double shellBase = low ? c.low.baseM : c.mid.baseM;
+  const double shellTop = mid ? c.mid.topM : c.low.topM;
+  p.shell = glm::vec4(static_cast<float>(shellBase), static_cast<float>(shellTop),
+                      static_cast<float>(std::max(c.low.topM, c.mid.topM) + kTopDownMarginM),
+                      low || mid ? 1.0f : 0.0f);
+
+  // The noise is tied to the ground: its frame is Earth-fixed, centred on the region's middle
+  // (so floats keep their precision), and drifts with the wind from the start of the scene's
+  // time (a cloud at x now was at x - drift then).
+  const double midLat = 0.5 * (region.lat[0] + region.lat[1]);
+  const double midLon = 0.5 * (region.lon[0] + region.lon[1]);
+  const glm::dvec3 reference = ecefFromLatLonAltitude(midLat, midLon, 0.0);
+  const glm::dvec3 camera = ecefFromLatLonAltitude(g.latDeg, g.lonDeg, g.altitudeM);
+  const glm::dmat3 enu = enuToEcefRotation(midLat, midLon);
+  const double elapsed = time.secondsSince(scene.time.start);
+  const double toward = (c.windFrom + 180.0) * kDeg;
+  const glm::dvec3 drift =
+      c.windSpeedMs * elapsed * (std::sin(toward) * enu[0] + std::cos(toward) * enu[1]);
+  p.noiseOrigin = glm::vec4(glm::vec3(camera - reference - drift), 0.0f);
+  const double shapeM = c.shapeScaleKm * 1000.0, detailM = c.detailScaleKm * 1000.0;
+  p.noiseScale = glm::vec4(static_cast<float>(1.0 / shapeM), static_cast<float>(1.0 / detailM),
+                           kCurlStrength, static_cast<float>(1.0 / shapeM));
+  p.march = glm::vec4(static_cast<float>(c.stepM), static_cast<float>(c.stepGrowth),
+                      static_cast<float>(c.transmittanceCutoff), 1.0f);
+  p.light = glm::vec4(static_cast<float>(c.lightDistanceM), static_cast<float>(c.attenuationClamp),
+                      static_cast<float>(weatherSize.x), static_cast<float>(weatherSize.y));
+  p.medium = glm::vec4(static_cast<float>(c.extinction), static_cast<float>(c.g),
+                       static_cast<float>(c.gBack), static_cast<float>(c.backWeight));
+
+  // One key light marched toward: the sun, or the moon when it gives more light at the
+  // clouds (at night, or both low). Each layer gets the light that reaches its middle
+  // altitude, so clouds stay lit a while after sunset at the ground.
+  const double turbidity = scene.lighting.turbidity;
+  auto at = [&](const BodyLight& body, const glm::vec4& space, double altitudeM) {
+    return illuminanceAtAltitude(glm::vec3(space), body.elevationDeg, body.angularRadiusDeg,
+                                 altitudeM, turbidity);
+  };
+  const double lowMid = 0.5 * (c.low.baseM + c.low.topM);
+  const double midMid = 0.5 * (c.mid.baseM + c.mid.topM);
+  const glm::vec3 sunLow = at(lighting.sun, lighting.gpu.sunSpace, lowMid);
+  const glm::vec3 moonLow = at(lighting.moon, lighting.gpu.moonSpace, lowMid);
+  const bool sunKey = luminance(sunLow) >= luminance(moonLow);
+  const BodyLight& key = sunKey ? lighting.sun : lighting.moon;
+  const glm::vec4& space = sunKey ? lighting.gpu.sunSpace : lighting.gpu.moonSpace;
+  p.keyDirection = glm::vec4(glm::vec3(key.direction), sunKey ? 1.0f : 0.0f);
+  p.keyAtLow = glm::vec4(sunKey ? sunLow : moonLow, 0.0f);
+  p.keyAtMid = glm::vec4(at(key, space, midMid), 0.0f);
+  p.ambientTop = lighting.gpu.palette.ambientTop + lighting.gpu.moonPalette.ambientTop;
+  p.ambientBottom = lighting.gpu.palette.ambientBottom + lighting.gpu.moonPalette.ambientBottom;
+  p.ambientTop.w = p.ambientBottom.w = 0.0f;
+  p.slice =
+      glm::vec4(60000.0f, static_cast<float>(std::max(c.low.topM, c.mid.topM) + 500.0), 0.0f, 0.0f);
+
+  int i = 0;
+  for (const auto& layer : coverage)
+    for (const auto& type : layer)
+      for (float threshold : type) {
+        p.coverageLut[i / 4][i % 4] = threshold;
+        ++i;
+      }
+  return p;
+}
+
+VolumetricCloudsPass::VolumetricCloudsPass(const Context& ctx, ShaderCompiler& compiler)
+    : mPipeline(buildPipeline(ctx, compiler, "volumetric_clouds.comp", kName)) {}
+
+VolumetricCloudsPass::Outputs VolumetricCloudsPass::setup(GraphBuilder& b, const Inputs& in) {
+  mInputs = in;
+  readTextures(b, in.textures);
+  ImageDesc desc;
+  desc.width = in.params.view.size.x;
+  desc.height = in.params.view.size.y;
+  desc.format = VK_FORMAT_R16G16B16A16_SFLOAT;
+  desc.name = "clouds";
+  mOutputs.clouds = b.write(b.create(desc), Access::StorageWriteCompute);
+  desc.format = VK_FORMAT_R32_SFLOAT;
+  desc.name = "clouds_depth";
+  mOutputs.depth = b.write(b.create(desc), Access::StorageWriteCompute);
+  desc.format = VK_FORMAT_R16G16B16A16_SFLOAT;
+  desc.name = "cloud_steps";
+  mOutputs.steps = b.write(b.create(desc), Access::StorageWriteCompute);
+  return mOutputs;
+}
+
+void VolumetricCloudsPass::execute(PassContext& ctx) const {
+  const auto& size = mInputs.params.view.size;
+  const CloudTextures& t = mInputs.textures;
+  ctx.dispatch(
+      mPipeline,
+      {Binding::of(VOLUMETRIC_CLOUDS_BINDING_PARAMS, ctx.uniform(mInputs.params)),
+       Binding::of(VOLUMETRIC_CLOUDS_BINDING_LIGHTING, ctx.uniform(mInputs.lighting)),
+       Binding::of(VOLUMETRIC_CLOUDS_BINDING_CLOUDS, mOutputs.clouds),
+       Binding::of(VOLUMETRIC_CLOUDS_BINDING_DEPTH, mOutputs.depth),
+       Binding::of(VOLUMETRIC_CLOUDS_BINDING_STEPS, mOutputs.steps),
+       Binding::of(VOLUMETRIC_CLOUDS_BINDING_SHAPE, t.shape, t.noiseSampler),
+       Binding::of(VOLUMETRIC_CLOUDS_BINDING_DETAIL, t.detail, t.noiseSampler),
+       Binding::of(VOLUMETRIC_CLOUDS_BINDING_CURL, t.curl, t.noiseSampler),
+       Binding::of(VOLUMETRIC_CLOUDS_BINDING_WEATHER, t.weather, t.weatherSampler),
+       Binding::of(VOLUMETRIC_CLOUDS_BINDING_WEATHER_COARSE, t.weatherCoarse, t.weatherSampler)},
+      mPipeline.groupsX(size.x), mPipeline.groupsY(size.y));
+}
+
+CloudDensitySlicePass::CloudDensitySlicePass(const Context& ctx, ShaderCompiler& compiler)
+    : mPipeline(buildPipeline(ctx, compiler, "cloud_density_slice.comp", kName)) {}
+
+CloudDensitySlicePass::Outputs CloudDensitySlicePass::setup(GraphBuilder& b, const Inputs& in) {
+  mInputs = in;
+  readTextures(b, in.textures);
+  ImageDesc desc;
+  desc.width = kWidth;
+  desc.height = kHeight;
+  desc.format = VK_FORMAT_R16G16B16A16_SFLOAT;
+  desc.name = "cloud_density_slice";
+  mOutputs.slice = b.write(b.create(desc), Access::StorageWriteCompute);
+  return mOutputs;
+}
+
+void CloudDensitySlicePass::execute(PassContext& ctx) const {
+  const CloudTextures& t = mInputs.textures;
+  ctx.dispatch(
+      mPipeline,
+      {Binding::of(VOLUMETRIC_CLOUDS_BINDING_PARAMS, ctx.uniform(mInputs.params)),
+       Binding::of(CLOUD_SLICE_BINDING_IMAGE, mOutputs.slice),
+       Binding::of(VOLUMETRIC_CLOUDS_BINDING_SHAPE, t.shape, t.noiseSampler),
+       Binding::of(VOLUMETRIC_CLOUDS_BINDING_DETAIL, t.detail, t.noiseSampler),
+       Binding::of(VOLUMETRIC_CLOUDS_BINDING_CURL, t.curl, t.noiseSampler),
+       Binding::of(VOLUMETRIC_CLOUDS_BINDING_WEATHER, t.weather, t.weatherSampler),
+       Binding::of(VOLUMETRIC_CLOUDS_BINDING_WEATHER_COARSE, t.weatherCoarse, t.weatherSampler)},
+      mPipeline.groupsX(kWidth), mPipeline.groupsY(kHeight));
+}
+
+}  // namespace sky

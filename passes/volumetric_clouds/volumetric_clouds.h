@@ -1,0 +1,98 @@
+#pragma once
+// The volumetric low and mid clouds (Lu et al. 2023, Tang et al. 2019): a raymarch through
+// the spherical shells of the two layers (shaders/volumetric_clouds.comp), reading the weather
+// map (engine/weather) for cover and type and the baked noise (passes/cloud_noise) for the
+// density, lit by the frame's LightingState. Also the density-slice debug view, a vertical
+// cut through the density field along the camera's heading. See docs/clouds.md.
+#include <array>
+
+#include "engine/gpu/compute_pipeline.h"
+#include "engine/graph/frame_graph.h"
+#include "engine/graph/pass_context.h"
+#include "engine/lighting/lighting_state.h"
+#include "engine/scene/scene.h"
+#include "shaders/common/lighting_shared.h"
+#include "shaders/common/volumetric_clouds_shared.h"
+
+namespace sky {
+
+class Context;
+class Sampler;
+class ShaderCompiler;
+
+// What the cloud shaders sample: the baked noise and the weather map.
+struct CloudTextures {
+  ImageId shape, detail, curl;              // passes/cloud_noise
+  const Sampler* noiseSampler = nullptr;    // linear, repeat
+  ImageId weather, weatherCoarse;           // engine/weather WeatherTexture
+  const Sampler* weatherSampler = nullptr;  // linear, clamp
+};
+
+class VolumetricCloudsPass {
+public:
+  static constexpr const char* kName = "volumetric_clouds";
+  struct Inputs {
+    shared::CloudParams params{};
+    shared::LightingState lighting{};
+    CloudTextures textures;
+  };
+  struct Outputs {
+    ImageId clouds;  // RGBA16F: rgb radiance premultiplied, a opacity (1 - transmittance)
+    ImageId depth;   // R32F: transmittance-weighted distance to the clouds (m), 0 where clear
+    ImageId steps;   // RGBA16F: density samples along the view ray, and inside light marches
+  };
+
+  VolumetricCloudsPass(const Context& ctx, ShaderCompiler& compiler);
+  Outputs setup(GraphBuilder& builder, const Inputs& inputs);
+  void execute(PassContext& ctx) const;
+
+private:
+  ComputePipeline mPipeline;
+  Inputs mInputs{};
+  Outputs mOutputs;
+};
+
+class CloudDensitySlicePass {
+public:
+  static constexpr const char* kName = "cloud_density_slice";
+  static constexpr uint32_t kWidth = 512, kHeight = 128;
+  struct Inputs {
+    shared::CloudParams params{};  // slice.x: length ahead (m); slice.y: top altitude (m)
+    CloudTextures textures;
+  };
+  struct Outputs {
+    ImageId slice;  // RGBA16F kWidth x kHeight: r density, g cover, b type, a layer (0/1, -1)
+  };
+
+  CloudDensitySlicePass(const Context& ctx, ShaderCompiler& compiler);
+  Outputs setup(GraphBuilder& builder, const Inputs& inputs);
+  void execute(PassContext& ctx) const;
+
+private:
+  ComputePipeline mPipeline;
+  Inputs mInputs{};
+  Outputs mOutputs;
+};
+
+// Calibrated coverage thresholds (CloudParams.coverageLut): [layer][type key][cover entry].
+using CoverageTables =
+    std::array<std::array<std::array<float, CLOUD_COVERAGE_LUT_SIZE>, CLOUD_COVERAGE_TYPE_KEYS>, 2>;
+
+// Where the frame's rays start: the scene's camera, or for camera.mode geographic_topdown the
+// region's centre above the clouds.
+struct CloudFrameGeometry {
+  double latDeg, lonDeg, altitudeM;
+  bool topDown;
+};
+CloudFrameGeometry cloudFrameGeometry(const Scene& scene);
+
+// The pass's uniforms for one frame: the layers and shells, the frame, the wind's drift of
+// the noise since the start of the scene's time, the key light and its illuminance at each
+// layer's altitude, the ambient light and the coverage tables. `maxCover` is the map's
+// largest (low, mid) cover; `weatherSize` its texel counts.
+shared::CloudParams cloudParams(const Scene& scene, const LightingState& lighting,
+                                const IsoTime& time, const shared::ViewState& view,
+                                const glm::vec2& maxCover, const glm::uvec2& weatherSize,
+                                const CoverageTables& coverage);
+
+}  // namespace sky

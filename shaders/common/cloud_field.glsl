@@ -1,0 +1,122 @@
+// The cloud density field of passes/volumetric_clouds at a point: which layer it lies in, the
+// weather map's cover and type there, and the density from the baked noise (Lu (3)-(18) or
+// Tang). Shared by the raymarch and the density-slice debug view, which bind the same
+// parameters and textures at the same slots (declared here). The functions read `params`
+// directly: passing the 2 KB struct by value copies it (coverage table included) into every
+// call on some compilers (lavapipe's LLVM spilled it, a thousand times slower).
+#ifndef SKY_CLOUD_FIELD_GLSL
+#define SKY_CLOUD_FIELD_GLSL
+#include "volumetric_clouds_shared.h"
+#include "geo.glsl"
+#include "cloud_density.glsl"
+
+layout(std140, binding = VOLUMETRIC_CLOUDS_BINDING_PARAMS) uniform CloudParamsBlock {
+  CloudParams params;
+};
+layout(binding = VOLUMETRIC_CLOUDS_BINDING_SHAPE) uniform sampler3D shapeNoise;
+layout(binding = VOLUMETRIC_CLOUDS_BINDING_DETAIL) uniform sampler3D detailNoise;
+layout(binding = VOLUMETRIC_CLOUDS_BINDING_CURL) uniform sampler2D curlNoise;
+layout(binding = VOLUMETRIC_CLOUDS_BINDING_WEATHER) uniform sampler2D weatherMap;
+layout(binding = VOLUMETRIC_CLOUDS_BINDING_WEATHER_COARSE) uniform sampler2D weatherCoarse;
+
+struct CloudSample {
+  float density;  // at the point, weather density scale included (0 outside clouds)
+  int layer;      // 0 low, 1 mid, -1 neither
+  float ph;       // height fraction inside the cloud's vertical range (Lu's ph)
+  float hTop;     // distance up to the top of the cloud's range (m)
+  float hBottom;  // distance down to its bottom (m)
+};
+
+float coverageLutEntry(int index) {
+  return params.coverageLut[index >> 2][index & 3];
+}
+
+// The remap threshold for `cover`: the paper's 1 - CMc (Lu (13)(17)), or the calibrated one
+// from the table built from the baked noise (passes/volumetric_clouds), bilinear in cover and
+// type so a map whose type varies stays continuous.
+float coverageThreshold(int layer, float type, float cover) {
+  if (params.options.z == 0u) return 1.0 - cover;
+  float x = clamp(cover, 0.0, 1.0) * float(CLOUD_COVERAGE_LUT_SIZE - 1);
+  float y = clamp(type, 0.0, 1.0) * float(CLOUD_COVERAGE_TYPE_KEYS - 1);
+  int x0 = min(int(x), CLOUD_COVERAGE_LUT_SIZE - 2);
+  int y0 = min(int(y), CLOUD_COVERAGE_TYPE_KEYS - 2);
+  float fx = x - float(x0), fy = y - float(y0);
+  int base = layer * CLOUD_COVERAGE_TYPE_KEYS * CLOUD_COVERAGE_LUT_SIZE;
+  int r0 = base + y0 * CLOUD_COVERAGE_LUT_SIZE + x0;
+  int r1 = r0 + CLOUD_COVERAGE_LUT_SIZE;
+  float a = mix(coverageLutEntry(r0), coverageLutEntry(r0 + 1), fx);
+  float b = mix(coverageLutEntry(r1), coverageLutEntry(r1 + 1), fx);
+  return mix(a, b, fy);
+}
+
+// The noise's Earth-fixed coordinates (m) of point p of the frame: the noise stays with the
+// ground (and the wind) when the camera moves.
+vec3 noisePosition(vec3 p) {
+  return params.noiseOrigin.xyz + p.x * params.geo.east.xyz + p.y * params.geo.north.xyz + p.z * params.geo.up.xyz;
+}
+
+// The cloud at point p. Returns false where no cloud can be (outside both layers, outside the
+// weather region, or where the coarse map has no cover nearby): the caller may step faster
+// there. `s.density` is 0 then.
+bool cloudSampleAt(vec3 p, out CloudSample s) {
+  s.density = 0.0;
+  s.layer = -1;
+  s.ph = 0.0;
+  s.hTop = 0.0;
+  s.hBottom = 0.0;
+  vec3 lla = latLonAltitude(params.geo, p);
+  float h = lla.z;
+  int layer = (h >= params.layers.x && h <= params.layers.y) ? 0 : (h >= params.layers.z && h <= params.layers.w) ? 1 : -1;
+  if (layer < 0) return false;
+  vec2 uv;
+  if (!regionUv(params.region, lla.x, lla.y, uv)) return false;  // Lu: only inside the region
+  // The coarse map holds the largest cover around each block, dilated by a block, so a
+  // bilinear value of 0 means no cover anywhere near.
+  vec2 coarse = textureLod(weatherCoarse, uv, 0.0).rg;
+  if ((layer == 0 ? coarse.r : coarse.g) <= 0.0) return false;
+  s.layer = layer;
+  vec4 w = textureLod(weatherMap, uv, 0.0);
+  float cover = layer == 0 ? w.r : w.g;
+  float type = w.b;
+  float base = layer == 0 ? params.layers.x : params.layers.z;
+  float top = layer == 0 ? params.layers.y : params.layers.w;
+  float f = (h - base) / (top - base);
+  vec2 range = cloudTypeRange(layer, type);
+  s.ph = cloudHeightFraction(f, range);
+  s.hTop = max(range.y - f, 0.0) * (top - base);
+  s.hBottom = max(f - range.x, 0.0) * (top - base);
+  if (cover <= 0.0 || s.ph < 0.0 || s.ph > 1.0) return true;
+
+  vec3 q = noisePosition(p);
+  vec4 shape = textureLod(shapeNoise, q * params.noiseScale.x, 0.0);
+  vec3 dq = q * params.noiseScale.y;
+  float threshold = coverageThreshold(layer, type, cover);
+  // The detail noise only erodes (Lu (18), Tang's erosion): where the shape alone leaves no
+  // cloud there is none, and the costly detail lookup is skipped.
+  bool tang = params.options.w == 1u;
+  // Lu's height profile (6)(10) and erosion (15) read CMc too: a cell at 30 % cover gets
+  // clouds only 30 % of the layer tall and a third as dense, which no threshold can make look
+  // 30 % covered. Calibrated coverage therefore evaluates them as for full cover (the shape of
+  // a well-developed cloud) and leaves the cover to the calibrated threshold alone; the paper's
+  // mode keeps CMc everywhere. engine/clouds/coverage_calibration.h calibrates the same way.
+  float profileCover = params.options.z != 0u ? 1.0 : cover;
+  float shapeOnly = tang ? tangDensity(tangBaseShape(shape, s.ph, type), 0.0, cover, threshold)
+                         : luNSfinal(luNStex(shape), luGS(s.ph, profileCover), threshold);
+  if (shapeOnly <= 0.0) return true;
+  float density;
+  if (tang) {
+    // Tang: curl noise bends the detail lookup, more at the bottom where the billows are.
+    vec2 ground = vec2(dot(q, params.geo.east.xyz), dot(q, params.geo.north.xyz));
+    vec3 curl = textureLod(curlNoise, ground * params.noiseScale.w, 0.0).xyz * 2.0 - 1.0;
+    dq += curl * params.noiseScale.z * (1.0 - s.ph);
+    vec3 detail = textureLod(detailNoise, dq, 0.0).rgb;
+    density = tangCloudDensity(shape, detail, s.ph, cover, type, threshold);
+  } else {
+    vec3 detail = textureLod(detailNoise, dq, 0.0).rgb;
+    density = luCloudDensity(shape, detail, s.ph, profileCover, threshold);
+  }
+  s.density = max(density, 0.0) * w.a;
+  return true;
+}
+
+#endif

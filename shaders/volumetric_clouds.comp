@@ -1,0 +1,171 @@
+#version 460
+// The low and mid cloud layers (Lu et al. 2023; Tang et al. 2019 as the alternative model):
+// each view ray is intersected with the spherical shells of the layers (Lu (27)), marched with
+// steps that grow with distance, and at each sample the weather map gives the cover CMc and
+// the cloud type, the baked noise the density (Lu (3)-(18) or Tang), and a short march toward
+// the key light its attenuation (Lu (21)-(24)). Writes premultiplied radiance with opacity
+// (1 - transmittance), the transmittance-weighted distance and the number of samples taken.
+#include "common/volumetric_clouds_shared.h"
+#include "common/view.glsl"
+#include "common/geo.glsl"
+#define LIGHTING_BINDING VOLUMETRIC_CLOUDS_BINDING_LIGHTING
+#include "common/lighting.glsl"
+#include "common/cloud_density.glsl"
+#include "common/cloud_field.glsl"
+#include "common/cloud_lighting.glsl"
+
+layout(local_size_x = VOLUMETRIC_CLOUDS_GROUP_X, local_size_y = VOLUMETRIC_CLOUDS_GROUP_Y) in;
+
+layout(binding = VOLUMETRIC_CLOUDS_BINDING_CLOUDS, rgba16f) uniform writeonly image2D cloudImage;
+layout(binding = VOLUMETRIC_CLOUDS_BINDING_DEPTH, r32f) uniform writeonly image2D depthImage;
+layout(binding = VOLUMETRIC_CLOUDS_BINDING_STEPS, rgba16f) uniform writeonly image2D stepImage;
+
+// Counts density evaluations inside the light march for the step heat map.
+int gLightSamples = 0;
+
+float cloudDensityForLight(vec3 p) {
+  ++gLightSamples;
+  CloudSample s;
+  cloudSampleAt(p, s);
+  return s.density;
+}
+#include "common/cloud_light_march.glsl"
+
+// Light scattered toward the eye per metre at p (before the view ray's own attenuation):
+// the key light through the cloud toward it (Lu (24) with the clamp (22), the phase (23) and
+// the multiple-scattering octaves) plus Tang's slab ambient from the sky above and the
+// ground below. Scattering equals extinction: cloud droplets barely absorb.
+vec3 cloudScattering(vec3 p, vec3 d, CloudSample s) {
+  float sigmaT = params.medium.x * s.density;
+  vec3 S = vec3(0.0);
+  vec3 E = s.layer == 0 ? params.keyAtLow.rgb : params.keyAtMid.rgb;
+  if (max(E.r, max(E.g, E.b)) > 0.0) {
+    vec3 L = params.keyDirection.xyz;
+    float ds = lightMarchDensity(p, L, params.light.x, int(params.frame.z));
+    // Lu (22): the attenuation is at most that of ac times the densest path toward the light.
+    float reach = lightMarchReach(params.light.x);
+    float tau = params.medium.x * ds;
+    float tauClamp = params.medium.x * params.light.y * reach;
+    // The phase function is per steradian; in the renderer's units (illuminance 1 = pi x
+    // radiance 1, lighting_shared.h) radiance = pi * E * phase.
+    S += VIEW_PI * E *
+         cloudInScatter(tau, tauClamp, dot(d, L), params.medium.y, params.medium.z, params.medium.w,
+                        int(params.options.x), int(params.frame.w));
+  }
+  // Isotropic in-scattering of a hemisphere of ambient radiance is half of it.
+  S += 0.5 * cloudAmbient(params.ambientTop.rgb, params.ambientBottom.rgb, sigmaT, s.hTop, s.hBottom);
+  return sigmaT * S;
+}
+
+// Interleaved gradient noise (Jimenez 2014): a per-pixel start offset whose neighbours differ
+// as much as possible, so the banding of a fixed step turns into fine noise the eye ignores.
+float startJitter(vec2 pixel) {
+  return fract(52.9829189 * fract(dot(pixel, vec2(0.06711056, 0.00583715))));
+}
+
+// Up to two intervals along the ray (origin o, unit d) where the point lies between the
+// spheres of radius rIn and rOut around c, before the ray meets the ground sphere rGround.
+// Returns the count; intervals in iv[0..count-1] as (enter, exit).
+int shellIntervals(vec3 o, vec3 d, vec3 c, float rIn, float rOut, float rGround, out vec2 iv[2]) {
+  vec3 q = o - c;
+  float b = dot(q, d);
+  float qq = dot(q, q);
+  iv[0] = vec2(0.0);
+  iv[1] = vec2(0.0);
+  // Outer sphere: the ray is inside it over [t0, t1].
+  float discOut = b * b - (qq - rOut * rOut);
+  if (discOut <= 0.0) return 0;
+  float sOut = sqrt(discOut);
+  float t0 = max(-b - sOut, 0.0), t1 = -b + sOut;
+  if (t1 <= 0.0) return 0;
+  // The ground ends the ray.
+  float discGround = b * b - (qq - rGround * rGround);
+  if (discGround > 0.0) {
+    float tg = -b - sqrt(discGround);
+    if (tg > 0.0) t1 = min(t1, tg);
+  }
+  // Inner sphere: cut [a0, a1] out of [t0, t1].
+  float discIn = b * b - (qq - rIn * rIn);
+  if (discIn <= 0.0) {
+    iv[0] = vec2(t0, t1);
+    return t1 > t0 ? 1 : 0;
+  }
+  float sIn = sqrt(discIn);
+  float a0 = -b - sIn, a1 = -b + sIn;
+  int n = 0;
+  if (a0 > t0) iv[n++] = vec2(t0, min(a0, t1));
+  if (a1 < t1 && a1 > t0) iv[n++] = vec2(max(a1, t0), t1);
+  if (a1 <= t0 || a0 >= t1) {  // the inner sphere lies outside [t0, t1]
+    n = 0;
+    iv[n++] = vec2(t0, t1);
+  }
+  return n;
+}
+
+void main() {
+  uvec2 id = gl_GlobalInvocationID.xy;
+  if (any(greaterThanEqual(id, params.view.size.xy))) return;
+  vec2 pixel = vec2(id) + 0.5;
+  ivec2 ip = ivec2(id);
+
+  // Ray origin and direction in the frame's ENU coordinates.
+  vec3 o = vec3(0.0);
+  vec3 d = viewDirection(params.view, pixel);
+  if (params.frame.x == CLOUD_FRAME_TOPDOWN) {
+    // Row 0 is the north edge, column 0 the west edge, equal lat/lon spacing.
+    vec2 uv = pixel / vec2(params.view.size.xy);
+    vec4 b = params.region.bounds;
+    float lat = mix(b.y, b.x, uv.y);
+    float lon = mix(b.z, b.w, uv.x);
+    o = geoPosition(params.geo, lat, lon, params.shell.z);
+    d = -geoUp(params.geo, o);
+  }
+
+  vec3 radiance = vec3(0.0);
+  float transmittance = 1.0;
+  float depthSum = 0.0;
+  int samples = 0;
+  if (params.shell.w > 0.0) {
+    float R = params.geo.origin.w;
+    vec2 iv[2];
+    int n = shellIntervals(o, d, geoCentre(params.geo), R + params.shell.x, R + params.shell.y, R,
+                           iv);
+    float jitter = startJitter(pixel) * params.march.w;
+    int maxSteps = int(params.frame.y);
+    for (int k = 0; k < n && samples < maxSteps; ++k) {
+      float t = iv[k].x;
+      float stepLen = params.march.x + params.march.y * t;
+      t += jitter * stepLen;
+      // Through clear air the step stretches (up to 4x) and shrinks back at the first cloud.
+      float stretch = 1.0;
+      while (t < iv[k].y && samples < maxSteps && transmittance > params.march.z) {
+        stepLen = (params.march.x + params.march.y * t) * stretch;  // Lu: grows with distance
+        float dt = min(stepLen, iv[k].y - t);
+        vec3 p = o + d * (t + 0.5 * dt);
+        CloudSample s;
+        if (!cloudSampleAt(p, s)) {
+          // Outside the region or far from any cover: nothing to sample; stride on (the coarse
+          // map is dilated by a whole block, kilometres, so a double step cannot jump a cloud).
+          t += 2.0 * dt;
+          continue;
+        }
+        ++samples;
+        stretch = s.density > 0.0 ? 1.0 : min(stretch * 1.5, 4.0);
+        if (s.density > 0.0) {
+          float sigmaT = params.medium.x * s.density;
+          vec3 S = cloudScattering(p, d, s);
+          float stepT = exp(-sigmaT * dt);  // Lu (19)(20) over one step
+          vec3 integrated = params.options.y != 0u ? integrateStep(S, sigmaT, dt) : S * dt;
+          radiance += transmittance * integrated;
+          depthSum += transmittance * (1.0 - stepT) * (t + 0.5 * dt);
+          transmittance *= stepT;
+        }
+        t += dt;
+      }
+    }
+  }
+  float alpha = 1.0 - transmittance;
+  imageStore(cloudImage, ip, vec4(radiance, alpha));
+  imageStore(depthImage, ip, vec4(alpha > 0.0 ? depthSum / alpha : 0.0));
+  imageStore(stepImage, ip, vec4(float(samples), float(gLightSamples), 0.0, 0.0));
+}
