@@ -32,25 +32,25 @@ float cloudDensityForLight(vec3 p) {
 #include "common/cloud_light_march.glsl"
 
 // Light scattered toward the eye per metre at p (before the view ray's own attenuation):
-// the key light through the cloud toward it (Lu (24) with the clamp (22), the phase (23) and
-// the multiple-scattering octaves) plus Tang's slab ambient from the sky above and the
-// ground below. Scattering equals extinction: cloud droplets barely absorb.
+// the sun and the moon through the cloud toward each (Lu (24) with the clamp (22), the phase
+// (23) and the multiple-scattering octaves), plus Tang's slab ambient from the sky above and
+// the ground below. Scattering equals extinction: cloud droplets barely absorb.
 vec3 cloudScattering(vec3 p, vec3 d, CloudSample s) {
   float sigmaT = params.medium.x * s.density;
   vec3 S = vec3(0.0);
-  vec3 E = s.layer == 0 ? params.keyAtLow.rgb : params.keyAtMid.rgb;
-  if (max(E.r, max(E.g, E.b)) > 0.0) {
-    vec3 L = params.keyDirection.xyz;
-    float ds = lightMarchDensity(p, L, params.light.x, int(params.frame.z));
-    // Lu (22): the attenuation is at most that of ac times the densest path toward the light.
-    float reach = lightMarchReach(params.light.x);
-    float tau = params.medium.x * ds;
-    float tauClamp = params.medium.x * params.light.y * reach;
+  // Lu (22): the attenuation is at most that of ac times the densest path toward the light.
+  float tauClamp = params.medium.x * params.light.y * lightMarchReach(params.light.x);
+  for (int i = 0; i < 2; ++i) {
+    if (params.lightDirection[i].w == 0.0) continue;  // too dim to matter next to the other
+    vec3 E = s.layer == 0 ? params.lightAtLow[i].rgb : params.lightAtMid[i].rgb;
+    if (max(E.r, max(E.g, E.b)) <= 0.0) continue;
+    vec3 L = params.lightDirection[i].xyz;
+    float tau = params.medium.x * lightMarchDensity(p, L, params.light.x, int(params.frame.z));
     // The phase function is per steradian; in the renderer's units (illuminance 1 = pi x
     // radiance 1, lighting_shared.h) radiance = pi * E * phase.
     S += VIEW_PI * E *
-         cloudInScatter(tau, tauClamp, dot(d, L), params.medium.y, params.medium.z, params.medium.w,
-                        int(params.options.x), int(params.frame.w));
+         cloudInScatter(tau, tauClamp, dot(d, L), params.medium.y, params.medium.z,
+                        params.medium.w, int(params.options.x), int(params.frame.w));
   }
   // Isotropic in-scattering of a hemisphere of ambient radiance is half of it.
   S += 0.5 * cloudAmbient(params.ambientTop.rgb, params.ambientBottom.rgb, sigmaT, s.hTop, s.hBottom);
@@ -150,6 +150,12 @@ void main() {
           continue;
         }
         ++samples;
+        if (s.density > 0.0 && stretch > 1.0) {
+          // A cloud begins somewhere inside this long step: march it again from its start at
+          // the normal step, so cloud edges do not take the stretched step's coarse spacing.
+          stretch = 1.0;
+          continue;
+        }
         stretch = s.density > 0.0 ? 1.0 : min(stretch * 1.5, 4.0);
         if (s.density > 0.0) {
           float sigmaT = params.medium.x * s.density;

@@ -17,6 +17,8 @@ constexpr double kDeg = kPi / 180.0;
 
 // Tang's curl noise bends the detail lookup by up to this many detail repeats.
 constexpr float kCurlStrength = 0.1f;
+// A light is marched toward when it gives more than this share of the light at the clouds.
+constexpr float kLightShare = 1e-3f;
 // Top-down rays start this far above the highest layer.
 constexpr double kTopDownMarginM = 500.0;
 
@@ -96,9 +98,10 @@ shared::CloudParams cloudParams(const Scene& scene, const LightingState& lightin
   p.medium = glm::vec4(static_cast<float>(c.extinction), static_cast<float>(c.g),
                        static_cast<float>(c.gBack), static_cast<float>(c.backWeight));
 
-  // One key light marched toward: the sun, or the moon when it gives more light at the
-  // clouds (at night, or both low). Each layer gets the light that reaches its middle
-  // altitude, so clouds stay lit a while after sunset at the ground.
+  // Both lights are marched toward where each gives a visible share of the light at the
+  // clouds (the moon by day does not), so the change from sun to moon at dusk is a blend, not
+  // a switch. Each layer gets the light that reaches its middle altitude, so clouds stay lit
+  // a while after sunset at the ground.
   const double turbidity = scene.lighting.turbidity;
   auto at = [&](const BodyLight& body, const glm::vec4& space, double altitudeM) {
     return illuminanceAtAltitude(glm::vec3(space), body.elevationDeg, body.angularRadiusDeg,
@@ -106,14 +109,22 @@ shared::CloudParams cloudParams(const Scene& scene, const LightingState& lightin
   };
   const double lowMid = 0.5 * (c.low.baseM + c.low.topM);
   const double midMid = 0.5 * (c.mid.baseM + c.mid.topM);
-  const glm::vec3 sunLow = at(lighting.sun, lighting.gpu.sunSpace, lowMid);
-  const glm::vec3 moonLow = at(lighting.moon, lighting.gpu.moonSpace, lowMid);
-  const bool sunKey = luminance(sunLow) >= luminance(moonLow);
-  const BodyLight& key = sunKey ? lighting.sun : lighting.moon;
-  const glm::vec4& space = sunKey ? lighting.gpu.sunSpace : lighting.gpu.moonSpace;
-  p.keyDirection = glm::vec4(glm::vec3(key.direction), sunKey ? 1.0f : 0.0f);
-  p.keyAtLow = glm::vec4(sunKey ? sunLow : moonLow, 0.0f);
-  p.keyAtMid = glm::vec4(at(key, space, midMid), 0.0f);
+  const BodyLight* bodies[2] = {&lighting.sun, &lighting.moon};
+  const glm::vec4* space[2] = {&lighting.gpu.sunSpace, &lighting.gpu.moonSpace};
+  float share[2];
+  for (int i = 0; i < 2; ++i) {
+    p.lightAtLow[i] = glm::vec4(at(*bodies[i], *space[i], lowMid), 0.0f);
+    p.lightAtMid[i] = glm::vec4(at(*bodies[i], *space[i], midMid), 0.0f);
+    share[i] =
+        std::max(luminance(glm::vec3(p.lightAtLow[i])), luminance(glm::vec3(p.lightAtMid[i])));
+  }
+  const float total = share[0] + share[1];
+  for (int i = 0; i < 2; ++i) {
+    const bool marched = total > 0.0f && share[i] > kLightShare * total;
+    p.lightDirection[i] = glm::vec4(glm::vec3(bodies[i]->direction), marched ? 1.0f : 0.0f);
+  }
+  const int key = share[0] >= share[1] ? 0 : 1;
+  p.keyDirection = glm::vec4(glm::vec3(bodies[key]->direction), key == 0 ? 1.0f : 0.0f);
   p.ambientTop = lighting.gpu.palette.ambientTop + lighting.gpu.moonPalette.ambientTop;
   p.ambientBottom = lighting.gpu.palette.ambientBottom + lighting.gpu.moonPalette.ambientBottom;
   p.ambientTop.w = p.ambientBottom.w = 0.0f;

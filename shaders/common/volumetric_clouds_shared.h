@@ -52,9 +52,11 @@ struct CloudParams {
   vec4 light;           // x: distance of the short light steps (m); y: attenuation clamp ac;
                         // z: weather texels across (u); w: texels down (v)
   vec4 medium;          // x: extinction (1/m at density 1); y: g; z: g back; w: back weight
-  vec4 keyDirection;    // xyz: unit direction to the key light (ENU); w: 1 sun, 0 moon
-  vec4 keyAtLow;        // rgb: key light illuminance at the low layer
-  vec4 keyAtMid;        // rgb: at the mid layer
+  vec4 keyDirection;    // xyz: unit direction to the brighter light at the clouds (ENU);
+                        // w: 1 sun, 0 moon (for reports and tests)
+  vec4 lightDirection[2];  // [0] sun, [1] moon: xyz unit direction (ENU); w: 1 when marched
+  vec4 lightAtLow[2];      // rgb: each light's illuminance at the low layer
+  vec4 lightAtMid[2];      // rgb: at the mid layer
   vec4 ambientTop;      // rgb: sky light from above (radiance)
   vec4 ambientBottom;   // rgb: ground light from below (radiance)
   vec4 slice;           // density slice: x: length (m); y: top altitude (m); zw: unused
@@ -65,7 +67,7 @@ SKY_SHARED_END
 
 #ifdef __cplusplus
 static_assert(sizeof(sky::shared::CloudParams) ==
-                  64 + 64 + 16 + 2 * 16 + 13 * 16 + CLOUD_COVERAGE_LUT_VEC4S * 16,
+                  64 + 64 + 16 + 2 * 16 + 17 * 16 + CLOUD_COVERAGE_LUT_VEC4S * 16,
               "std140 layout of CloudParams");
 #endif
 #endif

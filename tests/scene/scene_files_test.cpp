@@ -58,14 +58,17 @@ TEST(SceneFiles, EverySceneInConfigsLoads) {
 TEST(SceneFiles, DefaultYamlIsTheBuiltInSceneWithAnEveningView) {
   // configs/default.yaml is the scene `skyrender render` uses without a file. It writes out
   // every section (the palette in full) so users can edit it, but it only means to differ
-  // from Scene{} in the view, the time and the high clouds: looking west on a summer evening
-  // with some cirrus.
+  // from Scene{} in the view, the time and the clouds: looking west on a summer evening with
+  // some cirrus and fair-weather cumulus based at 1500 m over the Swiss plateau.
   Scene file = loadSceneFile(configs() / "default.yaml");
   Scene expected;
   expected.camera.heading = 280;
   expected.camera.pitch = 10;
   expected.time.start = IsoTime::parse("2024-06-21T19:00:00+02:00").value();
   expected.highClouds.cover = 0.35;
+  expected.weather.coverLow = 0.35;
+  expected.clouds.low = {1500.0, 3500.0};
+  expected.clouds.mid = {4000.0, 7000.0};
   expected.baseDir = file.baseDir;
   test::expectSameScene(file, expected);
   // The sun and moon follow time and place (no art-directed placement).
