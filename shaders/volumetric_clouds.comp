@@ -82,7 +82,8 @@ int shellIntervals(vec3 o, vec3 d, vec3 c, float rIn, float rOut, float rGround,
   float discGround = b * b - (qq - rGround * rGround);
   if (discGround > 0.0) {
     float tg = -b - sqrt(discGround);
-    if (tg > 0.0) t1 = min(t1, tg);
+    // A ray heading down from on (or, in float, just above) the ground meets it at once.
+    if (tg > 0.0 || b < 0.0) t1 = min(t1, max(tg, 0.0));
   }
   // Inner sphere: cut [a0, a1] out of [t0, t1].
   float discIn = b * b - (qq - rIn * rIn);

@@ -66,14 +66,17 @@ render options:
   --debug-output NAME  also write NAME.<name>.exr; repeatable or comma-separated:
                        coefficients, normals (high clouds); transmittance_lut,
                        multiscattering_lut, sky_view_sun_lut, sky_view_moon_lut,
-                       aerial_perspective (sky.model physical)
+                       aerial_perspective (sky.model physical); cloud_steps,
+                       cloud_density_slice, weather_map (with low or mid clouds)
   --gpu NAME|INDEX     Vulkan device by index or name substring (default: a GPU if
                        present, else lavapipe)
   --ocio FILE          OpenColorIO config (default: $OCIO, else configs/ocio/config.ocio)
 
 outputs:
   NAME.exr   scene-linear Rec.709, half float: R,G,B,A (beauty), layers sky.R/G/B
-             (clear sky) and high_clouds.R/G/B/A (premultiplied, A = coverage)
+             (clear sky), high_clouds.R/G/B/A (premultiplied, A = coverage) and
+             clouds.R/G/B/A/depth (volumetric clouds, premultiplied, A = opacity,
+             depth in m); camera.mode geographic_topdown adds weather.cover_low/_mid
   NAME.png   8-bit display image through output.display / output.view, exposure applied
   NAME.json  settings, time, sun, moon and light (as `ephemeris` prints them),
              per-pass GPU milliseconds, total, device name
@@ -81,7 +84,7 @@ outputs:
 environment:
   SKY_VALIDATION=1   enable the Vulkan validation layers (messages go to stderr)
   SKY_DATA_DIR       folder holding shaders/ and configs/ (default: the source tree)
-  SKY_CACHE_DIR      cache folder for SPIR-V and baked high-cloud textures
+  SKY_CACHE_DIR      cache folder for SPIR-V, baked high-cloud textures and cloud noise
                      (default: ~/.cache/skylayers)
   OCIO               OpenColorIO config used when --ocio is absent
 

@@ -97,9 +97,20 @@ void writeExr(const fs::path& path, const LayeredImage& image) {
     for (const auto& [key, value] : image.attributes)
       header.insert(key, Imf::StringAttribute(value));
     for (const ImageLayer& layer : image.layers) {
+      const size_t n = layer.channels.size();
+      if (layer.fullFloat) {
+        for (size_t c = 0; c < n; ++c) {
+          const std::string name = fullName(layer.name, layer.channels[c]);
+          header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+          frame.insert(name,
+                       Imf::Slice(Imf::FLOAT, const_cast<char*>(reinterpret_cast<const char*>(
+                                                  layer.pixels.data() + c)),
+                                  n * sizeof(float), size_t(image.width) * n * sizeof(float)));
+        }
+        continue;
+      }
       std::vector<half>& data = halves.emplace_back(layer.pixels.size());
       std::transform(layer.pixels.begin(), layer.pixels.end(), data.begin(), toHalf);
-      const size_t n = layer.channels.size();
       for (size_t c = 0; c < n; ++c) {
         const std::string name = fullName(layer.name, layer.channels[c]);
         header.channels().insert(name, Imf::Channel(Imf::HALF));

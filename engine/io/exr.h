@@ -1,5 +1,6 @@
 #pragma once
-// Scene-linear image files: single-part, multi-layer OpenEXR (HALF channels, ZIP).
+// Scene-linear image files: single-part, multi-layer OpenEXR (HALF channels unless a layer
+// asks for FLOAT, ZIP).
 #include <filesystem>
 #include <map>
 #include <string>
@@ -16,6 +17,9 @@ struct ImageLayer {
   std::string name;
   std::vector<std::string> channels;
   std::vector<float> pixels;
+  // Stored as 32-bit FLOAT instead of HALF: for values past half's range (65504), such as
+  // distances in metres.
+  bool fullFloat = false;
 };
 
 struct LayeredImage {

@@ -34,7 +34,8 @@ const std::vector<std::string> kSteps = {"view", "light"};
 // (m); all zero when the scene has no volumetric clouds.
 ImageLayer cloudLayer(const ReadbackImage* clouds, const ReadbackImage* depth, uint32_t width,
                       uint32_t height) {
-  ImageLayer layer{"clouds", {"R", "G", "B", "A", "depth"}, {}};
+  // FLOAT: the depth of horizon clouds (up to ~200 km) is past half's 65504.
+  ImageLayer layer{"clouds", {"R", "G", "B", "A", "depth"}, {}, true};
   const size_t n = size_t(width) * height;
   layer.pixels.assign(n * 5, 0.0f);
   if (!clouds || !depth) return layer;

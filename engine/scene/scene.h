@@ -143,7 +143,7 @@ struct CloudSettings {
   double stepM = 60.0;                  // view-ray step near the camera, metres
   double stepGrowth = 0.004;            // extra step length per metre of distance
   int maxSteps = 256;                   // per view ray
-  int lightSteps = 5;                   // short steps toward the light (plus one long one)
+  int lightSteps = 5;                   // short steps toward the light (plus one long one), 1..16
   double lightDistanceM = 1200.0;       // length covered by the short light steps, metres
   double transmittanceCutoff = 0.01;    // stop marching below this transmittance
   bool energyConserving = true;         // Hillaire 2016's integration of each step

@@ -192,7 +192,9 @@ void describe(V& v, CloudSettings& s) {
   v.field("step_growth", s.stepGrowth, NumberRange{0, 1},
           "extra step length per metre of distance (steps grow linearly)");
   v.field("max_steps", s.maxSteps, NumberRange{1, 4096}, "most steps along one view ray");
-  v.field("light_steps", s.lightSteps, NumberRange{1, 64},
+  // At most 16: the short steps double in length (cloud_lighting.glsl), so 16 already spans
+  // 1:32768 and more would overflow the shader's 1 << i.
+  v.field("light_steps", s.lightSteps, NumberRange{1, 16},
           "short steps toward the light, followed by one long step");
   v.field("light_distance_m", s.lightDistanceM, NumberRange{1, 100000},
           "distance toward the light covered by the short steps, metres");

@@ -221,7 +221,7 @@ inline Scene unusualScene() {
   s.clouds.stepM = 10000.0;
   s.clouds.stepGrowth = 0.1 + 0.2;
   s.clouds.maxSteps = 4096;
-  s.clouds.lightSteps = 64;
+  s.clouds.lightSteps = 16;
   s.clouds.lightDistanceM = 1.5;
   s.clouds.transmittanceCutoff = 0.0;
   s.clouds.energyConserving = false;
