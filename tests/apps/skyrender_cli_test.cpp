@@ -1,11 +1,14 @@
 // skyrender as a user runs it: outputs, exit codes, one-line errors with the key path, and
 // no output file left behind by a failed run. The binary inherits SKY_VALIDATION=1 from
 // ctest; any validation message on its stderr fails the test.
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
+#include <string>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -404,6 +407,132 @@ TEST_F(SkyrenderCli, DebugOutputsAreWrittenBesideTheFrame) {
   const nlohmann::json report = nlohmann::json::parse(readTextFile(dir / "dbg.json"));
   EXPECT_EQ(report["debug_outputs"].size(), 7u);
   EXPECT_TRUE(report["high_cloud_textures"].contains("baked"));
+}
+
+TEST_F(SkyrenderCli, BadCloudAndWeatherInputExitsTwoWithFileLineAndKey) {
+  const std::string tiny = " --width 16 --height 9";
+  expectBadInput(
+      write("layer.yaml", "clouds:\n  low:\n    base_m: 3000\n    top_m: 2000\n").string() + tiny,
+      {"layer.yaml:4:", "clouds.low.top_m", "must be above base_m"});
+  expectBadInput(write("stacked.yaml",
+                       "clouds:\n  low: {base_m: 500, top_m: 2500}\n  mid: {base_m: 2000, "
+                       "top_m: 5000}\n")
+                         .string() +
+                     tiny,
+                 {"stacked.yaml:3:", "clouds.mid", "low.top_m"});
+  expectBadInput(write("cover.yaml", "weather:\n  cover_low: 1.5\n").string() + tiny,
+                 {"cover.yaml:2:", "weather.cover_low", "1.5", "out of range [0, 1]"});
+  expectBadInput(write("region.yaml", "weather:\n  region:\n    lat: [50, 45]\n").string() + tiny,
+                 {"region.yaml:3:", "weather.region.lat", "south"});
+  expectBadInput(write("model.yaml", "clouds:\n  model: schneider2015\n").string() + tiny,
+                 {"model.yaml:2:", "clouds.model", "schneider2015", "lu2023 or tang2019"});
+  expectBadInput(write("flag.yaml", "clouds:\n  energy_conserving: yes\n").string() + tiny,
+                 {"flag.yaml:2:", "clouds.energy_conserving", "true or false"});
+  expectBadInput("--set weather.cover_low=1.5" + tiny,
+                 {"--set weather.cover_low=1.5", "weather.cover_low"});
+  // An image path is resolved against the scene's folder and named as the scene wrote it.
+  expectBadInput(
+      write("painted.yaml", "weather:\n  source: image\n  image: missing_map.png\n").string() +
+          tiny,
+      {"weather.image", "missing_map.png"});
+}
+
+TEST_F(SkyrenderCli, CloudDebugOutputWithoutCloudsIsBadInput) {
+  // The default scene has cumulus; without cover there is no cloud pass to look into.
+  expectBadInput("--width 16 --height 9 --set weather.cover_low=0 --debug-output cloud_steps",
+                 {"--debug-output cloud_steps", "no low or mid clouds"});
+}
+
+// A uniformly 70 % covered cumulus layer overhead: the frame carries the clouds layer, the
+// report says the clouds were drawn, and the clouds' debug images come out at their sizes.
+TEST_F(SkyrenderCli, CloudyRenderWritesCloudLayerReportAndDebugImages) {
+  fs::path scene = write("cloudy.yaml",
+                         "output: {width: 32, height: 18, name: cloudy}\n"
+                         "camera: {altitude_m: 0, heading: 200, pitch: 30}\n"
+                         "time: 2024-06-21T12:00:00+02:00\n"
+                         "weather: {cover_low: 0.7, spread: 0, cloud_type: cumulus}\n");
+  CliRun r = run("render " + scene.string() + " --out " + out() +
+                 " --debug-output cloud_steps,cloud_density_slice,weather_map");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const fs::path dir = out();
+  LayeredImage exr = readExr(dir / "cloudy.exr");
+  const ImageLayer* clouds = exr.find("clouds");
+  ASSERT_NE(clouds, nullptr);
+  EXPECT_EQ(clouds->channels, (std::vector<std::string>{"R", "G", "B", "A", "depth"}));
+  EXPECT_EQ(exr.find("weather"), nullptr) << "the weather layer is for top-down renders only";
+  // Looking 30 degrees up into 70 % cover: most pixels see cloud, and a cloud's depth is at
+  // least the distance up to the layer's base (500 m).
+  int cloudy = 0;
+  for (size_t i = 0; i < clouds->pixels.size(); i += 5) {
+    const float alpha = clouds->pixels[i + 3], depth = clouds->pixels[i + 4];
+    EXPECT_GE(alpha, 0.0f);
+    EXPECT_LE(alpha, 1.0f);
+    if (alpha > 0.5f) {
+      ++cloudy;
+      EXPECT_GT(depth, 500.0f);
+    }
+  }
+  EXPECT_GT(cloudy, 32 * 18 / 2);
+
+  const nlohmann::json report = nlohmann::json::parse(readTextFile(dir / "cloudy.json"));
+  EXPECT_EQ(report["volumetric_clouds"]["present"], true);
+  EXPECT_THAT(report["exr_layers"].get<std::vector<std::string>>(), ::testing::Contains("clouds"));
+  std::vector<std::string> passNames;
+  for (const auto& p : report["passes"]) passNames.push_back(p["name"]);
+  EXPECT_THAT(passNames, ::testing::Contains("volumetric_clouds"));
+  EXPECT_THAT(passNames, ::testing::Contains("cloud_density_slice"));
+
+  LayeredImage steps = readExr(dir / "cloudy.cloud_steps.exr");
+  EXPECT_EQ(steps.width, 32);
+  EXPECT_EQ(steps.height, 18);
+  LayeredImage slice = readExr(dir / "cloudy.cloud_density_slice.exr");
+  EXPECT_EQ(slice.width, 512);
+  EXPECT_EQ(slice.height, 128);
+  LayeredImage map = readExr(dir / "cloudy.weather_map.exr");
+  EXPECT_EQ(std::max(map.width, map.height), 256);  // weather.resolution along the longer side
+}
+
+// camera.mode geographic_topdown maps the weather region onto the image and adds the map's
+// cover as a layer; `skyrender dsc` compares the two (Lu (28)). 64x64 pixels in 8x8 blocks:
+// 64 blocks. Measured on lavapipe with the calibrated coverage: dsc 1.000, mae 0.028,
+// correlation 0.996; the bounds only catch a render that no longer follows its map.
+TEST_F(SkyrenderCli, TopDownRenderThenDscPrintsFourLines) {
+  fs::path scene = write("topdown.yaml",
+                         "output: {width: 64, height: 64, name: top}\n"
+                         "camera: {mode: geographic_topdown}\n"
+                         "time: 2024-06-21T12:00:00+02:00\n"
+                         "weather: {cover_low: 0.5, spread: 1, cloud_type: cumulus}\n");
+  CliRun r = run("render " + scene.string() + " --out " + out());
+  ASSERT_EQ(r.rc, 0) << r.err;
+  LayeredImage exr = readExr(mDir / "out" / "top.exr");
+  ASSERT_NE(exr.find("weather"), nullptr);
+  EXPECT_EQ(exr.find("weather")->channels, (std::vector<std::string>{"cover_low", "cover_mid"}));
+
+  CliRun d = run("dsc " + (mDir / "out" / "top.exr").string());
+  ASSERT_EQ(d.rc, 0) << d.err;
+  std::istringstream lines(d.out);
+  std::vector<std::string> names;
+  std::map<std::string, double> values;
+  std::string name;
+  double value = 0.0;
+  while (lines >> name >> value) {
+    names.push_back(name);
+    values[name] = value;
+  }
+  EXPECT_EQ(names, (std::vector<std::string>{"dsc", "mae", "correlation", "blocks"})) << d.out;
+  EXPECT_EQ(std::count(d.out.begin(), d.out.end(), '\n'), 4) << d.out;
+  EXPECT_EQ(values["blocks"], 64.0);
+  EXPECT_GT(values["dsc"], 0.8);
+  EXPECT_LT(values["mae"], 0.1);
+  EXPECT_GT(values["correlation"], 0.8);
+
+  // A perspective render has no weather layer to compare with.
+  ASSERT_EQ(run("render --width 16 --height 9 --name persp --out " + out()).rc, 0);
+  CliRun bad = run("dsc " + (mDir / "out" / "persp.exr").string());
+  EXPECT_EQ(bad.rc, 2);
+  EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << bad.err;
+  EXPECT_THAT(bad.err, HasSubstr("persp.exr"));
+  EXPECT_THAT(bad.err, HasSubstr("geographic_topdown"));
 }
 
 TEST_F(SkyrenderCli, HelpDocumentsEveryOption) {
