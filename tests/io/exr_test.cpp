@@ -126,6 +126,24 @@ TEST_F(ExrTest, ValuesBeyondHalfRangeClampButNanSurvives) {
   EXPECT_EQ(back.layers[0].pixels[3], 65504.0f);
 }
 
+TEST_F(ExrTest, FullFloatLayersKeepDistancesPastHalfRange) {
+  // clouds.depth: horizon clouds lie 30-200 km away, past half's 65504.
+  LayeredImage image;
+  image.width = 2;
+  image.height = 1;
+  image.layers.push_back({"", {"R"}, {0.5f, 1.0f}});
+  image.layers.push_back({"clouds", {"A", "depth"}, {0.25f, 187654.3f, 1.0f, 1.0e-3f}, true});
+  const fs::path path = dir() / "float.exr";
+  writeExr(path, image);
+  Imf::InputFile file(path.c_str());
+  EXPECT_EQ(file.header().channels().findChannel("clouds.depth")->type, Imf::FLOAT);
+  EXPECT_EQ(file.header().channels().findChannel("R")->type, Imf::HALF);
+  const LayeredImage back = readExr(path);
+  const ImageLayer* clouds = back.find("clouds");
+  ASSERT_NE(clouds, nullptr);
+  EXPECT_EQ(clouds->pixels, (std::vector<float>{0.25f, 187654.3f, 1.0f, 1.0e-3f}));
+}
+
 TEST_F(ExrTest, ReadsRgbaFileFromOtherToolsWithOffsetDataWindow) {
   // The way other tools write: RgbaOutputFile, PIZ, a data window that does not start at 0.
   const fs::path path = dir() / "other.exr";
