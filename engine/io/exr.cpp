@@ -102,10 +102,11 @@ void writeExr(const fs::path& path, const LayeredImage& image) {
         for (size_t c = 0; c < n; ++c) {
           const std::string name = fullName(layer.name, layer.channels[c]);
           header.channels().insert(name, Imf::Channel(Imf::FLOAT));
-          frame.insert(name,
-                       Imf::Slice(Imf::FLOAT, const_cast<char*>(reinterpret_cast<const char*>(
-                                                  layer.pixels.data() + c)),
-                                  n * sizeof(float), size_t(image.width) * n * sizeof(float)));
+          frame.insert(
+              name,
+              Imf::Slice(Imf::FLOAT,
+                         const_cast<char*>(reinterpret_cast<const char*>(layer.pixels.data() + c)),
+                         n * sizeof(float), size_t(image.width) * n * sizeof(float)));
         }
         continue;
       }
