@@ -164,10 +164,19 @@ struct WeatherRegion {
   bool operator==(const WeatherRegion&) const = default;
 };
 
+// The pressure levels of one cloud layer in a forecast file and Lu's critical humidity.
+struct WeatherLevelSettings {
+  double bottomHpa = 1000.0;  // the layer's lower bound (higher pressure), 1..1100
+  double topHpa = 800.0;      // its upper bound (lower pressure), < bottomHpa
+  double rhCritical = 0.8;    // Lu (2): rh_cr, 0..0.99
+
+  bool operator==(const WeatherLevelSettings&) const = default;
+};
+
 // The weather map the volumetric clouds read: per lat/lon cell the low and mid cover (Lu's
 // CMc), the cloud type and a density scale. See docs/weather.md.
 struct WeatherSettings {
-  std::string source = "procedural";  // "procedural" | "image"
+  std::string source = "procedural";  // "procedural" | "image" | "file"
   WeatherRegion region;
   // procedural: fbm cover around a mean, per layer.
   double coverLow = 0.0;   // mean low-layer cover, 0..1 (0: no low clouds)
@@ -181,6 +190,13 @@ struct WeatherSettings {
   std::string cloudType = "cumulus";
   // image: RGBA PNG/EXR over the region (R low cover, G mid cover, B type, A density scale).
   std::string image;
+  // file: a GRIB2 or NetCDF forecast; cover from relative humidity (Lu (1)(2)) per layer of
+  // pressure levels, or the model's own layer cloud cover ("tcc").
+  std::string file;
+  std::string cover = "rh";  // "rh" | "tcc"
+  WeatherLevelSettings low{1000.0, 800.0, 0.80};
+  WeatherLevelSettings mid{800.0, 450.0, 0.65};
+  WeatherLevelSettings high{450.0, 150.0, 0.80};
 
   bool operator==(const WeatherSettings&) const = default;
 };

@@ -227,9 +227,21 @@ void describe(V& v, WeatherRegion& s) {
 }
 
 template <class V>
+void describe(V& v, WeatherLevelSettings& s) {
+  v.field("bottom_hpa", s.bottomHpa, NumberRange{1, 1100},
+          "the layer's lower bound, hPa (the higher pressure)");
+  v.field("top_hpa", s.topHpa, NumberRange{1, 1100}, "the layer's upper bound, hPa");
+  v.field("rh_critical", s.rhCritical, NumberRange{0, 0.99},
+          "critical relative humidity rh_cr of Lu (1)(2), as a fraction");
+  v.check("top_hpa", s.topHpa < s.bottomHpa, "must be below bottom_hpa (higher up)");
+}
+
+template <class V>
 void describe(V& v, WeatherSettings& s) {
-  v.field("source", s.source, TextRule{1, 0, "^(procedural|image)$", "procedural or image"},
-          "where the weather map comes from: procedural (fbm cover) or image (painted)");
+  v.field("source", s.source,
+          TextRule{1, 0, "^(procedural|image|file)$", "procedural, image or file"},
+          "where the weather map comes from: procedural (fbm cover), image (painted) or file "
+          "(a GRIB2 or NetCDF forecast)");
   v.section("region", s.region, "the map's lat/lon bounds");
   v.field("cover_low", s.coverLow, NumberRange{0, 1}, "procedural: mean low-layer cover");
   v.field("cover_mid", s.coverMid, NumberRange{0, 1}, "procedural: mean mid-layer cover");
@@ -248,7 +260,17 @@ void describe(V& v, WeatherSettings& s) {
   v.field("image", s.image, TextRule{0, 4096},
           "image source: RGBA PNG/EXR over the region (R low cover, G mid cover, B type, A "
           "density scale); row 0 is the north edge");
+  v.field("file", s.file, TextRule{0, 4096},
+          "file source: a GRIB2 or NetCDF forecast (relative paths are relative to the scene "
+          "file)");
+  v.field("cover", s.cover, TextRule{1, 0, "^(rh|tcc)$", "rh or tcc"},
+          "file source: cover from relative humidity (rh, Lu (1)(2)) or the model's own layer "
+          "cloud cover (tcc)");
+  v.section("low", s.low, "file source: the low layer's pressure levels and rh_cr");
+  v.section("mid", s.mid, "file source: the mid layer's pressure levels and rh_cr");
+  v.section("high", s.high, "file source: the high layer's pressure levels and rh_cr");
   v.check("image", s.source != "image" || !s.image.empty(), "is required when source is image");
+  v.check("file", s.source != "file" || !s.file.empty(), "is required when source is file");
 }
 
 template <class V>

@@ -148,6 +148,13 @@ inline void expectSameScene(const Scene& a, const Scene& b) {
   EXPECT_EQ(aw.resolution, bw.resolution);
   EXPECT_EQ(aw.cloudType, bw.cloudType);
   EXPECT_EQ(aw.image, bw.image);
+  EXPECT_EQ(aw.file, bw.file);
+  EXPECT_EQ(aw.cover, bw.cover);
+  for (auto [x, y] : {std::pair{&aw.low, &bw.low}, {&aw.mid, &bw.mid}, {&aw.high, &bw.high}}) {
+    EXPECT_EQ(x->bottomHpa, y->bottomHpa);
+    EXPECT_EQ(x->topHpa, y->topHpa);
+    EXPECT_EQ(x->rhCritical, y->rhCritical);
+  }
   expectSameLighting(a.lighting, b.lighting);
 }
 
@@ -243,6 +250,11 @@ inline Scene unusualScene() {
   s.weather.resolution = 8192;
   s.weather.cloudType = "altocumulus";
   s.weather.image = "maps/weather \u00e9.exr";
+  s.weather.file = "../gfs/gfs.t12z.grib2";
+  s.weather.cover = "tcc";
+  s.weather.low = {1100.0, 1099.5, 0.0};
+  s.weather.mid = {700.0, 1.0, 0.99};
+  s.weather.high = {2.0 / 3.0 + 1.0, 1.0, 1.0 / 3.0};
   s.lighting.pressureHpa = 0.0;
   s.lighting.temperatureC = -40.05;
   s.lighting.turbidity = 4.999999999999999;

@@ -148,8 +148,10 @@ int failuresOf(F&& f) {
 TEST(SceneRoundTrip, UnusualSceneDiffersFromTheDefaultEverywhere) {
   // Guards the round trip above: a field left at its default in unusualScene() would pass
   // it even if the reader or writer forgot that field: every scalar above and the palette's
-  // length (3 against 8). 66 before the clouds: + camera mode, 24 cloud and 13 weather values.
-  EXPECT_EQ(failuresOf([] { expectSameScene(test::unusualScene(), Scene()); }), 66 + 1 + 24 + 13);
+  // length (3 against 8). 66 before the clouds: + camera mode, 24 cloud and 13 + 2 + 9
+  // weather values.
+  EXPECT_EQ(failuresOf([] { expectSameScene(test::unusualScene(), Scene()); }),
+            66 + 1 + 24 + 13 + 2 + 9);
   const std::vector<PaletteKey> palette = test::unusualScene().lighting.palette;
   for (size_t i = 0; i < palette.size(); ++i) {
     const PaletteKey& k = palette[i];
@@ -330,6 +332,20 @@ TEST(SceneRoundTrip, PrintedYamlLooksLikeAScene) {
             "  resolution: 256\n"
             "  cloud_type: \"cumulus\"\n"
             "  image: \"\"\n"
+            "  file: \"\"\n"
+            "  cover: \"rh\"\n"
+            "  low:\n"
+            "    bottom_hpa: 1000\n"
+            "    top_hpa: 800\n"
+            "    rh_critical: 0.8\n"
+            "  mid:\n"
+            "    bottom_hpa: 800\n"
+            "    top_hpa: 450\n"
+            "    rh_critical: 0.65\n"
+            "  high:\n"
+            "    bottom_hpa: 450\n"
+            "    top_hpa: 150\n"
+            "    rh_critical: 0.8\n"
             "lighting:\n"
             "  pressure_hpa: 1010\n"
             "  temperature_c: 10\n"
@@ -477,7 +493,24 @@ TEST(SceneRoundTrip, PrintedJsonLooksLikeAScene) {
             "    \"seed\": 1,\n"
             "    \"resolution\": 256,\n"
             "    \"cloud_type\": \"cumulus\",\n"
-            "    \"image\": \"\"\n"
+            "    \"image\": \"\",\n"
+            "    \"file\": \"\",\n"
+            "    \"cover\": \"rh\",\n"
+            "    \"low\": {\n"
+            "      \"bottom_hpa\": 1000,\n"
+            "      \"top_hpa\": 800,\n"
+            "      \"rh_critical\": 0.8\n"
+            "    },\n"
+            "    \"mid\": {\n"
+            "      \"bottom_hpa\": 800,\n"
+            "      \"top_hpa\": 450,\n"
+            "      \"rh_critical\": 0.65\n"
+            "    },\n"
+            "    \"high\": {\n"
+            "      \"bottom_hpa\": 450,\n"
+            "      \"top_hpa\": 150,\n"
+            "      \"rh_critical\": 0.8\n"
+            "    }\n"
             "  },\n"
             "  \"lighting\": {\n"
             "    \"pressure_hpa\": 1010,\n"
