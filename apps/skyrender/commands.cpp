@@ -48,6 +48,14 @@ usage:
                                        PX x PX blocks (default 8): Dice of the blocks
                                        above T (default 0.1; Lu (28)), mean absolute
                                        error, correlation, block count
+  skyrender weather FILE [--scene SCENE] [--out DIR] [--set K=V]
+                                       the cloud map a GRIB2/NetCDF forecast gives over
+                                       the scene's weather.region (default scene: its
+                                       region): DIR/STEM.weather.exr (cover_low, cover_mid,
+                                       cover_high, type) and .png (low red, mid green,
+                                       high blue); prints each layer's covered fraction,
+                                       mean cover, altitudes and Dice against the file's
+                                       own cloud cover (tcc) when it has one
   skyrender --help                     this text
 
 render options:

@@ -11,6 +11,7 @@ int ephemerisCommand(const std::vector<std::string>& args);
 int schemaCommand(const std::vector<std::string>& args);
 int devicesCommand(const std::vector<std::string>& args);
 int dscCommand(const std::vector<std::string>& args);
+int weatherCommand(const std::vector<std::string>& args);
 const char* usageText();
 
 }  // namespace sky

@@ -38,8 +38,10 @@ int main(int argc, char** argv) {
     if (command == "schema") return sky::schemaCommand(args);
     if (command == "devices") return sky::devicesCommand(args);
     if (command == "dsc") return sky::dscCommand(args);
-    sky::inputError("unknown command '" + command +
-                    "' (commands: render, validate, ephemeris, schema, devices, dsc; see --help)");
+    if (command == "weather") return sky::weatherCommand(args);
+    sky::inputError(
+        "unknown command '" + command +
+        "' (commands: render, validate, ephemeris, schema, devices, dsc, weather; see --help)");
   } catch (const sky::Error& e) {
     std::cerr << "error: " << oneLine(e.what()) << "\n";
     return e.exitCode();

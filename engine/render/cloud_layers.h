@@ -19,9 +19,10 @@ class CloudLayers {
 public:
   CloudLayers(const Context& ctx, ShaderCompiler& compiler, GraphRuntime& runtime);
 
-  // The weather map of `scene` (rebuilt when the weather settings or the image file change).
-  // BadInput for bad settings or files, naming weather.<key>.
-  const WeatherMap& weatherMap(const Scene& scene);
+  // The weather map of `scene` at `time` (rebuilt when the weather settings or the input file
+  // change, and for a forecast file with several steps when the time does; the file itself is
+  // read once). BadInput for bad settings or files, naming weather.<key>.
+  const WeatherMap& weatherMap(const Scene& scene, const IsoTime& time);
 
   struct Frame {
     CloudTextures textures;
@@ -32,7 +33,7 @@ public:
   // Imports the noise and weather textures into `graph` (baking or loading the noise on first
   // use of a model) and returns them with the coverage tables for `scene`. Call only when
   // weatherMap(scene) has cover.
-  Frame addTo(FrameGraph& graph, const Scene& scene);
+  Frame addTo(FrameGraph& graph, const Scene& scene, const IsoTime& time);
 
   const CloudNoise::Activity& noiseActivity() const { return mNoise.lastActivity(); }
   // How many coverage tables were calibrated in the last addTo (0 when cached).
@@ -45,6 +46,8 @@ private:
   WeatherTexture mWeather;
   std::optional<WeatherMap> mMap;
   std::string mMapSignature;
+  std::optional<WeatherFields> mFields;  // the forecast file of source "file"
+  std::string mFieldsSignature;
   uint64_t mMapRevision = 0;
   std::map<std::string, clouds::CoverageLut> mLuts;  // by model, layer, type and column
   int mLastCalibrations = 0;

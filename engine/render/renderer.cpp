@@ -129,8 +129,17 @@ RenderedFrame Renderer::render(const Scene& scene, const IsoTime& time,
                                const RenderOptions& options) {
   checkDebugOutputs(scene, options.debugOutputs);
   RenderedFrame out;
+  const WeatherMap& weather = mClouds.weatherMap(scene, time);
+  // A forecast file places the layers at the altitudes of its pressure levels (from gh); the
+  // scene's clouds.low/mid apply otherwise.
+  Scene cloudScene = scene;
+  if (weather.layerAltitudesM) {
+    const glm::dvec4& a = *weather.layerAltitudesM;
+    cloudScene.clouds.low = {a.x, a.y};
+    cloudScene.clouds.mid = {a.z, a.w};
+  }
   // A top-down view is lit as seen from the middle of the weather region.
-  const CloudFrameGeometry geometry = cloudFrameGeometry(scene);
+  const CloudFrameGeometry geometry = cloudFrameGeometry(cloudScene);
   Scene litScene = scene;
   litScene.camera.latitude = geometry.latDeg;
   litScene.camera.longitude = geometry.lonDeg;
@@ -140,7 +149,6 @@ RenderedFrame Renderer::render(const Scene& scene, const IsoTime& time,
   const shared::ViewState view = makeViewState(scene.camera, width, height);
   const bool physical = scene.sky.model == "physical";
   const bool topDown = geometry.topDown;
-  const WeatherMap& weather = mClouds.weatherMap(scene);
   const glm::vec2 maxCover = weather.maxCover();
   out.clouds = maxCover.x > 0.0f || maxCover.y > 0.0f;
   for (const std::string& name : options.debugOutputs)
@@ -190,10 +198,10 @@ RenderedFrame Renderer::render(const Scene& scene, const IsoTime& time,
   VolumetricCloudsPass::Outputs clouds{};
   CloudLayers::Frame cloudFrame;
   if (out.clouds) {
-    cloudFrame = mClouds.addTo(graph, scene);
+    cloudFrame = mClouds.addTo(graph, cloudScene, time);
     out.cloudNoise = mClouds.noiseActivity();
     VolumetricCloudsPass::Inputs in;
-    in.params = cloudParams(scene, out.lighting, time, view, cloudFrame.maxCover,
+    in.params = cloudParams(cloudScene, out.lighting, time, view, cloudFrame.maxCover,
                             cloudFrame.weatherSize, cloudFrame.coverage);
     in.lighting = out.lighting.gpu;
     in.textures = cloudFrame.textures;

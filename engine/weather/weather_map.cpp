@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <thread>
 
 #include <glm/common.hpp>
@@ -13,8 +14,11 @@
 #include "engine/core/error.h"
 #include "engine/io/exr.h"
 #include "engine/io/png.h"
+#include "engine/weather/cloud_layers_from_fields.h"
 #include "engine/weather/detail/cover_noise.h"
 #include "engine/weather/geo.h"
+#include "engine/weather/grib_reader.h"
+#include "engine/weather/netcdf_reader.h"
 
 namespace sky {
 namespace {
@@ -160,6 +164,36 @@ WeatherMap proceduralMap(const Scene& scene) {
 
 }  // namespace
 
+// GRIB by its extension or its "GRIB" magic, NetCDF by ".nc"/".nc4" or the classic
+// ("CDF\1", "CDF\2", "CDF\5") or HDF5 (NetCDF-4) signature.
+WeatherFields readWeatherFile(const Scene& scene) {
+  const std::string& written = scene.weather.file;
+  if (written.empty()) inputError("weather.file: is required when source is file");
+  const fs::path path = scene.resolvePath(written);
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec))
+    inputError("weather.file: " + written + ": file not found (" + path.string() + ")");
+  const std::string ext = lowerExtension(path);
+  char magic[8] = {};
+  std::ifstream(path, std::ios::binary).read(magic, sizeof magic);
+  const std::string head(magic, sizeof magic);
+  const bool grib = ext == ".grib2" || ext == ".grb2" || ext == ".grib" || ext == ".grb" ||
+                    head.compare(0, 4, "GRIB") == 0;
+  const bool netcdf = ext == ".nc" || ext == ".nc4" || head.compare(0, 3, "CDF") == 0 ||
+                      head.compare(0, 8, "\x89HDF\r\n\x1a\n") == 0;
+  if (!grib && !netcdf)
+    inputError("weather.file: " + written +
+               ": not a GRIB or NetCDF file (extension .grib2/.grb2/.grib/.grb or .nc/.nc4, or "
+               "the format's signature)");
+  try {
+    return grib ? readGrib2(path) : readNetcdf(path);
+  } catch (const Error& e) {
+    // The readers name the file; say which key it came from.
+    if (e.kind() == ErrorKind::BadInput) inputError(std::string("weather.file: ") + e.what());
+    throw;
+  }
+}
+
 glm::vec4 WeatherMap::sample(double latDeg, double lonDeg) const {
   if (width == 0 || height == 0 || texels.size() != size_t(width) * height) return glm::vec4(0.0f);
   glm::dvec2 uv;
@@ -206,7 +240,12 @@ WeatherMap makeWeatherMap(const Scene& scene) {
     inputError("weather.region.lon: [west, east] must rise and span at most 360 degrees");
   if (w.source == "image") return readImageMap(scene);
   if (w.source == "procedural") return proceduralMap(scene);
-  inputError("weather.source: '" + w.source + "' is not procedural or image");
+  if (w.source == "file") {
+    const WeatherFields fields = readWeatherFile(scene);
+    // The forecast valid at the scene's time (its start for a time-lapse).
+    return weatherMapFromFields(fields, double(scene.time.start.unixSeconds), w);
+  }
+  inputError("weather.source: '" + w.source + "' is not procedural, image or file");
 }
 
 }  // namespace sky

@@ -4,9 +4,10 @@
 // 0.5 cellular, 1 convective), A = density scale (1 = normal). Row 0 is the north edge,
 // column 0 the west edge, equal lat/lon spacing, texel (i, j) centred at
 // ((i + 0.5) / width, (j + 0.5) / height) of the region (engine/weather/geo.h regionUv).
-// Every source (procedural, image, and the GRIB2/NetCDF readers later) produces this.
+// Every source (procedural, image, GRIB2/NetCDF forecast files) produces this.
 // See docs/weather.md.
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -14,6 +15,7 @@
 #include <glm/vec4.hpp>
 
 #include "engine/scene/scene.h"
+#include "engine/weather/weather_fields.h"
 
 namespace sky {
 
@@ -21,6 +23,11 @@ struct WeatherMap {
   WeatherRegion region;
   uint32_t width = 0, height = 0;  // texels
   std::vector<glm::vec4> texels;   // row-major, row 0 north
+  // From forecast data (source "file") only, empty or absent otherwise: the high layer's
+  // cover per texel (the volumetric clouds do not draw it), and the layers' altitudes above
+  // sea level from the data, m: (low base, low top, mid base, mid top).
+  std::vector<float> coverHigh;
+  std::optional<glm::dvec4> layerAltitudesM;
 
   // Bilinear between texel centres, clamped at the edges (what a linear clamp-to-edge
   // sampler returns); points outside the region take the nearest edge. An empty map gives 0.
@@ -37,10 +44,17 @@ struct WeatherMap {
 float cloudTypeValue(const std::string& name);
 
 // The map of `scene.weather`: "procedural" (fbm cover, see weather_map.cpp and
-// docs/weather.md) or "image" (an RGBA PNG/EXR over the region, resolved with
-// scene.resolvePath). Bad settings or files are BadInput errors naming weather.<key> and
-// the file.
+// docs/weather.md), "image" (an RGBA PNG/EXR over the region, resolved with
+// scene.resolvePath) or "file" (a GRIB2/NetCDF forecast at the scene's start time, through
+// engine/weather/cloud_layers_from_fields.h). Bad settings or files are BadInput errors
+// naming weather.<key> and the file.
 WeatherMap makeWeatherMap(const Scene& scene);
+
+// The forecast file of source "file" (scene.weather.file, resolved against the scene's
+// folder), read whole: callers that render several times keep it and build each frame's map
+// with weatherMapFromFields (engine/weather/cloud_layers_from_fields.h). BadInput naming
+// weather.file for a missing, unknown or broken file.
+WeatherFields readWeatherFile(const Scene& scene);
 
 // The procedural map's size: `resolution` texels along the region's longer side in km, the
 // other side in proportion (at least 2).

@@ -545,5 +545,34 @@ TEST_F(SkyrenderCli, HelpDocumentsEveryOption) {
     EXPECT_THAT(r.out, HasSubstr(opt));
 }
 
+TEST_F(SkyrenderCli, WeatherCommandWritesTheForecastMapAndFigures) {
+  const fs::path grib = fs::path(std::getenv("SKY_DATA_DIR")) / "tests" / "data" / "weather" /
+                        "gfs_2p5deg_r_gh_t_tcc_uv500.grib2";
+  // Lu et al.'s region; the figures are those of tests/weather_layers on the same file.
+  CliRun r = run("weather " + grib.string() + " --set weather.region.lat=[0,55]" +
+                 " --set weather.region.lon=[39,105] --out " + out());
+  ASSERT_EQ(r.rc, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("256x241 map over lat [0, 55], lon [39, 105], cover from rh"));
+  EXPECT_THAT(r.out, HasSubstr("low  covered 0.343  mean cover 0.136  altitude 145-1992 m"));
+  EXPECT_THAT(r.out, HasSubstr("dsc vs tcc 0.608"));
+  EXPECT_THAT(r.out, HasSubstr("high covered 0.575"));
+  const LayeredImage exr = readExr(mDir / "out" / "gfs_2p5deg_r_gh_t_tcc_uv500.weather.exr");
+  EXPECT_EQ(exr.width, 256);
+  EXPECT_EQ(exr.height, 241);
+  ASSERT_NE(exr.find(""), nullptr);
+  // EXR keeps channels sorted by name.
+  EXPECT_EQ(exr.find("")->channels,
+            (std::vector<std::string>{"cover_high", "cover_low", "cover_mid", "type"}));
+  EXPECT_TRUE(fs::exists(mDir / "out" / "gfs_2p5deg_r_gh_t_tcc_uv500.weather.png"));
+
+  // A file that is not a forecast: exit 2, one line naming the key and the file.
+  const fs::path bogus = write("bogus.grib2", "not a GRIB message");
+  CliRun bad = run("weather " + bogus.string() + " --out " + out());
+  EXPECT_EQ(bad.rc, 2);
+  EXPECT_THAT(bad.err, HasSubstr("weather.file: "));
+  EXPECT_THAT(bad.err, HasSubstr("bogus.grib2"));
+  EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << bad.err;
+}
+
 }  // namespace
 }  // namespace sky
