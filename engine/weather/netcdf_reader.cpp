@@ -17,6 +17,7 @@
 #include <sstream>
 
 #include "engine/core/error.h"
+#include "engine/weather/detail/text.h"
 #include "engine/weather/detail/cf_time.h"
 #include "engine/weather/detail/netcdf_classic_header.h"
 
@@ -25,38 +26,20 @@ namespace {
 
 namespace fs = std::filesystem;
 using detail::cfTimeToUnix;
+using detail::lower;
 using detail::parseDateTime;
+using detail::printable;
+using detail::trim;
 
 // WMO standard gravity: ERA5's z (geopotential, m2 s-2) / g0 = geopotential height (gpm).
 constexpr double kStandardGravity = 9.80665;
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
-
-std::string lower(std::string_view s) {
-  std::string out(s);
-  for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return out;
-}
-
-std::string trim(std::string_view s) {
-  size_t b = 0, e = s.size();
-  while (b < e && (std::isspace(static_cast<unsigned char>(s[b])) || s[b] == '\0')) ++b;
-  while (e > b && (std::isspace(static_cast<unsigned char>(s[e - 1])) || s[e - 1] == '\0')) --e;
-  return std::string(s.substr(b, e - b));
-}
 
 // Units compared without case, blanks, '*' and '^': "m s**-1" == "m s-1" == "M S^-1".
 std::string unitKey(std::string_view units) {
   std::string out;
   for (char c : lower(units))
     if (!std::isspace(static_cast<unsigned char>(c)) && c != '*' && c != '^') out += c;
-  return out;
-}
-
-// Text from the file (names, units) goes into one-line messages: control characters become '?'.
-std::string printable(std::string_view s) {
-  std::string out(s);
-  for (char& c : out)
-    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
   return out;
 }
 

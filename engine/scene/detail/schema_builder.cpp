@@ -37,6 +37,22 @@ Json numberSchema(const char* type, NumberRange range, std::string_view descript
   return s;
 }
 
+// A list of exactly `items.size()` numbers in `range` (a colour, a [from, to] pair).
+Json numberListSchema(NumberRange range, std::string_view description, Json items) {
+  Json s = Json::object();
+  s["description"] = std::string(description);
+  s["type"] = "array";
+  Json item = Json::object();
+  item["type"] = "number";
+  item["minimum"] = numberJson(range.min);
+  item["maximum"] = numberJson(range.max);
+  s["items"] = std::move(item);
+  s["minItems"] = items.size();
+  s["maxItems"] = items.size();
+  s["default"] = std::move(items);
+  return s;
+}
+
 }  // namespace
 
 Json SchemaBuilder::emptyObject(std::string_view description) {
@@ -71,34 +87,15 @@ void SchemaBuilder::field(std::string_view key, const std::optional<double>& val
 
 void SchemaBuilder::field(std::string_view key, const glm::vec3& value, NumberRange range,
                           std::string_view description) {
-  Json s = Json::object();
-  s["description"] = std::string(description);
-  s["type"] = "array";
-  Json item = Json::object();
-  item["type"] = "number";
-  item["minimum"] = numberJson(range.min);
-  item["maximum"] = numberJson(range.max);
-  s["items"] = std::move(item);
-  s["minItems"] = 3;
-  s["maxItems"] = 3;
-  s["default"] = Json::array({floatJson(value.x), floatJson(value.y), floatJson(value.z)});
-  mSchema["properties"][std::string(key)] = std::move(s);
+  mSchema["properties"][std::string(key)] =
+      numberListSchema(range, description,
+                       Json::array({floatJson(value.x), floatJson(value.y), floatJson(value.z)}));
 }
 
 void SchemaBuilder::field(std::string_view key, const glm::dvec2& value, NumberRange range,
                           std::string_view description) {
-  Json s = Json::object();
-  s["description"] = std::string(description);
-  s["type"] = "array";
-  Json item = Json::object();
-  item["type"] = "number";
-  item["minimum"] = numberJson(range.min);
-  item["maximum"] = numberJson(range.max);
-  s["items"] = std::move(item);
-  s["minItems"] = 2;
-  s["maxItems"] = 2;
-  s["default"] = Json::array({numberJson(value.x), numberJson(value.y)});
-  mSchema["properties"][std::string(key)] = std::move(s);
+  mSchema["properties"][std::string(key)] =
+      numberListSchema(range, description, Json::array({numberJson(value.x), numberJson(value.y)}));
 }
 
 void SchemaBuilder::field(std::string_view key, const bool& value, std::string_view description) {
