@@ -31,6 +31,7 @@ std::string mapSignature(const Scene& scene) {
     << w.scaleKm << '|' << w.seed << '|' << w.resolution << '|' << w.cloudType << '|' << w.cover;
   for (const WeatherLevelSettings* l : {&w.low, &w.mid, &w.high})
     s << '|' << l->bottomHpa << ',' << l->topHpa << ',' << l->rhCritical;
+  s << '|' << w.advection << '|' << w.steeringHpa;
   if (w.source == "image") s << '|' << fileStamp(scene.resolvePath(w.image));
   if (w.source == "file") s << '|' << fileStamp(scene.resolvePath(w.file));
   return s.str();
@@ -51,8 +52,10 @@ const WeatherMap& CloudLayers::weatherMap(const Scene& scene, const IsoTime& tim
       mFields = readWeatherFile(scene);
       mFieldsSignature = stamp;
     }
-    // Between forecast steps the cover is interpolated in time.
-    if (mFields->steps.size() > 1) signature += "|t" + std::to_string(time.unixSeconds);
+    // Between forecast steps the cover is interpolated in time; with advection the wind
+    // carries it at any time.
+    if (mFields->steps.size() > 1 || scene.weather.advection == "data")
+      signature += "|t" + std::to_string(time.unixSeconds);
   }
   if (!mMap || signature != mMapSignature) {
     mMap.reset();

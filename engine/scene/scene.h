@@ -197,6 +197,10 @@ struct WeatherSettings {
   WeatherLevelSettings low{1000.0, 800.0, 0.80};
   WeatherLevelSettings mid{800.0, 450.0, 0.65};
   WeatherLevelSettings high{450.0, 150.0, 0.80};
+  // Before the file's first step or after its last (any time, for a single step): "data"
+  // carries the nearest step's map with the file's wind at steering_hpa; "none" holds it.
+  std::string advection = "none";  // "none" | "data"
+  double steeringHpa = 500.0;      // 1..1100
 
   bool operator==(const WeatherSettings&) const = default;
 };

@@ -269,6 +269,11 @@ void describe(V& v, WeatherSettings& s) {
   v.section("low", s.low, "file source: the low layer's pressure levels and rh_cr");
   v.section("mid", s.mid, "file source: the mid layer's pressure levels and rh_cr");
   v.section("high", s.high, "file source: the high layer's pressure levels and rh_cr");
+  v.field("advection", s.advection, TextRule{1, 0, "^(none|data)$", "none or data"},
+          "file source: outside the file's steps, carry the nearest step's map with the file's "
+          "wind (data) or hold it (none); between steps the cover is interpolated");
+  v.field("steering_hpa", s.steeringHpa, NumberRange{1, 1100},
+          "file source: the pressure level whose wind (u, v) carries the clouds, hPa");
   v.check("image", s.source != "image" || !s.image.empty(), "is required when source is image");
   v.check("file", s.source != "file" || !s.file.empty(), "is required when source is file");
 }

@@ -599,7 +599,55 @@ WeatherMap weatherMapFromFields(const WeatherFields& fields, double timeUnix,
   for (size_t i = 0; i < low.size(); ++i) map.texels[i] = glm::vec4(low[i], mid[i], type, 1.0f);
   map.coverHigh = resampler.apply(layers.high, true);
   map.layerAltitudesM = glm::dvec4(layers.lowAltM, layers.midAltM);
+
+  // Outside the file's steps the nearest step's clouds drift with its wind (Kozlov section 5:
+  // weather that moves); between steps the forecast itself says how they move.
+  if (weather.advection != "data") return map;
+  const Bracket b = bracketTime(fields.steps, timeUnix);
+  if (b.weight != 0.0) return map;
+  const WeatherStep& step = fields.steps[b.first];
+  const double dt = timeUnix - step.validTimeUnix;
+  if (dt == 0.0 || (timeUnix > fields.steps.front().validTimeUnix &&
+                    timeUnix < fields.steps.back().validTimeUnix))
+    return map;
+  const LevelField* u = step.find("u", weather.steeringHpa);
+  const LevelField* v = step.find("v", weather.steeringHpa);
+  if (!u || !v) {
+    inputError("weather.advection: data needs the wind (u and v) at steering_hpa " +
+               formatNumber(weather.steeringHpa) + " hPa; " + fileName(fields) + " has u at " +
+               formatLevels(step.levels("u")) + " hPa");
+  }
+  advectMap(map, resampler.apply(withoutNaN(u->values, 0.0f), false),
+            resampler.apply(withoutNaN(v->values, 0.0f), false), dt);
   return map;
+}
+
+void advectMap(WeatherMap& map, std::span<const float> eastMs, std::span<const float> northMs,
+               double seconds) {
+  const WeatherRegion& r = map.region;
+  constexpr double kDegPerRad = 57.29577951308232;
+  const double metresPerDegLat = kEarthRadiusM / kDegPerRad;
+  // The high cover rides along as a one-channel map sampled the same way.
+  WeatherMap high;
+  high.region = r;
+  high.width = map.width;
+  high.height = map.height;
+  for (float c : map.coverHigh) high.texels.emplace_back(c);
+  const WeatherMap before = map;
+  // Semi-Lagrangian: each texel takes what the wind (at the texel, steady over the time)
+  // brought from upstream `seconds` ago; negative seconds run it backward.
+  forEachRow(map.height, [&](uint32_t y) {
+    const double lat = texelLat(r, y, map.height);
+    const double metresPerDegLon =
+        std::max(std::cos(lat / kDegPerRad), 1e-3) * kEarthRadiusM / kDegPerRad;
+    for (uint32_t x = 0; x < map.width; ++x) {
+      const size_t i = size_t(y) * map.width + x;
+      const double srcLat = lat - northMs[i] * seconds / metresPerDegLat;
+      const double srcLon = texelLon(r, x, map.width) - eastMs[i] * seconds / metresPerDegLon;
+      map.texels[i] = before.sample(srcLat, srcLon);
+      if (!high.texels.empty()) map.coverHigh[i] = high.sample(srcLat, srcLon).r;
+    }
+  });
 }
 
 }  // namespace sky

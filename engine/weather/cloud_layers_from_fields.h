@@ -57,8 +57,17 @@ std::vector<float> resampleToRegion(const GridGeometry& grid, std::span<const fl
 
 // The weather map of `fields` at `timeUnix` over weather.region: proceduralMapSize texels,
 // R low cover, G mid cover, B cloudTypeValue(weather.cloudType) (the data carry no type),
-// A 1, coverHigh the high layer's cover and layerAltitudesM the low and mid altitudes.
+// A 1, coverHigh the high layer's cover and layerAltitudesM the low and mid altitudes. With
+// weather.advection "data", a time before the first step or after the last (any time, for a
+// single step) carries the nearest step's map with its wind at weather.steeringHpa
+// (advectMap); BadInput naming weather.advection when the file has no u/v there.
 WeatherMap weatherMapFromFields(const WeatherFields& fields, double timeUnix,
                                 const WeatherSettings& weather);
+
+// Moves the map's cover (all channels and coverHigh) with a wind given per texel (m/s east,
+// north; row-major like the texels) over `seconds`, semi-Lagrangian: each texel takes the
+// map's bilinear value upstream. Values from beyond the region are its edge's.
+void advectMap(WeatherMap& map, std::span<const float> eastMs, std::span<const float> northMs,
+               double seconds);
 
 }  // namespace sky

@@ -150,6 +150,8 @@ inline void expectSameScene(const Scene& a, const Scene& b) {
   EXPECT_EQ(aw.image, bw.image);
   EXPECT_EQ(aw.file, bw.file);
   EXPECT_EQ(aw.cover, bw.cover);
+  EXPECT_EQ(aw.advection, bw.advection);
+  EXPECT_EQ(aw.steeringHpa, bw.steeringHpa);
   for (auto [x, y] : {std::pair{&aw.low, &bw.low}, {&aw.mid, &bw.mid}, {&aw.high, &bw.high}}) {
     EXPECT_EQ(x->bottomHpa, y->bottomHpa);
     EXPECT_EQ(x->topHpa, y->topHpa);
@@ -252,6 +254,8 @@ inline Scene unusualScene() {
   s.weather.image = "maps/weather \u00e9.exr";
   s.weather.file = "../gfs/gfs.t12z.grib2";
   s.weather.cover = "tcc";
+  s.weather.advection = "data";
+  s.weather.steeringHpa = 700.0 + 1.0 / 3.0;
   s.weather.low = {1100.0, 1099.5, 0.0};
   s.weather.mid = {700.0, 1.0, 0.99};
   s.weather.high = {2.0 / 3.0 + 1.0, 1.0, 1.0 / 3.0};

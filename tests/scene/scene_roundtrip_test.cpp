@@ -148,10 +148,10 @@ int failuresOf(F&& f) {
 TEST(SceneRoundTrip, UnusualSceneDiffersFromTheDefaultEverywhere) {
   // Guards the round trip above: a field left at its default in unusualScene() would pass
   // it even if the reader or writer forgot that field: every scalar above and the palette's
-  // length (3 against 8). 66 before the clouds: + camera mode, 24 cloud and 13 + 2 + 9
+  // length (3 against 8). 66 before the clouds: + camera mode, 24 cloud and 13 + 2 + 9 + 2
   // weather values.
   EXPECT_EQ(failuresOf([] { expectSameScene(test::unusualScene(), Scene()); }),
-            66 + 1 + 24 + 13 + 2 + 9);
+            66 + 1 + 24 + 13 + 2 + 9 + 2);
   const std::vector<PaletteKey> palette = test::unusualScene().lighting.palette;
   for (size_t i = 0; i < palette.size(); ++i) {
     const PaletteKey& k = palette[i];
@@ -346,6 +346,8 @@ TEST(SceneRoundTrip, PrintedYamlLooksLikeAScene) {
             "    bottom_hpa: 450\n"
             "    top_hpa: 150\n"
             "    rh_critical: 0.8\n"
+            "  advection: \"none\"\n"
+            "  steering_hpa: 500\n"
             "lighting:\n"
             "  pressure_hpa: 1010\n"
             "  temperature_c: 10\n"
@@ -510,7 +512,9 @@ TEST(SceneRoundTrip, PrintedJsonLooksLikeAScene) {
             "      \"bottom_hpa\": 450,\n"
             "      \"top_hpa\": 150,\n"
             "      \"rh_critical\": 0.8\n"
-            "    }\n"
+            "    },\n"
+            "    \"advection\": \"none\",\n"
+            "    \"steering_hpa\": 500\n"
             "  },\n"
             "  \"lighting\": {\n"
             "    \"pressure_hpa\": 1010,\n"
