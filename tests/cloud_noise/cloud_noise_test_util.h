@@ -4,10 +4,8 @@
 // texture's channel (range, tiling, neighbour differences).
 #include <algorithm>
 #include <array>
-#include <atomic>
 #include <cmath>
 #include <cstdint>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -15,15 +13,13 @@
 #include <utility>
 #include <vector>
 
-#include <unistd.h>
-
 #include <gtest/gtest.h>
 
 #include "engine/core/paths.h"
 #include "engine/graph/frame_graph.h"
 #include "engine/graph/graph_runtime.h"
 #include "engine/shader/shader_compiler.h"
-#include "gpu_test.h"
+#include "private_cache_test.h"
 #include "passes/cloud_noise/cloud_noise.h"
 
 namespace sky::test {
@@ -56,40 +52,17 @@ inline std::vector<uint8_t> toBytes(const std::vector<float>& pixels) {
   return out;
 }
 
-class CloudNoiseTest : public GpuTest {
+class CloudNoiseTest : public PrivateCacheTest {
 protected:
-  void SetUp() override {
-    // The SPIR-V cache stays shared; the noise cache gets a folder of its own.
-    mSpirvCache = cacheDir() / "spirv";
-    const char* old = std::getenv("SKY_CACHE_DIR");
-    mHadCache = old != nullptr;
-    if (old) mOldCache = old;
-    static std::atomic<int> counter{0};
-    mCache = std::filesystem::temp_directory_path() /
-             ("sky-cloud-noise-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
-    std::filesystem::remove_all(mCache);
-    std::filesystem::create_directories(mCache);
-    setenv("SKY_CACHE_DIR", mCache.c_str(), 1);
-    mCompiler = std::make_unique<ShaderCompiler>(shaderDir(), mSpirvCache);
-    mRuntime = std::make_unique<GraphRuntime>(ctx());
-  }
-  void TearDown() override {
-    mRuntime.reset();
-    if (mHadCache)
-      setenv("SKY_CACHE_DIR", mOldCache.c_str(), 1);
-    else
-      unsetenv("SKY_CACHE_DIR");
-    std::error_code ec;
-    std::filesystem::remove_all(mCache, ec);
-  }
+  CloudNoiseTest() : PrivateCacheTest("sky-cloud-noise") {}
 
   std::unique_ptr<CloudNoise> make() {
-    return std::make_unique<CloudNoise>(ctx(), *mCompiler, *mRuntime);
+    return std::make_unique<CloudNoise>(ctx(), compiler(), runtime());
   }
 
   // addTo on a fresh graph that only reads the three textures back.
   Fetched fetch(CloudNoise& noise, const std::string& model) {
-    FrameGraph graph(*mRuntime);
+    FrameGraph graph(runtime());
     const CloudNoise::Outputs out = noise.addTo(graph, model);
     Fetched f;
     for (const PassNode& p : graph.desc().passes) f.graphPasses.push_back(p.name);
@@ -109,16 +82,6 @@ protected:
     f.activity = noise.lastActivity();
     return f;
   }
-
-  const std::filesystem::path& cache() const { return mCache; }
-  GraphRuntime& runtime() { return *mRuntime; }
-
-private:
-  std::filesystem::path mSpirvCache, mCache;
-  std::string mOldCache;
-  bool mHadCache = false;
-  std::unique_ptr<ShaderCompiler> mCompiler;
-  std::unique_ptr<GraphRuntime> mRuntime;
 };
 
 // One channel of a texture, as the tests look at it. Neighbour differences are |v(x+1) - v(x)|

@@ -1,15 +1,12 @@
 #pragma once
 // Shared by the high-cloud texture tests: a fixture with its own disk cache folder (so every
 // test really bakes), scenes, and the textures read back through a frame graph.
-#include <atomic>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
-
-#include <unistd.h>
 
 #include <glm/vec4.hpp>
 #include <gtest/gtest.h>
@@ -19,7 +16,7 @@
 #include "engine/graph/graph_runtime.h"
 #include "engine/scene/scene.h"
 #include "engine/shader/shader_compiler.h"
-#include "gpu_test.h"
+#include "private_cache_test.h"
 #include "passes/high_cloud_textures/high_cloud_textures.h"
 
 namespace sky::test {
@@ -65,40 +62,17 @@ struct Fetched {
   float opacity(uint32_t x, uint32_t y) const { return 1.0f - at(coefficients, x, y, 2); }
 };
 
-class HighCloudTest : public GpuTest {
+class HighCloudTest : public PrivateCacheTest {
 protected:
-  void SetUp() override {
-    // The SPIR-V cache stays shared; the high-cloud cache gets a folder of its own.
-    mSpirvCache = cacheDir() / "spirv";
-    const char* old = std::getenv("SKY_CACHE_DIR");
-    mHadCache = old != nullptr;
-    if (old) mOldCache = old;
-    static std::atomic<int> counter{0};
-    mCache = std::filesystem::temp_directory_path() /
-             ("sky-high-clouds-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
-    std::filesystem::remove_all(mCache);
-    std::filesystem::create_directories(mCache);
-    setenv("SKY_CACHE_DIR", mCache.c_str(), 1);
-    mCompiler = std::make_unique<ShaderCompiler>(shaderDir(), mSpirvCache);
-    mRuntime = std::make_unique<GraphRuntime>(ctx());
-  }
-  void TearDown() override {
-    mRuntime.reset();
-    if (mHadCache)
-      setenv("SKY_CACHE_DIR", mOldCache.c_str(), 1);
-    else
-      unsetenv("SKY_CACHE_DIR");
-    std::error_code ec;
-    std::filesystem::remove_all(mCache, ec);
-  }
+  HighCloudTest() : PrivateCacheTest("sky-high-clouds") {}
 
   std::unique_ptr<HighCloudTextures> make() {
-    return std::make_unique<HighCloudTextures>(ctx(), *mCompiler, *mRuntime);
+    return std::make_unique<HighCloudTextures>(ctx(), compiler(), runtime());
   }
 
   // addTo on a fresh graph that only reads the three textures back.
   Fetched fetch(HighCloudTextures& textures, const Scene& scene) {
-    FrameGraph graph(*mRuntime);
+    FrameGraph graph(runtime());
     HighCloudTextures::Outputs out = textures.addTo(graph, scene);
     Fetched f;
     for (const PassNode& p : graph.desc().passes) f.graphPasses.push_back(p.name);
@@ -115,16 +89,6 @@ protected:
     f.activity = textures.lastActivity();
     return f;
   }
-
-  const std::filesystem::path& cache() const { return mCache; }
-  GraphRuntime& runtime() { return *mRuntime; }
-
-private:
-  std::filesystem::path mSpirvCache, mCache;
-  std::string mOldCache;
-  bool mHadCache = false;
-  std::unique_ptr<ShaderCompiler> mCompiler;
-  std::unique_ptr<GraphRuntime> mRuntime;
 };
 
 // Largest absolute difference between two images of equal size.
