@@ -18,6 +18,7 @@
 #include <glm/vec4.hpp>
 #include <gtest/gtest.h>
 
+#include "noise_hash_reference.h"
 #include "engine/core/paths.h"
 #include "engine/gpu/compute_pipeline.h"
 #include "engine/graph/frame_graph.h"
@@ -34,23 +35,11 @@ using glm::dvec4;
 using glm::ivec3;
 using glm::uvec3;
 using test::GpuTest;
+using test::hash3;
+using test::seedOf;
 
 // --- The reference, function by function as in noise3d.glsl, in double where GLSL has float
 // and with exact integer wrapping where GLSL estimates the quotient in float. ---
-uvec3 hash3(uvec3 v) {
-  v = v * 1664525u + 1013904223u;
-  v.x += v.y * v.z;
-  v.y += v.z * v.x;
-  v.z += v.x * v.y;
-  v ^= v >> 16u;
-  v.x += v.y * v.z;
-  v.y += v.z * v.x;
-  v.z += v.x * v.y;
-  return v;
-}
-uint32_t seedOf(uint32_t seed, uint32_t index) {
-  return hash3({seed, index, 0x5bd1e995u}).x;
-}
 int wrap(int c, int period) {
   return ((c % period) + period) % period;
 }

@@ -13,6 +13,7 @@
 #include <glm/vec3.hpp>
 #include <gtest/gtest.h>
 
+#include "noise_hash_reference.h"
 #include "engine/core/paths.h"
 #include "engine/gpu/compute_pipeline.h"
 #include "engine/graph/frame_graph.h"
@@ -25,24 +26,12 @@ namespace sky {
 namespace {
 namespace fs = std::filesystem;
 using test::GpuTest;
+using test::hash3;
+using test::seedOf;
 
 // --- The reference, line by line as in noise.glsl, in double where GLSL has float. ---
-glm::uvec3 hash3(glm::uvec3 v) {
-  v = v * 1664525u + 1013904223u;
-  v.x += v.y * v.z;
-  v.y += v.z * v.x;
-  v.z += v.x * v.y;
-  v ^= v >> 16u;
-  v.x += v.y * v.z;
-  v.y += v.z * v.x;
-  v.z += v.x * v.y;
-  return v;
-}
 glm::dvec3 hashUnit3(glm::uvec3 v) {
   return glm::dvec3(hash3(v) >> 8u) * (1.0 / 16777216.0);
-}
-uint32_t seedOf(uint32_t seed, uint32_t index) {
-  return hash3({seed, index, 0x5bd1e995u}).x;
 }
 glm::uvec2 wrap2(glm::ivec2 cell, glm::ivec2 period) {
   return glm::uvec2(cell + period * 64) % glm::uvec2(period);
