@@ -1,6 +1,5 @@
 #include "engine/render/cloud_layers.h"
 
-#include <filesystem>
 #include <sstream>
 
 #include "engine/clouds/cloud_math.h"
@@ -8,64 +7,14 @@
 #include "engine/weather/cloud_layers_from_fields.h"
 
 namespace sky {
-namespace {
-
-// A file as the scene names it: path, size and modification time, so an edited file is read
-// again.
-std::string fileStamp(const std::filesystem::path& file) {
-  std::error_code ec;
-  std::ostringstream s;
-  s << file.string() << '|' << std::filesystem::file_size(file, ec) << '|'
-    << std::filesystem::last_write_time(file, ec).time_since_epoch().count();
-  return s.str();
-}
-
-// What the weather map depends on besides the time: every weather setting and the input
-// file's stamp.
-std::string mapSignature(const Scene& scene) {
-  const WeatherSettings& w = scene.weather;
-  std::ostringstream s;
-  s.precision(17);
-  s << w.source << '|' << w.region.lat[0] << ',' << w.region.lat[1] << ',' << w.region.lon[0] << ','
-    << w.region.lon[1] << '|' << w.coverLow << '|' << w.coverMid << '|' << w.spread << '|'
-    << w.scaleKm << '|' << w.seed << '|' << w.resolution << '|' << w.cloudType << '|' << w.cover;
-  for (const WeatherLevelSettings* l : {&w.low, &w.mid, &w.high})
-    s << '|' << l->bottomHpa << ',' << l->topHpa << ',' << l->rhCritical;
-  s << '|' << w.advection << '|' << w.steeringHpa;
-  if (w.source == "image") s << '|' << fileStamp(scene.resolvePath(w.image));
-  if (w.source == "file") s << '|' << fileStamp(scene.resolvePath(w.file));
-  return s.str();
-}
-
-}  // namespace
-
 CloudLayers::CloudLayers(const Context& ctx, ShaderCompiler& compiler, GraphRuntime& runtime)
     : mNoise(ctx, compiler, runtime), mWeather(ctx) {}
 
 const WeatherMap& CloudLayers::weatherMap(const Scene& scene, const IsoTime& time) {
-  std::string signature = mapSignature(scene);
-  if (scene.weather.source == "file") {
-    const std::string stamp = fileStamp(scene.resolvePath(scene.weather.file));
-    if (!mFields || stamp != mFieldsSignature) {
-      mFields.reset();  // a failed read leaves nothing stale behind
-      mMap.reset();
-      mFields = readWeatherFile(scene);
-      mFieldsSignature = stamp;
-    }
-    // Between forecast steps the cover is interpolated in time; with advection the wind
-    // carries it at any time.
-    if (mFields->steps.size() > 1 || scene.weather.advection == "data")
-      signature += "|t" + std::to_string(time.unixSeconds);
-  }
-  if (!mMap || signature != mMapSignature) {
-    mMap.reset();
-    mMap = scene.weather.source == "file"
-               ? weatherMapFromFields(*mFields, double(time.unixSeconds), scene.weather)
-               : makeWeatherMap(scene);
-    mMapSignature = signature;
-    ++mMapRevision;
-  }
-  return *mMap;
+  const uint64_t before = mSource.revision();
+  const WeatherMap& map = mSource.map(scene, time);
+  if (mSource.revision() != before) ++mMapRevision;
+  return map;
 }
 
 CoverageTables CloudLayers::coverageTables(const Scene& scene, const WeatherMap& map) {

@@ -9,6 +9,7 @@
 
 #include "engine/clouds/coverage_calibration.h"
 #include "engine/weather/weather_map.h"
+#include "engine/weather/weather_source.h"
 #include "engine/weather/weather_texture.h"
 #include "passes/cloud_noise/cloud_noise.h"
 #include "passes/volumetric_clouds/volumetric_clouds.h"
@@ -19,10 +20,11 @@ class CloudLayers {
 public:
   CloudLayers(const Context& ctx, ShaderCompiler& compiler, GraphRuntime& runtime);
 
-  // The weather map of `scene` at `time` (rebuilt when the weather settings or the input file
-  // change, and for a forecast file with several steps when the time does; the file itself is
-  // read once). BadInput for bad settings or files, naming weather.<key>.
+  // The weather map of `scene` in the frame at `time` (engine/weather/weather_source.h: rebuilt
+  // only when its settings, files or, for a map that moves, the time change). BadInput for bad
+  // settings or files, naming weather.<key>.
   const WeatherMap& weatherMap(const Scene& scene, const IsoTime& time);
+  const WeatherSource& weatherSource() const { return mSource; }
 
   struct Frame {
     CloudTextures textures;
@@ -44,10 +46,7 @@ private:
 
   CloudNoise mNoise;
   WeatherTexture mWeather;
-  std::optional<WeatherMap> mMap;
-  std::string mMapSignature;
-  std::optional<WeatherFields> mFields;  // the forecast file of source "file"
-  std::string mFieldsSignature;
+  WeatherSource mSource;
   uint64_t mMapRevision = 0;
   std::map<std::string, clouds::CoverageLut> mLuts;  // by model, layer, type and column
   int mLastCalibrations = 0;

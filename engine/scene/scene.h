@@ -119,6 +119,10 @@ struct HighCloudSettings {
   double windFrom = 270.0;            // direction the wind blows from, degrees from north
   double edgeGlowDeg = 10.0;          // l: angular width of the edge glow (Kozlov 3.4), 0.5..90
   double brightness = 1.0;            // multiplies the cloud terms, 0..100
+  // Where the procedural layer's cover comes from: "scene" (`cover`, uniform), "weather" (the
+  // weather map's high-layer cover per pixel, from a forecast file) or "auto" (weather when
+  // the weather map has a high layer, else scene).
+  std::string coverSource = "auto";
 };
 
 // A volumetric cloud layer: a spherical shell between two altitudes above sea level.
@@ -173,6 +177,16 @@ struct WeatherLevelSettings {
   bool operator==(const WeatherLevelSettings&) const = default;
 };
 
+// The cellular automaton of weather.evolution "ca" (engine/weather/cloud_automaton.h).
+struct WeatherAutomatonSettings {
+  double stepS = 300.0;        // scene time per automaton step, seconds, 10..3600
+  double windowH = 6.0;        // window length when the map has no forecast steps, hours
+  double lifetimeMin = 30.0;   // mean life of a cloud voxel (sets Dobashi's p_ext), minutes
+  double strength = 1.0;       // how far the automaton's density replaces the map cover, 0..1
+
+  bool operator==(const WeatherAutomatonSettings&) const = default;
+};
+
 // The weather map the volumetric clouds read: per lat/lon cell the low and mid cover (Lu's
 // CMc), the cloud type and a density scale. See docs/weather.md.
 struct WeatherSettings {
@@ -199,8 +213,16 @@ struct WeatherSettings {
   WeatherLevelSettings high{450.0, 150.0, 0.80};
   // Before the file's first step or after its last (any time, for a single step): "data"
   // carries the nearest step's map with the file's wind at steering_hpa; "none" holds it.
-  std::string advection = "none";  // "none" | "data"
+  std::string advection = "none";  // "none" | "data" | "wind" (clouds.wind_*)
   double steeringHpa = 500.0;      // 1..1100
+  // The instant the map shows at the scene's first frame (ISO 8601); later frames of a
+  // time-lapse move it on by the same time. Empty: the scene's time.
+  std::string time;
+  // Kozlov section 5's local weather: the cover around the camera filtered over this radius.
+  double localRadiusKm = 5.0;  // 0.1..200
+  // Cellular-automaton growth and decay between forecast steps (Liu et al. 2015, Dobashi).
+  std::string evolution = "none";  // "none" | "ca"
+  WeatherAutomatonSettings automaton;
 
   bool operator==(const WeatherSettings&) const = default;
 };

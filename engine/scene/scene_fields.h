@@ -159,6 +159,11 @@ void describe(V& v, HighCloudSettings& s) {
   v.field("edge_glow_deg", s.edgeGlowDeg, NumberRange{0.5, 90},
           "angular width l of the glow of sparse edges around the light (Kozlov 3.4), degrees");
   v.field("brightness", s.brightness, NumberRange{0, 100}, "multiplies the cloud colour terms");
+  v.field("cover_source", s.coverSource,
+          TextRule{1, 0, "^(auto|scene|weather)$", "auto, scene or weather"},
+          "procedural: the cover from `cover` (scene), from the weather map's high layer per "
+          "pixel (weather, needs weather.source file) or weather when the map has a high layer "
+          "(auto)");
   v.check("resolution", (s.resolution & (s.resolution - 1)) == 0, "must be a power of two");
   v.check("coefficients", s.source != "image" || !s.coefficients.empty(),
           "is required when source is image");
@@ -237,6 +242,18 @@ void describe(V& v, WeatherLevelSettings& s) {
 }
 
 template <class V>
+void describe(V& v, WeatherAutomatonSettings& s) {
+  v.field("step_s", s.stepS, NumberRange{10, 3600}, "scene time per automaton step, seconds");
+  v.field("window_h", s.windowH, NumberRange{0.1, 240},
+          "without forecast steps to run between: the automaton restarts every window_h "
+          "hours, hours");
+  v.field("lifetime_min", s.lifetimeMin, NumberRange{1, 1440},
+          "mean life of a cloud cell before it dissolves (Dobashi's extinction), minutes");
+  v.field("strength", s.strength, NumberRange{0, 1},
+          "how far the automaton's smoothed density replaces the map's cover (0: not at all)");
+}
+
+template <class V>
 void describe(V& v, WeatherSettings& s) {
   v.field("source", s.source,
           TextRule{1, 0, "^(procedural|image|file)$", "procedural, image or file"},
@@ -269,11 +286,27 @@ void describe(V& v, WeatherSettings& s) {
   v.section("low", s.low, "file source: the low layer's pressure levels and rh_cr");
   v.section("mid", s.mid, "file source: the mid layer's pressure levels and rh_cr");
   v.section("high", s.high, "file source: the high layer's pressure levels and rh_cr");
-  v.field("advection", s.advection, TextRule{1, 0, "^(none|data)$", "none or data"},
-          "file source: outside the file's steps, carry the nearest step's map with the file's "
-          "wind (data) or hold it (none); between steps the cover is interpolated");
+  v.field("advection", s.advection,
+          TextRule{1, 0, "^(none|data|wind)$", "none, data or wind"},
+          "how the map moves with time: not at all (none), with the forecast file's wind at "
+          "steering_hpa outside the file's steps (data), or with clouds.wind_speed_ms and "
+          "wind_from (wind); between a file's steps the cover is interpolated");
   v.field("steering_hpa", s.steeringHpa, NumberRange{1, 1100},
           "file source: the pressure level whose wind (u, v) carries the clouds, hPa");
+  v.field("time", s.time, TextRule{0, 200},
+          "the instant (ISO 8601) the map shows at the scene's first frame, later frames moving "
+          "on with the scene's time; empty: the scene's time");
+  v.field("local_radius_km", s.localRadiusKm, NumberRange{0.1, 200},
+          "radius over which the cover around the camera is filtered into the local weather "
+          "(overcast) that dims the ambient light and thickens the haze, km (Kozlov 5)");
+  v.field("evolution", s.evolution, TextRule{1, 0, "^(none|ca)$", "none or ca"},
+          "clouds that grow and dissolve between forecast steps: none, or ca (a cellular "
+          "automaton, Liu et al. 2015 after Dobashi et al. 2000)");
+  v.section("automaton", s.automaton, "evolution ca: the cellular automaton's time steps");
+  v.check("advection", s.advection != "data" || s.source == "file",
+          "data needs source file (the wind comes from the forecast); wind uses the scene's");
+  v.check("time", s.time.empty() || IsoTime::parse(s.time).has_value(),
+          "must be an ISO 8601 instant with a zone, e.g. 2024-06-21T12:00:00Z");
   v.check("image", s.source != "image" || !s.image.empty(), "is required when source is image");
   v.check("file", s.source != "file" || !s.file.empty(), "is required when source is file");
 }

@@ -583,7 +583,7 @@ std::vector<float> resampleToRegion(const GridGeometry& grid, std::span<const fl
 }
 
 WeatherMap weatherMapFromFields(const WeatherFields& fields, double timeUnix,
-                                const WeatherSettings& weather) {
+                                const WeatherSettings& weather, glm::dvec2 sceneWindMs) {
   const float type = cloudTypeValue(weather.cloudType);
   const glm::uvec2 size = proceduralMapSize(weather);
   const LayerCover layers = layerCover(fields, timeUnix, weather, weather.region);
@@ -599,10 +599,11 @@ WeatherMap weatherMapFromFields(const WeatherFields& fields, double timeUnix,
   for (size_t i = 0; i < low.size(); ++i) map.texels[i] = glm::vec4(low[i], mid[i], type, 1.0f);
   map.coverHigh = resampler.apply(layers.high, true);
   map.layerAltitudesM = glm::dvec4(layers.lowAltM, layers.midAltM);
+  map.highAltitudeM = layers.highAltM;
 
   // Outside the file's steps the nearest step's clouds drift with its wind (Kozlov section 5:
   // weather that moves); between steps the forecast itself says how they move.
-  if (weather.advection != "data") return map;
+  if (weather.advection != "data" && weather.advection != "wind") return map;
   const Bracket b = bracketTime(fields.steps, timeUnix);
   if (b.weight != 0.0) return map;
   const WeatherStep& step = fields.steps[b.first];
@@ -610,6 +611,12 @@ WeatherMap weatherMapFromFields(const WeatherFields& fields, double timeUnix,
   if (dt == 0.0 || (timeUnix > fields.steps.front().validTimeUnix &&
                     timeUnix < fields.steps.back().validTimeUnix))
     return map;
+  if (weather.advection == "wind") {
+    const size_t n = map.texels.size();
+    advectMap(map, std::vector<float>(n, float(sceneWindMs.x)),
+              std::vector<float>(n, float(sceneWindMs.y)), dt);
+    return map;
+  }
   const LevelField* u = step.find("u", weather.steeringHpa);
   const LevelField* v = step.find("v", weather.steeringHpa);
   if (!u || !v) {

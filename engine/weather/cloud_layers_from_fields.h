@@ -60,9 +60,11 @@ std::vector<float> resampleToRegion(const GridGeometry& grid, std::span<const fl
 // A 1, coverHigh the high layer's cover and layerAltitudesM the low and mid altitudes. With
 // weather.advection "data", a time before the first step or after the last (any time, for a
 // single step) carries the nearest step's map with its wind at weather.steeringHpa
-// (advectMap); BadInput naming weather.advection when the file has no u/v there.
+// (advectMap); BadInput naming weather.advection when the file has no u/v there. With
+// advection "wind" the same, with the uniform `sceneWindMs` (east, north; sceneWindMs()).
 WeatherMap weatherMapFromFields(const WeatherFields& fields, double timeUnix,
-                                const WeatherSettings& weather);
+                                const WeatherSettings& weather,
+                                glm::dvec2 sceneWindMs = glm::dvec2(0.0));
 
 // Moves the map's cover (all channels and coverHigh) with a wind given per texel (m/s east,
 // north; row-major like the texels) over `seconds`, semi-Lagrangian: each texel takes the

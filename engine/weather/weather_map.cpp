@@ -166,10 +166,10 @@ WeatherMap proceduralMap(const Scene& scene) {
 
 // GRIB by its extension or its "GRIB" magic, NetCDF by ".nc"/".nc4" or the classic
 // ("CDF\1", "CDF\2", "CDF\5") or HDF5 (NetCDF-4) signature.
-WeatherFields readWeatherFile(const Scene& scene) {
-  const std::string& written = scene.weather.file;
-  if (written.empty()) inputError("weather.file: is required when source is file");
-  const fs::path path = scene.resolvePath(written);
+namespace {
+
+// One forecast file, by its extension or signature. `written` is how the scene names it.
+WeatherFields readOneWeatherFile(const fs::path& path, const std::string& written) {
   std::error_code ec;
   if (!fs::is_regular_file(path, ec))
     inputError("weather.file: " + written + ": file not found (" + path.string() + ")");
@@ -192,6 +192,82 @@ WeatherFields readWeatherFile(const Scene& scene) {
     if (e.kind() == ErrorKind::BadInput) inputError(std::string("weather.file: ") + e.what());
     throw;
   }
+}
+
+bool isPattern(const std::string& name) {
+  return name.find_first_of("*?") != std::string::npos;
+}
+
+// Shell-style match of '*' (any run) and '?' (one character), as fnmatch without flags.
+bool matches(std::string_view pattern, std::string_view name) {
+  size_t p = 0, n = 0, starP = std::string_view::npos, starN = 0;
+  while (n < name.size()) {
+    if (p < pattern.size() && (pattern[p] == '?' || pattern[p] == name[n])) {
+      ++p, ++n;
+    } else if (p < pattern.size() && pattern[p] == '*') {
+      starP = p++, starN = n;
+    } else if (starP != std::string_view::npos) {
+      p = starP + 1, n = ++starN;
+    } else {
+      return false;
+    }
+  }
+  while (p < pattern.size() && pattern[p] == '*') ++p;
+  return p == pattern.size();
+}
+
+}  // namespace
+
+std::vector<fs::path> weatherFiles(const Scene& scene) {
+  const fs::path path = scene.resolvePath(scene.weather.file);
+  const std::string name = path.filename().string();
+  if (!isPattern(name)) return {path};
+  if (isPattern(path.parent_path().string()))
+    inputError("weather.file: " + scene.weather.file +
+               ": only the file name may hold '*' or '?', not its folder");
+  std::vector<fs::path> found;
+  std::error_code ec;
+  for (fs::directory_iterator it(path.parent_path(), ec), end; !ec && it != end; it.increment(ec))
+    if (it->is_regular_file(ec) && matches(name, it->path().filename().string()))
+      found.push_back(it->path());
+  std::sort(found.begin(), found.end());
+  return found;
+}
+
+WeatherFields readWeatherFile(const Scene& scene) {
+  const std::string& written = scene.weather.file;
+  if (written.empty()) inputError("weather.file: is required when source is file");
+  const std::vector<fs::path> files = weatherFiles(scene);
+  if (files.empty())
+    inputError("weather.file: " + written + ": no file matches (" +
+               scene.resolvePath(written).string() + ")");
+  if (files.size() == 1)
+    return readOneWeatherFile(files[0], isPattern(written) ? files[0].string() : written);
+
+  // Several files (one per forecast step, as GFS ships them): one grid, steps merged in time.
+  WeatherFields all = readOneWeatherFile(files[0], files[0].string());
+  all.file = written;
+  for (size_t i = 1; i < files.size(); ++i) {
+    WeatherFields more = readOneWeatherFile(files[i], files[i].string());
+    if (more.grid.nx != all.grid.nx || more.grid.ny != all.grid.ny ||
+        more.grid.latDeg != all.grid.latDeg || more.grid.lonDeg != all.grid.lonDeg)
+      inputError("weather.file: " + files[i].filename().string() + " is on a different grid (" +
+                 std::to_string(more.grid.nx) + " x " + std::to_string(more.grid.ny) + ") than " +
+                 files[0].filename().string() + " (" + std::to_string(all.grid.nx) + " x " +
+                 std::to_string(all.grid.ny) + "); the files of one pattern must share a grid");
+    for (WeatherStep& step : more.steps) {
+      for (const WeatherStep& have : all.steps)
+        if (have.validTimeUnix == step.validTimeUnix)
+          inputError("weather.file: " + files[i].filename().string() +
+                     " repeats a valid time another matching file has (" +
+                     IsoTime{int64_t(step.validTimeUnix), 0.0, 0}.format() + ")");
+      all.steps.push_back(std::move(step));
+    }
+  }
+  std::sort(all.steps.begin(), all.steps.end(), [](const WeatherStep& a, const WeatherStep& b) {
+    return a.validTimeUnix < b.validTimeUnix;
+  });
+  return all;
 }
 
 glm::vec4 WeatherMap::sample(double latDeg, double lonDeg) const {

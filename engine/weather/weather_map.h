@@ -7,6 +7,7 @@
 // Every source (procedural, image, GRIB2/NetCDF forecast files) produces this.
 // See docs/weather.md.
 #include <cstdint>
+#include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
@@ -28,6 +29,7 @@ struct WeatherMap {
   // sea level from the data, m: (low base, low top, mid base, mid top).
   std::vector<float> coverHigh;
   std::optional<glm::dvec4> layerAltitudesM;
+  std::optional<glm::dvec2> highAltitudeM;  // the high layer's (base, top), m
 
   // Bilinear between texel centres, clamped at the edges (what a linear clamp-to-edge
   // sampler returns); points outside the region take the nearest edge. An empty map gives 0.
@@ -50,11 +52,18 @@ float cloudTypeValue(const std::string& name);
 // naming weather.<key> and the file.
 WeatherMap makeWeatherMap(const Scene& scene);
 
-// The forecast file of source "file" (scene.weather.file, resolved against the scene's
+// The forecast file(s) of source "file" (scene.weather.file, resolved against the scene's
 // folder), read whole: callers that render several times keep it and build each frame's map
-// with weatherMapFromFields (engine/weather/cloud_layers_from_fields.h). BadInput naming
-// weather.file for a missing, unknown or broken file.
+// with weatherMapFromFields (engine/weather/cloud_layers_from_fields.h). A file name with
+// '*' or '?' (e.g. "gfs.t00z.f0*.grib2") reads every matching file in that folder, sorted by
+// name, and merges their steps by valid time; they must share one grid. BadInput naming
+// weather.file for a missing, unknown or broken file, a pattern that matches nothing, grids
+// that differ or two files with the same valid time.
 WeatherFields readWeatherFile(const Scene& scene);
+
+// The files weather.file names (one, or a pattern's matches sorted by name); none when a
+// pattern matches nothing.
+std::vector<std::filesystem::path> weatherFiles(const Scene& scene);
 
 // The procedural map's size: `resolution` texels along the region's longer side in km, the
 // other side in proportion (at least 2).

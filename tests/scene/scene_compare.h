@@ -109,6 +109,7 @@ inline void expectSameScene(const Scene& a, const Scene& b) {
   EXPECT_EQ(ah.windFrom, bh.windFrom);
   EXPECT_EQ(ah.edgeGlowDeg, bh.edgeGlowDeg);
   EXPECT_EQ(ah.brightness, bh.brightness);
+  EXPECT_EQ(ah.coverSource, bh.coverSource);
   const CloudSettings &ac = a.clouds, &bc = b.clouds;
   EXPECT_EQ(ac.model, bc.model);
   EXPECT_EQ(ac.coverage, bc.coverage);
@@ -152,6 +153,10 @@ inline void expectSameScene(const Scene& a, const Scene& b) {
   EXPECT_EQ(aw.cover, bw.cover);
   EXPECT_EQ(aw.advection, bw.advection);
   EXPECT_EQ(aw.steeringHpa, bw.steeringHpa);
+  EXPECT_EQ(aw.time, bw.time);
+  EXPECT_EQ(aw.localRadiusKm, bw.localRadiusKm);
+  EXPECT_EQ(aw.evolution, bw.evolution);
+  EXPECT_EQ(aw.automaton, bw.automaton);
   for (auto [x, y] : {std::pair{&aw.low, &bw.low}, {&aw.mid, &bw.mid}, {&aw.high, &bw.high}}) {
     EXPECT_EQ(x->bottomHpa, y->bottomHpa);
     EXPECT_EQ(x->topHpa, y->topHpa);
@@ -219,6 +224,7 @@ inline Scene unusualScene() {
   s.highClouds.windFrom = -359.5;
   s.highClouds.edgeGlowDeg = 0.5;
   s.highClouds.brightness = 1e-3;
+  s.highClouds.coverSource = "weather";
   s.clouds.model = "tang2019";
   s.clouds.coverage = "paper";
   s.clouds.extinction = 1e-5;
@@ -254,8 +260,12 @@ inline Scene unusualScene() {
   s.weather.image = "maps/weather \u00e9.exr";
   s.weather.file = "../gfs/gfs.t12z.grib2";
   s.weather.cover = "tcc";
-  s.weather.advection = "data";
+  s.weather.advection = "wind";  // "data" needs source file
   s.weather.steeringHpa = 700.0 + 1.0 / 3.0;
+  s.weather.time = "2011-01-15T12:00:00.25-03:30";
+  s.weather.localRadiusKm = 0.1;
+  s.weather.evolution = "ca";
+  s.weather.automaton = {3600.0, 1.0 / 3.0 + 0.1, 1440.0, 0.0};
   s.weather.low = {1100.0, 1099.5, 0.0};
   s.weather.mid = {700.0, 1.0, 0.99};
   s.weather.high = {2.0 / 3.0 + 1.0, 1.0, 1.0 / 3.0};

@@ -543,6 +543,19 @@ TEST(SceneErrors, CloudAndWeatherRules) {
             "x.json:1:13: clouds.energy_conserving: expected true or false, got '1'");
   EXPECT_EQ(yamlError("weather:\n  source: image\n"),
             "x.yaml:2:3: weather.image: is required when source is image");
+  EXPECT_EQ(yamlError("weather:\n  advection: data\n"),
+            "x.yaml:2:14: weather.advection: data needs source file (the wind comes from the "
+            "forecast); wind uses the scene's");
+  EXPECT_EQ(yamlError("weather:\n  time: noon\n"),
+            "x.yaml:2:9: weather.time: must be an ISO 8601 instant with a zone, e.g. "
+            "2024-06-21T12:00:00Z");
+  EXPECT_EQ(yamlError("weather:\n  evolution: dobashi\n"),
+            "x.yaml:2:14: weather.evolution: 'dobashi' is not allowed: use none or ca");
+  EXPECT_EQ(yamlError("weather:\n  automaton:\n    step_s: 5\n"),
+            "x.yaml:3:13: weather.automaton.step_s: 5 is out of range [10, 3600]");
+  EXPECT_EQ(yamlError("high_clouds:\n  cover_source: forecast\n"),
+            "x.yaml:2:17: high_clouds.cover_source: 'forecast' is not allowed: use auto, scene or "
+            "weather");
   EXPECT_EQ(yamlError("camera:\n  mode: orbit\n"),
             "x.yaml:2:9: camera.mode: 'orbit' is not allowed: use observer or geographic_topdown");
 }

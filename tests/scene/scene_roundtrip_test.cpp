@@ -149,9 +149,10 @@ TEST(SceneRoundTrip, UnusualSceneDiffersFromTheDefaultEverywhere) {
   // Guards the round trip above: a field left at its default in unusualScene() would pass
   // it even if the reader or writer forgot that field: every scalar above and the palette's
   // length (3 against 8). 66 before the clouds: + camera mode, 24 cloud and 13 + 2 + 9 + 2
-  // weather values.
+  // weather values; then high_clouds.cover_source and weather time, local radius, evolution
+  // and automaton.
   EXPECT_EQ(failuresOf([] { expectSameScene(test::unusualScene(), Scene()); }),
-            66 + 1 + 24 + 13 + 2 + 9 + 2);
+            66 + 1 + 24 + 13 + 2 + 9 + 2 + 1 + 4);
   const std::vector<PaletteKey> palette = test::unusualScene().lighting.palette;
   for (size_t i = 0; i < palette.size(); ++i) {
     const PaletteKey& k = palette[i];
@@ -292,6 +293,7 @@ TEST(SceneRoundTrip, PrintedYamlLooksLikeAScene) {
             "  wind_from: 270\n"
             "  edge_glow_deg: 10\n"
             "  brightness: 1\n"
+            "  cover_source: \"auto\"\n"
             "clouds:\n"
             "  model: \"lu2023\"\n"
             "  coverage: \"calibrated\"\n"
@@ -348,6 +350,14 @@ TEST(SceneRoundTrip, PrintedYamlLooksLikeAScene) {
             "    rh_critical: 0.8\n"
             "  advection: \"none\"\n"
             "  steering_hpa: 500\n"
+            "  time: \"\"\n"
+            "  local_radius_km: 5\n"
+            "  evolution: \"none\"\n"
+            "  automaton:\n"
+            "    step_s: 300\n"
+            "    window_h: 6\n"
+            "    lifetime_min: 30\n"
+            "    strength: 1\n"
             "lighting:\n"
             "  pressure_hpa: 1010\n"
             "  temperature_c: 10\n"
@@ -450,7 +460,8 @@ TEST(SceneRoundTrip, PrintedJsonLooksLikeAScene) {
             "    \"wind_speed_ms\": 15,\n"
             "    \"wind_from\": 270,\n"
             "    \"edge_glow_deg\": 10,\n"
-            "    \"brightness\": 1\n"
+            "    \"brightness\": 1,\n"
+            "    \"cover_source\": \"auto\"\n"
             "  },\n"
             "  \"clouds\": {\n"
             "    \"model\": \"lu2023\",\n"
@@ -514,7 +525,16 @@ TEST(SceneRoundTrip, PrintedJsonLooksLikeAScene) {
             "      \"rh_critical\": 0.8\n"
             "    },\n"
             "    \"advection\": \"none\",\n"
-            "    \"steering_hpa\": 500\n"
+            "    \"steering_hpa\": 500,\n"
+            "    \"time\": \"\",\n"
+            "    \"local_radius_km\": 5,\n"
+            "    \"evolution\": \"none\",\n"
+            "    \"automaton\": {\n"
+            "      \"step_s\": 300,\n"
+            "      \"window_h\": 6,\n"
+            "      \"lifetime_min\": 30,\n"
+            "      \"strength\": 1\n"
+            "    }\n"
             "  },\n"
             "  \"lighting\": {\n"
             "    \"pressure_hpa\": 1010,\n"

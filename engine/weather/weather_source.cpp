@@ -1,0 +1,133 @@
+#include "engine/weather/weather_source.h"
+
+#include <cmath>
+#include <filesystem>
+#include <sstream>
+#include <vector>
+
+#include "engine/core/error.h"
+#include "engine/weather/cloud_layers_from_fields.h"
+
+namespace sky {
+namespace {
+
+// A file as the scene names it: path, size and modification time, so an edited file is read
+// again.
+std::string fileStamp(const std::filesystem::path& file) {
+  std::error_code ec;
+  std::ostringstream s;
+  s << file.string() << '|' << std::filesystem::file_size(file, ec) << '|'
+    << std::filesystem::last_write_time(file, ec).time_since_epoch().count();
+  return s.str();
+}
+
+// The stamps of every file weather.file names (a pattern's matches included), so a new,
+// removed or edited step file is noticed.
+std::string filesStamp(const Scene& scene) {
+  std::string stamp;
+  for (const std::filesystem::path& f : weatherFiles(scene)) stamp += fileStamp(f) + ';';
+  return stamp;
+}
+
+// What the map depends on besides the time and the forecast file: every weather setting.
+std::string settingsSignature(const Scene& scene) {
+  const WeatherSettings& w = scene.weather;
+  std::ostringstream s;
+  s.precision(17);
+  s << w.source << '|' << w.region.lat[0] << ',' << w.region.lat[1] << ',' << w.region.lon[0] << ','
+    << w.region.lon[1] << '|' << w.coverLow << '|' << w.coverMid << '|' << w.spread << '|'
+    << w.scaleKm << '|' << w.seed << '|' << w.resolution << '|' << w.cloudType << '|' << w.cover;
+  for (const WeatherLevelSettings* l : {&w.low, &w.mid, &w.high})
+    s << '|' << l->bottomHpa << ',' << l->topHpa << ',' << l->rhCritical;
+  s << '|' << w.advection << '|' << w.steeringHpa << '|' << w.evolution;
+  if (w.advection == "wind") s << '|' << scene.clouds.windSpeedMs << ',' << scene.clouds.windFrom;
+  if (w.evolution == "ca")
+    s << '|' << w.automaton.stepS << ',' << w.automaton.windowH << ',' << w.automaton.lifetimeMin
+      << ',' << w.automaton.strength;
+  if (w.source == "image") s << '|' << fileStamp(scene.resolvePath(w.image));
+  return s.str();
+}
+
+double unixTime(const IsoTime& t) {
+  return double(t.unixSeconds) + t.subsecond;
+}
+
+}  // namespace
+
+double weatherTimeUnix(const Scene& scene, const IsoTime& frame) {
+  if (scene.weather.time.empty()) return unixTime(frame);
+  const std::optional<IsoTime> shown = IsoTime::parse(scene.weather.time);
+  if (!shown)
+    inputError("weather.time: '" + scene.weather.time +
+               "' is not an ISO 8601 instant with a zone, e.g. 2024-06-21T12:00:00Z");
+  return unixTime(*shown) + frame.secondsSince(scene.time.start);
+}
+
+glm::dvec2 sceneWindMs(const CloudSettings& clouds) {
+  constexpr double kDeg = 3.14159265358979323846 / 180.0;
+  const double toward = (clouds.windFrom + 180.0) * kDeg;
+  return clouds.windSpeedMs * glm::dvec2(std::sin(toward), std::cos(toward));
+}
+
+WeatherMap WeatherSource::moved(const Scene& scene, double timeUnix) {
+  const WeatherSettings& w = scene.weather;
+  if (w.source == "file")
+    return weatherMapFromFields(*mFields, timeUnix, w, sceneWindMs(scene.clouds));
+  WeatherMap map = *mStill;
+  // A painted or procedural map shows the scene's first frame; the wind carries it from there.
+  const double seconds = timeUnix - weatherTimeUnix(scene, scene.time.start);
+  if (w.advection == "wind" && seconds != 0.0) {
+    const glm::dvec2 wind = sceneWindMs(scene.clouds);
+    const size_t n = map.texels.size();
+    advectMap(map, std::vector<float>(n, float(wind.x)), std::vector<float>(n, float(wind.y)),
+              seconds);
+  }
+  return map;
+}
+
+const WeatherMap& WeatherSource::map(const Scene& scene, const IsoTime& frame) {
+  const WeatherSettings& w = scene.weather;
+  if (w.advection == "data" && w.source != "file")
+    inputError(
+        "weather.advection: data needs source file (the wind comes from the forecast); "
+        "use wind for the scene's wind");
+  std::string signature = settingsSignature(scene);
+  if (w.source == "file") {
+    const std::string stamp = filesStamp(scene);
+    if (!mFields || stamp != mFieldsStamp) {
+      mFields.reset();  // a failed read leaves nothing stale behind
+      mMap.reset();
+      mFields = readWeatherFile(scene);
+      mFieldsStamp = stamp;
+    }
+    signature += '|' + stamp;
+  } else {
+    const std::string still = settingsSignature(scene);
+    if (!mStill || still != mStillSignature) {
+      mStill.reset();
+      mMap.reset();
+      mStill = makeWeatherMap(scene);
+      mStillSignature = still;
+    }
+  }
+  const double t = weatherTimeUnix(scene, frame);
+  // Whether the map changes with time: between a file's steps the cover is interpolated,
+  // advection carries it, the automaton evolves it.
+  const bool timeDependent = (w.source == "file" && mFields->steps.size() > 1) ||
+                             w.advection != "none" || w.evolution == "ca";
+  if (timeDependent) {
+    std::ostringstream s;
+    s.precision(17);
+    s << "|t" << t;
+    signature += s.str();
+  }
+  if (!mMap || signature != mMapSignature) {
+    mMap.reset();
+    mMap = moved(scene, t);
+    mMapSignature = signature;
+    ++mRevision;
+  }
+  return *mMap;
+}
+
+}  // namespace sky

@@ -1,0 +1,54 @@
+#pragma once
+// The weather map of a scene at any instant of its time. The one place that decides how the
+// map changes with time: the forecast's steps (interpolated), weather.time, advection by the
+// file's wind or the scene's (Kozlov section 5) and the cellular automaton (weather.evolution
+// ca, Liu et al. 2015). The renderer and `skyrender weather` both take their maps from here.
+// See docs/weather.md, "Weather that moves".
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include <glm/vec2.hpp>
+
+#include "engine/scene/scene.h"
+#include "engine/weather/weather_fields.h"
+#include "engine/weather/weather_map.h"
+
+namespace sky {
+
+// The instant (Unix seconds) the weather map shows in a frame at `frame`: weather.time moved
+// on by the frame's time since the scene's start when weather.time is set, else the frame's.
+double weatherTimeUnix(const Scene& scene, const IsoTime& frame);
+
+// clouds.wind_speed_ms from clouds.wind_from as (east, north) m/s: advection "wind" carries
+// the map with the same wind that moves the cloud noise, so cells and their detail move as one.
+glm::dvec2 sceneWindMs(const CloudSettings& clouds);
+
+class WeatherSource {
+public:
+  // The map for `scene` in the frame at `frame`. Rebuilt only when something it depends on
+  // changed: the weather settings (and clouds.wind with advection "wind"), the input files
+  // (size, modification time), and the time when the map moves with it. Forecast files are
+  // read once. BadInput naming weather.<key> for bad settings or files.
+  const WeatherMap& map(const Scene& scene, const IsoTime& frame);
+
+  // The forecast of source "file" as read by the last map() (nullptr for other sources).
+  const WeatherFields* fields() const { return mFields ? &*mFields : nullptr; }
+  // How many maps map() has built (a cache hit builds none).
+  uint64_t revision() const { return mRevision; }
+
+private:
+  // The map at `timeUnix` before evolution: the forecast interpolated or carried, or the
+  // procedural/image map carried by the scene's wind.
+  WeatherMap moved(const Scene& scene, double timeUnix);
+
+  std::optional<WeatherFields> mFields;
+  std::string mFieldsStamp;
+  std::optional<WeatherMap> mStill;  // procedural/image map, before any advection
+  std::string mStillSignature;
+  std::optional<WeatherMap> mMap;
+  std::string mMapSignature;
+  uint64_t mRevision = 0;
+};
+
+}  // namespace sky
