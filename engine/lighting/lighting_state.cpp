@@ -3,12 +3,16 @@
 #include <algorithm>
 #include <cmath>
 
+#include <glm/common.hpp>
+
 #include "engine/lighting/light_model.h"
 
 namespace sky {
 namespace {
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kDeg = kPi / 180.0;
+// How far toward the zenith full overcast lifts the kozlov sky's horizon haze (applyOvercast).
+constexpr double kOvercastHaze = 0.5;
 
 glm::vec4 v4(const glm::dvec3& v, double w = 0.0) {
   return glm::vec4(static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z),
@@ -222,8 +226,27 @@ nlohmann::ordered_json lightingJson(const LightingState& st) {
         {"bright_limb_angle_deg", m.brightLimbAngleDeg},
         {"illuminance_lux", st.moon.illuminanceLux},
         {"source", source(st.moon)}}},
-      {"light", {{"key", st.key}, {"day_factor", st.dayFactor}, {"night_lift_ev", st.nightLiftEv}}},
+      {"light",
+       {{"key", st.key},
+        {"day_factor", st.dayFactor},
+        {"night_lift_ev", st.nightLiftEv},
+        {"overcast", st.overcast}}},
   };
+}
+
+void applyOvercast(LightingState& st, const SkySettings& sky, double overcast) {
+  const double n = std::clamp(overcast, 0.0, 1.0);
+  const auto ground = static_cast<float>(1.0 - 0.75 * std::pow(n, 3.4));  // Kasten-Czeplak
+  for (PaletteKey* k : {&st.palette, &st.moonPalette}) {
+    k->ambientBottom *= ground;
+    const auto grey = static_cast<float>(light::luminance(glm::dvec3(k->ambientTop)));
+    k->ambientTop = glm::mix(k->ambientTop, glm::vec3(grey), static_cast<float>(n));
+  }
+  st.overcast = n;
+  const auto haze = static_cast<float>(sky.hazeHeight + (1.0 - sky.hazeHeight) * kOvercastHaze * n);
+  st.gpu.palette = toGpu(st.palette, sky);
+  st.gpu.moonPalette = toGpu(st.moonPalette, sky);
+  st.gpu.palette.fog.w = st.gpu.moonPalette.fog.w = haze;
 }
 
 }  // namespace sky

@@ -33,6 +33,7 @@ struct LightingState {
   std::string key;           // "sun" (day factor >= 0.5) or "moon"
   PaletteKey palette;        // at the sun's elevation
   PaletteKey moonPalette;    // at the moon's elevation, scaled to moonlight
+  double overcast = 0.0;     // the local weather's hidden sky fraction (applyOvercast)
   shared::LightingState gpu{};
 };
 
@@ -45,6 +46,15 @@ PaletteKey interpolatePalette(const std::vector<PaletteKey>& keys, double sunEle
 
 // Everything for one instant. Throws sky::Error(BadInput) for an impossible observer.
 LightingState computeLighting(const Scene& scene, const IsoTime& time);
+
+// The local weather's part in the light (Kozlov section 5; engine/weather/local_weather.h):
+// with a fraction `overcast` of the sky hidden by cloud around the camera, the ground gets
+// G/G0 = 1 - 0.75 N^3.4 of its clear-sky light (Kasten and Czeplak 1980), so the ambient from
+// below (the ground's bounce) drops by that; the light from above turns grey, the cloud
+// covering the blue (same luminance, saturation x (1 - N)); and the horizon haze of the
+// kozlov sky rises from sky.haze_height toward the zenith by half of N, the air under cloud
+// being moister and murkier. Updates `palette`, `moonPalette`, `overcast` and `gpu`.
+void applyOvercast(LightingState& state, const SkySettings& sky, double overcast);
 
 // The state as JSON, for `skyrender ephemeris` and render reports:
 // {"time_utc", "sun": {...}, "moon": {...}, "light": {"key", "day_factor", ...}}.

@@ -80,6 +80,12 @@ RenderFiles writeRenderFiles(const std::filesystem::path& dir, const std::string
   if (!frame.cloudNoise.cacheFile.empty())
     clouds["noise_cache_file"] = frame.cloudNoise.cacheFile.string();
   report["volumetric_clouds"] = clouds;
+  const LocalWeather& local = frame.localWeather;
+  report["local_weather"] = {{"radius_km", scene.weather.localRadiusKm},
+                             {"cover_low", local.low},
+                             {"cover_mid", local.mid},
+                             {"cover_high", local.high},
+                             {"overcast", local.overcast}};
   for (const DebugImage& d : frame.debug)
     files.debug.push_back(dir / (stem + "." + d.name + ".exr"));
   nlohmann::ordered_json debug = nlohmann::ordered_json::array();

@@ -144,6 +144,10 @@ RenderedFrame Renderer::render(const Scene& scene, const IsoTime& time,
   litScene.camera.latitude = geometry.latDeg;
   litScene.camera.longitude = geometry.lonDeg;
   out.lighting = computeLighting(litScene, time);
+  // The weather where the camera stands sets the ambient light and the haze.
+  out.localWeather =
+      localWeather(weather, geometry.latDeg, geometry.lonDeg, scene.weather.localRadiusKm);
+  applyOvercast(out.lighting, scene.sky, out.localWeather.overcast);
   const uint32_t width = static_cast<uint32_t>(scene.output.width);
   const uint32_t height = static_cast<uint32_t>(scene.output.height);
   const shared::ViewState view = makeViewState(scene.camera, width, height);

@@ -12,6 +12,7 @@
 #include "engine/graph/graph_runtime.h"
 #include "engine/io/exr.h"
 #include "engine/lighting/lighting_state.h"
+#include "engine/weather/local_weather.h"
 #include "engine/scene/scene.h"
 #include "passes/atmosphere_composite/atmosphere_composite.h"
 #include "engine/render/cloud_layers.h"
@@ -58,7 +59,9 @@ struct RenderedFrame {
   HighCloudTextures::Activity highClouds;  // whether the textures were baked, loaded or kept
   bool clouds = false;                     // the weather map has low or mid cover
   CloudNoise::Activity cloudNoise;         // whether the cloud noise was baked, loaded or kept
-  std::vector<DebugImage> debug;           // as requested in RenderOptions
+  // The weather around the camera (Kozlov section 5), already applied to `lighting`.
+  LocalWeather localWeather;
+  std::vector<DebugImage> debug;  // as requested in RenderOptions
 };
 
 class Renderer {

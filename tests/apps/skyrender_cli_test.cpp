@@ -444,7 +444,8 @@ TEST_F(SkyrenderCli, CloudDebugOutputWithoutCloudsIsBadInput) {
 }
 
 // A uniformly 70 % covered cumulus layer overhead: the frame carries the clouds layer, the
-// report says the clouds were drawn, and the clouds' debug images come out at their sizes.
+// report says the clouds were drawn and what the local weather was, and the clouds' debug
+// images come out at their sizes.
 TEST_F(SkyrenderCli, CloudyRenderWritesCloudLayerReportAndDebugImages) {
   fs::path scene = write("cloudy.yaml",
                          "output: {width: 32, height: 18, name: cloudy}\n"
@@ -476,6 +477,12 @@ TEST_F(SkyrenderCli, CloudyRenderWritesCloudLayerReportAndDebugImages) {
 
   const nlohmann::json report = nlohmann::json::parse(readTextFile(dir / "cloudy.json"));
   EXPECT_EQ(report["volumetric_clouds"]["present"], true);
+  // The weather at the camera (Kozlov 5): spread 0 makes the cover 0.7 everywhere, and it is
+  // the overcast the light was set by.
+  EXPECT_NEAR(report["local_weather"]["cover_low"].get<double>(), 0.7, 1e-3);
+  EXPECT_NEAR(report["local_weather"]["overcast"].get<double>(), 0.7, 1e-3);
+  EXPECT_EQ(report["local_weather"]["radius_km"], 5.0);
+  EXPECT_NEAR(report["light"]["overcast"].get<double>(), 0.7, 1e-3);
   EXPECT_THAT(report["exr_layers"].get<std::vector<std::string>>(), ::testing::Contains("clouds"));
   std::vector<std::string> passNames;
   for (const auto& p : report["passes"]) passNames.push_back(p["name"]);
