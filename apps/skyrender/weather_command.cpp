@@ -1,6 +1,8 @@
 // skyrender weather FILE [--scene SCENE] [--out DIR]: the cloud map a forecast file gives
 // (Lu (1)(2) per layer, or the model's own cover), as an EXR and a PNG preview, with the
 // per-layer figures a meteorologist checks first.
+#include <algorithm>
+#include <array>
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -16,6 +18,7 @@
 #include "engine/weather/cloud_layers_from_fields.h"
 #include "engine/weather/coverage_metrics.h"
 #include "engine/weather/weather_map.h"
+#include "engine/weather/weather_source.h"
 
 namespace sky {
 namespace fs = std::filesystem;
@@ -81,30 +84,42 @@ int weatherCommand(const std::vector<std::string>& argv) {
   if (ec || !fs::is_directory(outDir))
     inputError("--out " + outDir.string() + ": cannot create folder");
 
-  const WeatherFields fields = readWeatherFile(scene);
-  const double time = double(scene.time.start.unixSeconds);
-  const WeatherMap map = weatherMapFromFields(fields, time, scene.weather);
+  // The map the renderer would draw in the scene's first frame (weather.time, advection and
+  // evolution included).
+  WeatherSource source;
+  const WeatherMap map = source.map(scene, scene.time.start);
+  const WeatherFields& fields = *source.fields();
+  const double time = weatherTimeUnix(scene, scene.time.start);
+  const std::array<std::vector<float>, 6> altitudes =
+      layerAltitudeMaps(fields, time, scene.weather);
   const int w = int(map.width), h = int(map.height);
 
-  // The map: cover per layer, type and density; layer altitudes as header attributes (the
-  // region means the renderer uses).
+  // The map: cover per layer, type, and each layer's base and top altitude per texel (m above
+  // sea level); the altitudes' region means, which the renderer uses, as header attributes.
   LayeredImage image;
   image.width = w;
   image.height = h;
-  ImageLayer layer{"", {"cover_low", "cover_mid", "cover_high", "type"}, {}};
-  layer.pixels.resize(size_t(w) * h * 4);
+  ImageLayer layer{"",
+                   {"cover_low", "cover_mid", "cover_high", "type", "low_base_m", "low_top_m",
+                    "mid_base_m", "mid_top_m", "high_base_m", "high_top_m"},
+                   {},
+                   true};  // FLOAT: altitudes in metres want more than half's 11 bits
+  const size_t channels = layer.channels.size();
+  layer.pixels.resize(size_t(w) * h * channels);
   for (size_t i = 0; i < map.texels.size(); ++i) {
-    layer.pixels[i * 4 + 0] = map.texels[i].r;
-    layer.pixels[i * 4 + 1] = map.texels[i].g;
-    layer.pixels[i * 4 + 2] = map.coverHigh.empty() ? 0.0f : map.coverHigh[i];
-    layer.pixels[i * 4 + 3] = map.texels[i].b;
+    float* p = &layer.pixels[i * channels];
+    p[0] = map.texels[i].r;
+    p[1] = map.texels[i].g;
+    p[2] = map.coverHigh.empty() ? 0.0f : map.coverHigh[i];
+    p[3] = map.texels[i].b;
+    for (size_t a = 0; a < 6; ++a) p[4 + a] = altitudes[a][i];
   }
   image.layers.push_back(std::move(layer));
-  if (map.layerAltitudesM) {
+  if (map.layerAltitudesM && map.highAltitudeM) {
     const glm::dvec4& a = *map.layerAltitudesM;
-    const char* names[] = {"low_base_m", "low_top_m", "mid_base_m", "mid_top_m"};
-    for (int i = 0; i < 4; ++i)
-      image.attributes["skylayers:" + std::string(names[i])] = std::to_string(a[i]);
+    const double means[6] = {a.x, a.y, a.z, a.w, map.highAltitudeM->x, map.highAltitudeM->y};
+    for (size_t i = 0; i < 6; ++i)
+      image.attributes["skylayers:" + image.layers[0].channels[4 + i]] = std::to_string(means[i]);
   }
   const std::string stem = file.stem().string();
   const fs::path exrPath = outDir / (stem + ".weather.exr");
@@ -131,15 +146,16 @@ int weatherCommand(const std::vector<std::string>& argv) {
   if (scene.weather.cover == "rh" && hasTcc(fields)) {
     WeatherSettings settings = scene.weather;
     settings.cover = "tcc";
-    tcc = weatherMapFromFields(fields, time, settings);
+    tcc = weatherMapFromFields(fields, time, settings, sceneWindMs(scene.clouds));
   }
   for (int l = 0; l < 3; ++l) {
     const LayerFigures f = figures(layers[l]);
     std::printf("%-4s covered %.3f  mean cover %.3f", names[l], f.coveredFraction, f.meanCover);
-    if (map.layerAltitudesM && l < 2) {
-      const glm::dvec4& a = *map.layerAltitudesM;
-      std::printf("  altitude %.0f-%.0f m", l == 0 ? a.x : a.z, l == 0 ? a.y : a.w);
-    }
+    const auto [baseLo, baseHi] =
+        std::minmax_element(altitudes[2 * l].begin(), altitudes[2 * l].end());
+    const auto [topLo, topHi] =
+        std::minmax_element(altitudes[2 * l + 1].begin(), altitudes[2 * l + 1].end());
+    std::printf("  base %.0f-%.0f m  top %.0f-%.0f m", *baseLo, *baseHi, *topLo, *topHi);
     if (tcc) {
       const std::vector<float> other = l == 2 ? tcc->coverHigh : channel(*tcc, l);
       CoverageOptions options;

@@ -538,6 +538,46 @@ LayerCover stepLayers(const WeatherFields& fields, const WeatherStep& step,
   return out;
 }
 
+// The altitude of pressure p (m above sea level) at every grid point of `step`: gh
+// interpolated in log pressure between the point's levels, as HeightMeans does for the region
+// mean; missing heights take their level's mean, and without gh the standard atmosphere.
+std::vector<float> altitudeAtPressure(const WeatherFields& fields, const WeatherStep& step,
+                                      double p) {
+  const size_t n = fields.grid.size();
+  std::vector<double> levels;
+  std::vector<std::vector<float>> heights;
+  for (double level : step.levels("gh")) {
+    const LevelField& f = *step.find("gh", level);
+    if (f.values.size() != n) continue;
+    double sum = 0.0;
+    size_t finite = 0;
+    for (float v : f.values)
+      if (std::isfinite(v)) sum += v, ++finite;
+    if (finite == 0) continue;
+    levels.push_back(level);  // descending: surface first
+    heights.push_back(withoutNaN(f.values, float(sum / double(finite))));
+  }
+  if (levels.empty()) return std::vector<float>(n, float(standardAtmosphereAltitudeM(p)));
+  std::vector<float> out(n);
+  const auto beyond = [&](size_t i) {
+    const double offset = standardAtmosphereAltitudeM(p) - standardAtmosphereAltitudeM(levels[i]);
+    for (size_t k = 0; k < n; ++k) out[k] = float(heights[i][k] + offset);
+  };
+  if (p >= levels.front()) {
+    beyond(0);
+  } else if (p <= levels.back()) {
+    beyond(levels.size() - 1);
+  } else {
+    size_t i = 0;
+    while (levels[i + 1] > p) ++i;
+    const double t = std::log(levels[i] / p) / std::log(levels[i] / levels[i + 1]);
+    for (size_t k = 0; k < n; ++k)
+      out[k] = float(heights[i][k] + t * (heights[i + 1][k] - heights[i][k]));
+  }
+  for (float& v : out) v = std::max(v, 0.0f);
+  return out;
+}
+
 }  // namespace
 
 float humidityCover(float rh, float rhCritical) {
@@ -627,6 +667,26 @@ WeatherMap weatherMapFromFields(const WeatherFields& fields, double timeUnix,
   advectMap(map, resampler.apply(withoutNaN(u->values, 0.0f), false),
             resampler.apply(withoutNaN(v->values, 0.0f), false), dt);
   return map;
+}
+
+std::array<std::vector<float>, 6> layerAltitudeMaps(const WeatherFields& fields, double timeUnix,
+                                                    const WeatherSettings& weather) {
+  if (fields.steps.empty()) inputError("weather.file: " + fileName(fields) + " holds no fields");
+  const glm::uvec2 size = proceduralMapSize(weather);
+  const GridResampler resampler(fields.grid, weather.region, size.x, size.y);
+  const Bracket b = bracketTime(fields.steps, timeUnix);
+  const double pressures[6] = {weather.low.bottomHpa, weather.low.topHpa,     weather.mid.bottomHpa,
+                               weather.mid.topHpa,    weather.high.bottomHpa, weather.high.topHpa};
+  std::array<std::vector<float>, 6> maps;
+  for (size_t i = 0; i < 6; ++i) {
+    std::vector<float> a = altitudeAtPressure(fields, fields.steps[b.first], pressures[i]);
+    if (b.weight != 0.0) {
+      const std::vector<float> c = altitudeAtPressure(fields, fields.steps[b.second], pressures[i]);
+      for (size_t k = 0; k < a.size(); ++k) a[k] += float(b.weight) * (c[k] - a[k]);
+    }
+    maps[i] = resampler.apply(a, false);
+  }
+  return maps;
 }
 
 void advectMap(WeatherMap& map, std::span<const float> eastMs, std::span<const float> northMs,

@@ -5,6 +5,7 @@
 // resampling of a field on the file's grid onto the weather map's lat/lon texels. The result
 // is the same WeatherMap the procedural and image sources give. See docs/weather.md,
 // "From forecast data".
+#include <array>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -65,6 +66,14 @@ std::vector<float> resampleToRegion(const GridGeometry& grid, std::span<const fl
 WeatherMap weatherMapFromFields(const WeatherFields& fields, double timeUnix,
                                 const WeatherSettings& weather,
                                 glm::dvec2 sceneWindMs = glm::dvec2(0.0));
+
+// The layers' base and top altitudes (m above sea level) at each texel of the map
+// weatherMapFromFields makes: gh at the layer's bottom_hpa and top_hpa per grid point (log-
+// pressure interpolation, the standard atmosphere beyond the file's levels), resampled and
+// interpolated in time like the cover. In order low base, low top, mid base, mid top, high
+// base, high top. (The renderer uses their region means, layerAltitudesM.)
+std::array<std::vector<float>, 6> layerAltitudeMaps(const WeatherFields& fields, double timeUnix,
+                                                    const WeatherSettings& weather);
 
 // Moves the map's cover (all channels and coverHigh) with a wind given per texel (m/s east,
 // north; row-major like the texels) over `seconds`, semi-Lagrangian: each texel takes the

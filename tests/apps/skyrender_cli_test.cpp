@@ -560,7 +560,9 @@ TEST_F(SkyrenderCli, WeatherCommandWritesTheForecastMapAndFigures) {
                  " --set weather.region.lon=[39,105] --out " + out());
   ASSERT_EQ(r.rc, 0) << r.err;
   EXPECT_THAT(r.out, HasSubstr("256x241 map over lat [0, 55], lon [39, 105], cover from rh"));
-  EXPECT_THAT(r.out, HasSubstr("low  covered 0.343  mean cover 0.136  altitude 145-1992 m"));
+  // The layers' altitudes per texel from gh: 1000 hPa near sea level, 800 hPa near 2 km.
+  EXPECT_THAT(r.out, HasSubstr("low  covered 0.343  mean cover 0.136  base 43-368 m  top "
+                               "1847-2058 m"));
   EXPECT_THAT(r.out, HasSubstr("dsc vs tcc 0.608"));
   EXPECT_THAT(r.out, HasSubstr("high covered 0.575"));
   const LayeredImage exr = readExr(mDir / "out" / "gfs_2p5deg_r_gh_t_tcc_uv500.weather.exr");
@@ -568,8 +570,23 @@ TEST_F(SkyrenderCli, WeatherCommandWritesTheForecastMapAndFigures) {
   EXPECT_EQ(exr.height, 241);
   ASSERT_NE(exr.find(""), nullptr);
   // EXR keeps channels sorted by name.
-  EXPECT_EQ(exr.find("")->channels,
-            (std::vector<std::string>{"cover_high", "cover_low", "cover_mid", "type"}));
+  const ImageLayer& map = *exr.find("");
+  EXPECT_EQ(map.channels, (std::vector<std::string>{
+                              "cover_high", "cover_low", "cover_mid", "high_base_m", "high_top_m",
+                              "low_base_m", "low_top_m", "mid_base_m", "mid_top_m", "type"}));
+  // Every texel's layers are stacked: low base < low top = mid base < mid top = high base <
+  // high top (the default levels share their bounds).
+  const size_t n = map.channels.size();
+  for (size_t i = 0; i < map.pixels.size(); i += n) {
+    const float* p = &map.pixels[i];
+    ASSERT_LT(p[5], p[6]);
+    ASSERT_EQ(p[6], p[7]);
+    ASSERT_LT(p[7], p[8]);
+    ASSERT_EQ(p[8], p[3]);
+    ASSERT_LT(p[3], p[4]);
+    ASSERT_GT(p[4], 10000.0f) << "150 hPa lies above 10 km";
+  }
+  EXPECT_NE(exr.attributes.find("skylayers:high_top_m"), exr.attributes.end());
   EXPECT_TRUE(fs::exists(mDir / "out" / "gfs_2p5deg_r_gh_t_tcc_uv500.weather.png"));
 
   // A file that is not a forecast: exit 2, one line naming the key and the file.
