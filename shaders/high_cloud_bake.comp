@@ -1,9 +1,13 @@
 #version 460
 // The procedural high-cloud coefficient texture (Kozlov et al. section 3, fig. 3): an optical
 // depth tau per texel from tileable noise in one of three styles, turned into the four
-// channels (docs/high-clouds.md, "The coefficient texture"). One dispatch fills one band of
-// rows, so a large bake is split into several submits with progress in between.
+// channels (docs/high-clouds.md, "The coefficient texture"). Each style gives a texel a rank r
+// and a cover-independent optical depth factor `shape`, tau = shape * presence(r, c, w); the
+// rank/shape texture keeps both so the draw can apply any cover per pixel (regional cover from
+// the weather map). One dispatch fills one band of rows, so a large bake is split into several
+// submits with progress in between.
 #include "common/high_cloud_bake_shared.h"
+#include "common/high_cloud_coverage.glsl"
 #include "common/noise.glsl"
 
 layout(local_size_x = HIGH_CLOUD_GROUP_X, local_size_y = HIGH_CLOUD_GROUP_Y) in;
@@ -15,6 +19,7 @@ layout(std140, binding = HIGH_CLOUD_BAKE_BINDING_PARAMS) uniform Params {
 layout(binding = HIGH_CLOUD_BAKE_BINDING_COVER_MAP) uniform sampler2D coverMap;
 layout(rgba16f, binding = HIGH_CLOUD_BAKE_BINDING_COEFFICIENTS) writeonly uniform image2D
     coefficients;
+layout(rgba16f, binding = HIGH_CLOUD_BAKE_BINDING_RANK_SHAPE) writeonly uniform image2D rankShape;
 
 // The spread of fbmGradient2 at gain 0.5, measured over many seeds and tiles: mean 0 (exactly,
 // over whole periods), standard deviation 0.19 for 3 or more octaves (0.31 for one).
@@ -32,15 +37,6 @@ int octavesFor(float frequency, float n) {
   return clamp(1 + int(floor(log2(max(n * 0.25 / frequency, 1.0)))), 1, 8);
 }
 
-// How much cloud a point of rank r carries at local cover c: 0 below the threshold 1 - c(1+w),
-// rising over the soft width w. c = 0 gives 0 everywhere, c = 1 gives 1 everywhere, and it
-// never decreases with c, so the mean opacity grows with cover. About a fraction c of the
-// tile lies past the middle of the ramp.
-float presence(float r, float c, float w) {
-  float t = 1.0 - c * (1.0 + w);
-  return smoothstep(t, t + w, r);
-}
-
 // A displacement field of two independent fbm fields (domain warping): periodic, so the
 // warped noise still tiles.
 vec2 warpField(vec2 uv, float frequency, uint seed, float n) {
@@ -53,8 +49,8 @@ vec2 warpField(vec2 uv, float frequency, uint seed, float n) {
 // Cirrus: fibrous streaks. The cloud body is fbm stretched 4:1 along u, so thresholding it by
 // cover leaves long streaks rather than round patches; fine fibres stretched 16:1 roughen its
 // edges and striate its inside. Two levels of domain warping bend the streaks and curl their
-// ends into hooks (cirrus uncinus).
-float cirrusTau(vec2 uv, float c, uint seed, float n) {
+// ends into hooks (cirrus uncinus). Returns (rank, shape); ramp width HIGH_CLOUD_RAMP_CIRRUS.
+vec2 cirrusRankShape(vec2 uv, uint seed, float n) {
   vec2 q = uv + 0.08 * warpField(uv, 2.0, noiseSeed(seed, 11u), n);
   q += 0.03 * warpField(q, 6.0, noiseSeed(seed, 12u), n);
   float body = fbmGradient2(q * vec2(2.0, 8.0), ivec2(2, 8), noiseSeed(seed, 10u),
@@ -62,28 +58,29 @@ float cirrusTau(vec2 uv, float c, uint seed, float n) {
   float fibres = fbmGradient2(q * vec2(3.0, 48.0), ivec2(3, 48), noiseSeed(seed, 13u),
                               octavesFor(48.0, n), 0.5);
   // body + 0.35 fibres has a spread of about 1.06 kFbmSigma.
-  float e = presence(rankOf((body + 0.35 * fibres) / 1.06), c, 0.35);
+  float rank = rankOf((body + 0.35 * fibres) / 1.06);
   float striation = 1.0 - abs(fibres) / 0.6;  // 1 along a fibre, lower between fibres
-  return 1.6 * e * clamp(0.25 + 0.75 * striation, 0.0, 1.0);
+  return vec2(rank, 1.6 * clamp(0.25 + 0.75 * striation, 0.0, 1.0));
 }
 
 // Cirrostratus: a thin, wide, low-contrast veil with faint fibres stretched 8:1 along u; at
-// full cover it covers the whole tile with tau between about 0.3 and 0.8.
-float cirrostratusTau(vec2 uv, float c, uint seed, float n) {
+// full cover it covers the whole tile with tau between about 0.3 and 0.8. Returns (rank,
+// shape); ramp width HIGH_CLOUD_RAMP_CIRROSTRATUS.
+vec2 cirrostratusRankShape(vec2 uv, uint seed, float n) {
   float veil = fbmGradient2(uv * 2.0, ivec2(2), noiseSeed(seed, 20u), octavesFor(2.0, n), 0.5);
   vec2 q = uv + 0.04 * warpField(uv, 2.0, noiseSeed(seed, 21u), n);
   float fibres = fbmGradient2(q * vec2(4.0, 32.0), ivec2(4, 32), noiseSeed(seed, 22u),
                               octavesFor(32.0, n), 0.5);
-  float e = presence(rankOf(veil), c, 0.5);
-  return 0.55 * e * clamp(1.0 + 0.6 * fibres, 0.5, 1.5);
+  return vec2(rankOf(veil), 0.55 * clamp(1.0 + 0.6 * fibres, 0.5, 1.5));
 }
 
 // Cirrocumulus: small lumpy cloudlets (Worley F1, roughened by fbm) on a grid of 40 x 32 cells
 // a tile, modulated by sinusoidal ripples whose 32 crests a tile run along u through the cell
 // centres, so the cloudlets line up in rows (undulatus); gently warped so the rows undulate.
-// The patches' edges follow the cells, so they break up into single cloudlets.
+// The patches' edges follow the cells, so they break up into single cloudlets. Returns (rank,
+// shape); ramp width HIGH_CLOUD_RAMP_CIRROCUMULUS.
 const float kRippleRows = 32.0;
-float cirrocumulusTau(vec2 uv, float c, uint seed, float n) {
+vec2 cirrocumulusRankShape(vec2 uv, uint seed, float n) {
   vec2 q = uv + 0.01 * warpField(uv, 3.0, noiseSeed(seed, 31u), n);
   vec2 f = worley2(q * vec2(40.0, kRippleRows), ivec2(40, int(kRippleRows)),
                    noiseSeed(seed, 32u), 0.7);
@@ -94,22 +91,7 @@ float cirrocumulusTau(vec2 uv, float c, uint seed, float n) {
   float puff = cell * (0.15 + 0.85 * ripple);
   float patches = fbmGradient2(uv * vec2(3.0, 4.0), ivec2(3, 4), noiseSeed(seed, 30u),
                                octavesFor(4.0, n), 0.5);
-  float e = presence(rankOf(patches + 0.15 * (puff - 0.4)), c, 0.25);
-  return 2.0 * e * puff;
-}
-
-// The four Kozlov channels from the optical depth (docs/high-clouds.md):
-// B = exp(-tau) (Beer-Lambert transmittance, the clear sky seen through the layer),
-// alpha = 1 - B split into thin (R) and dense (G) by the dense share
-// smoothstep(TAU_DENSE_LO, TAU_DENSE_HI, tau), so R + G + B = 1, and
-// A = 27/4 alpha (1 - alpha)^2, the sparse edges: largest (1) where alpha = 1/3, zero in the
-// clear and in opaque cores.
-vec4 coefficientsFromTau(float tau) {
-  float b = exp(-tau);
-  float alpha = 1.0 - b;
-  float dense = smoothstep(HIGH_CLOUD_TAU_DENSE_LO, HIGH_CLOUD_TAU_DENSE_HI, tau);
-  float edges = 6.75 * alpha * (1.0 - alpha) * (1.0 - alpha);
-  return clamp(vec4(alpha * (1.0 - dense), alpha * dense, b, edges), 0.0, 1.0);
+  return vec2(rankOf(patches + 0.15 * (puff - 0.4)), 2.0 * puff);
 }
 
 void main() {
@@ -121,14 +103,15 @@ void main() {
   float c = params.cover.x;
   if (params.cover.y > 0.5) c *= clamp(textureLod(coverMap, uv, 0.0).r, 0.0, 1.0);
   uint seed = noiseHash3(uvec3(params.seed.x, 0x68636c64u, 1u)).x;
-  float tau = 0.0;
-  if (c > 0.0) {
-    if (params.size.w == HIGH_CLOUD_STYLE_CIRROSTRATUS)
-      tau = cirrostratusTau(uv, c, seed, float(n));
-    else if (params.size.w == HIGH_CLOUD_STYLE_CIRROCUMULUS)
-      tau = cirrocumulusTau(uv, c, seed, float(n));
-    else
-      tau = cirrusTau(uv, c, seed, float(n));
-  }
-  imageStore(coefficients, ivec2(p), coefficientsFromTau(tau));
+  uint style = params.size.w;
+  vec2 rs;
+  if (style == HIGH_CLOUD_STYLE_CIRROSTRATUS)
+    rs = cirrostratusRankShape(uv, seed, float(n));
+  else if (style == HIGH_CLOUD_STYLE_CIRROCUMULUS)
+    rs = cirrocumulusRankShape(uv, seed, float(n));
+  else
+    rs = cirrusRankShape(uv, seed, float(n));
+  // c = 0 gives tau = 0: rankOf() stays below 1, under the threshold 1 - 0 (1 + w).
+  imageStore(coefficients, ivec2(p), highCloudCoefficients(rs, c, highCloudRampWidth(style)));
+  imageStore(rankShape, ivec2(p), vec4(rs, 0.0, 0.0));
 }

@@ -3,6 +3,8 @@
 // with SKY_PHYSICAL_SKY) and the high-cloud layer, a coefficient texture and normal map on a
 // sphere at the layer's altitude, shaded by Kozlov 3.2-3.4 for the sun and the moon.
 // Writes the sky alone and the clouds premultiplied (rgb radiance, a coverage = 1 - clear).
+// With SKY_HIGH_CLOUDS_REGIONAL the cover comes per pixel from the weather map's high layer
+// where the ray meets the layer, applied to the baked rank/shape texture.
 #include "common/sky_high_clouds_shared.h"
 #include "common/view.glsl"
 #define LIGHTING_BINDING SKY_HIGH_CLOUDS_BINDING_LIGHTING
@@ -10,6 +12,10 @@
 #include "common/kozlov_clouds.glsl"
 #if SKY_PHYSICAL_SKY
 #include "common/atmosphere.glsl"
+#endif
+#if SKY_HIGH_CLOUDS_REGIONAL
+#include "common/geo.glsl"
+#include "common/high_cloud_coverage.glsl"
 #endif
 
 layout(local_size_x = SKY_HIGH_CLOUDS_GROUP_X, local_size_y = SKY_HIGH_CLOUDS_GROUP_Y) in;
@@ -19,9 +25,17 @@ layout(std140, binding = SKY_HIGH_CLOUDS_BINDING_PARAMS) uniform Params {
 };
 layout(binding = SKY_HIGH_CLOUDS_BINDING_SKY, rgba16f) uniform writeonly image2D skyImage;
 layout(binding = SKY_HIGH_CLOUDS_BINDING_CLOUDS, rgba16f) uniform writeonly image2D cloudImage;
-layout(binding = SKY_HIGH_CLOUDS_BINDING_COEFFICIENTS) uniform sampler2D coefficientTexture;
 layout(binding = SKY_HIGH_CLOUDS_BINDING_NORMALS) uniform sampler2D normalTexture;
+#if SKY_HIGH_CLOUDS_REGIONAL
+// The weather map's high cover over its region (linear, clamp to edge).
+layout(binding = SKY_HIGH_CLOUDS_BINDING_REGIONAL_COVER) uniform sampler2D regionalCover;
+// Per texel rank (r) and optical depth factor (g); and the coarse coefficients per cover.
+layout(binding = SKY_HIGH_CLOUDS_BINDING_RANK_SHAPE) uniform sampler2D rankShapeTexture;
+layout(binding = SKY_HIGH_CLOUDS_BINDING_COVER_COARSE) uniform sampler3D coverCoarseTexture;
+#else
+layout(binding = SKY_HIGH_CLOUDS_BINDING_COEFFICIENTS) uniform sampler2D coefficientTexture;
 layout(binding = SKY_HIGH_CLOUDS_BINDING_COARSE) uniform sampler2D coarseTexture;
+#endif
 #if SKY_PHYSICAL_SKY
 layout(std140, binding = SKY_HIGH_CLOUDS_BINDING_ATMOSPHERE) uniform AtmosphereBlock {
   AtmosphereParams atmosphere;
@@ -67,6 +81,24 @@ vec3 lightAtLayer(vec3 up, vec3 S, vec3 kozlovValue, vec3 above) {
 #endif
 }
 
+#if SKY_HIGH_CLOUDS_REGIONAL
+// The forecast's high cover at the layer point `enu` (camera ENU frame, metres): bilinear
+// between the map's texel centres, clamped at its edges, and 0 outside its region.
+float regionalCoverAt(vec3 enu) {
+  vec3 lla = latLonAltitude(params.geo, enu);
+  vec2 ruv;
+  if (!regionUv(params.region, lla.x, lla.y, ruv)) return 0.0;
+  return clamp(textureLod(regionalCover, ruv, 0.0).r, 0.0, 1.0);
+}
+
+// The mean coefficients at cover c, linear between the table's covers k / (STEPS - 1).
+vec4 farFieldAt(float c) {
+  float x = c * float(HIGH_CLOUD_COVER_STEPS - 1u);
+  int i = min(int(x), int(HIGH_CLOUD_COVER_STEPS) - 2);
+  return mix(params.farField[i], params.farField[i + 1], x - float(i));
+}
+#endif
+
 void main() {
   uvec2 p = gl_GlobalInvocationID.xy;
   if (any(greaterThanEqual(p, params.view.size.xy))) return;
@@ -80,7 +112,13 @@ void main() {
   float t = params.layer.w > 0.0 ? sphereHit(cameraR, V, layerR) : -1.0;
   // The ground hides the layer behind it (looking down from below the layer).
   float ground = sphereHit(cameraR, V, planetR);
-  if (t > 0.0 && (ground < 0.0 || ground > t)) {
+  bool onLayer = t > 0.0 && (ground < 0.0 || ground > t);
+#if SKY_HIGH_CLOUDS_REGIONAL
+  // The point is t V in the camera's ENU frame; no cloud where the forecast has none.
+  float cover = onLayer ? regionalCoverAt(t * V) : 0.0;
+  onLayer = onLayer && cover > 0.0;
+#endif
+  if (onLayer) {
     vec3 hit = vec3(0.0, 0.0, cameraR) + t * V;  // from the planet's centre
     vec3 up = normalize(hit);
     // The layer's tangent frame: east and north at the hit point (u east, v north).
@@ -102,8 +140,18 @@ void main() {
     float toCoarse = clamp(log2(max(texels, 1e-6)) / 4.0, 0.0, 1.0);
     float coarseTexels = texels * params.shading.z / params.texture.w;
     float toMean = clamp(log2(max(coarseTexels, 1e-6)) / 4.0, 0.0, 1.0);
+#if SKY_HIGH_CLOUDS_REGIONAL
+    // The same three levels at the local cover: each texel's optical depth from its rank and
+    // shape; the coarse level between the per-cover layers bracketing c (trilinear: layer k
+    // sits at w = (k + 0.5) / STEPS); the far field from the table.
+    vec4 fine = highCloudCoefficients(texture(rankShapeTexture, uv).rg, cover, params.regional.y);
+    float layerW = (cover * float(HIGH_CLOUD_COVER_STEPS - 1u) + 0.5) / float(HIGH_CLOUD_COVER_STEPS);
+    vec4 coarse = texture(coverCoarseTexture, vec3(uv, layerW));
+    vec4 c = mix(mix(fine, coarse, toCoarse), farFieldAt(cover), toMean);
+#else
     vec4 c = mix(mix(texture(coefficientTexture, uv), texture(coarseTexture, uv), toCoarse),
                  params.meanCoefficients, toMean);
+#endif
     c = clamp(c, 0.0, 1.0);
     vec3 n = normalize(mix(texture(normalTexture, uv).xyz, vec3(0.0, 0.0, 1.0), toCoarse));
 

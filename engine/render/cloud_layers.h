@@ -25,6 +25,9 @@ public:
   // settings or files, naming weather.<key>.
   const WeatherMap& weatherMap(const Scene& scene, const IsoTime& time);
   const WeatherSource& weatherSource() const { return mSource; }
+  // Counts the weather maps weatherMap() has built: a texture of the map is current while
+  // this is unchanged.
+  uint64_t mapRevision() const { return mMapRevision; }
 
   struct Frame {
     CloudTextures textures;

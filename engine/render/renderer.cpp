@@ -114,6 +114,7 @@ Renderer::Renderer(const Context& ctx, ShaderCompiler& compiler)
     : mRuntime(ctx),
       mStars(ctx, compiler, loadStarCatalog(configDir() / "stars" / "bright_star_catalogue.txt")),
       mHighCloudTextures(ctx, compiler, mRuntime),
+      mRegionalCover(ctx),
       mAtmosphere(ctx, compiler),
       mSky(ctx, compiler),
       mClouds(ctx, compiler, mRuntime),
@@ -169,15 +170,28 @@ RenderedFrame Renderer::render(const Scene& scene, const IsoTime& time,
   StarFieldPass::Outputs starOut = mStars.addTo(graph, stars);
 
   // The high-cloud textures: kept from the last frame, loaded, or baked (before this graph).
-  const HighCloudTextures::Outputs textures = mHighCloudTextures.addTo(graph, scene);
+  // With a forecast's high layer the cover comes from the map per pixel, at the data's
+  // altitude (the middle of the layer's gh range).
+  const bool highFromWeather = highCloudsFromWeather(scene, weather);
+  const HighCloudTextures::Outputs textures =
+      mHighCloudTextures.addTo(graph, scene, highFromWeather);
   out.highClouds = mHighCloudTextures.lastActivity();
+  std::optional<double> highAltitudeM;
+  if (highFromWeather && weather.highAltitudeM)
+    highAltitudeM = 0.5 * (weather.highAltitudeM->x + weather.highAltitudeM->y);
 
   SkyHighCloudsPass::Inputs sky{};
-  const bool cloudsPresent = scene.highClouds.source == "image" || scene.highClouds.cover > 0.0;
+  const bool cloudsPresent =
+      highFromWeather || scene.highClouds.source == "image" || scene.highClouds.cover > 0.0;
   const ImageDesc& fine = graph.desc().resources[textures.coefficients.id].image;
   const ImageDesc& coarse = graph.desc().resources[textures.coarse.id].image;
   sky.params = skyHighCloudsParams(scene, out.lighting, time, view, cloudsPresent, fine.width,
-                                   coarse.width, textures.mean);
+                                   coarse.width, textures.mean, highAltitudeM);
+  if (highFromWeather) {
+    setRegionalCover(sky.params, scene, weather.region, textures);
+    sky.regional = {mRegionalCover.addTo(graph, weather, mClouds.mapRevision()),
+                    &mRegionalCover.sampler(), textures.rankShape, textures.coverCoarse};
+  }
   sky.lighting = out.lighting.gpu;
   sky.textures = {textures.coefficients, textures.normals, textures.coarse,
                   &mHighCloudTextures.sampler()};
@@ -225,7 +239,8 @@ RenderedFrame Renderer::render(const Scene& scene, const IsoTime& time,
   AtmosphereCompositePass::Inputs composite{};
   composite.params.view = view;
   // High clouds lie in front of the volumetric ones when the camera flies above them.
-  composite.params.layers.y = !topDown && scene.camera.altitudeM > scene.highClouds.altitudeM;
+  composite.params.layers.y =
+      !topDown && scene.camera.altitudeM > highAltitudeM.value_or(scene.highClouds.altitudeM);
   if (out.clouds) composite.clouds = clouds.clouds;
   composite.lighting = out.lighting.gpu;
   composite.starFlux = starOut.flux;

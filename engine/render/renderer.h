@@ -18,6 +18,7 @@
 #include "engine/render/cloud_layers.h"
 #include "passes/atmosphere_luts/atmosphere_luts.h"
 #include "passes/high_cloud_textures/high_cloud_textures.h"
+#include "passes/high_cloud_textures/regional_cover_texture.h"
 #include "passes/sky_high_clouds/sky_high_clouds.h"
 #include "passes/star_field/star_field.h"
 #include "passes/volumetric_clouds/volumetric_clouds.h"
@@ -81,6 +82,7 @@ private:
   GraphRuntime mRuntime;
   StarFieldPass mStars;
   HighCloudTextures mHighCloudTextures;
+  RegionalCoverTexture mRegionalCover;  // the weather map's high cover, for the high clouds
   AtmosphereLuts mAtmosphere;
   SkyHighCloudsPass mSky;
   CloudLayers mClouds;

@@ -146,26 +146,31 @@ std::optional<CacheEntry> readCacheEntry(const fs::path& path, const std::string
   if (exr.width != int(size) || exr.height != int(size)) return std::nullopt;
   const ImageLayer* coefficients = exr.find("");
   const ImageLayer* normals = exr.find("normals");
-  if (!coefficients || !normals ||
+  const ImageLayer* rankShape = exr.find("rank_shape");
+  if (!coefficients || !normals || !rankShape ||
       coefficients->channels != std::vector<std::string>{"R", "G", "B", "A"} ||
-      normals->channels != std::vector<std::string>{"X", "Y", "Z"})
+      normals->channels != std::vector<std::string>{"X", "Y", "Z"} ||
+      rankShape->channels != std::vector<std::string>{"rank", "shape"})
     return std::nullopt;
-  CacheEntry entry{size, coefficients->pixels, {}};
-  entry.normals.resize(size_t(size) * size * 4);
-  for (size_t i = 0; i < size_t(size) * size; ++i) {
+  const size_t texels = size_t(size) * size;
+  CacheEntry entry{size, coefficients->pixels, std::vector<float>(texels * 4),
+                   std::vector<float>(texels * 4)};
+  for (size_t i = 0; i < texels; ++i) {
     for (int c = 0; c < 3; ++c) entry.normals[i * 4 + c] = normals->pixels[i * 3 + c];
     entry.normals[i * 4 + 3] = 0.0f;
+    for (int c = 0; c < 2; ++c) entry.rankShape[i * 4 + c] = rankShape->pixels[i * 2 + c];
+    entry.rankShape[i * 4 + 2] = entry.rankShape[i * 4 + 3] = 0.0f;
   }
-  for (float v : entry.coefficients)
-    if (!std::isfinite(v)) return std::nullopt;
-  for (float v : entry.normals)
-    if (!std::isfinite(v)) return std::nullopt;
+  for (const std::vector<float>* image : {&entry.coefficients, &entry.normals, &entry.rankShape})
+    for (float v : *image)
+      if (!std::isfinite(v)) return std::nullopt;
   return entry;
 }
 
 void writeCacheEntry(const fs::path& path, const std::string& key, const CacheEntry& entry) {
   const size_t texels = size_t(entry.size) * entry.size;
-  if (entry.coefficients.size() != texels * 4 || entry.normals.size() != texels * 4)
+  if (entry.coefficients.size() != texels * 4 || entry.normals.size() != texels * 4 ||
+      entry.rankShape.size() != texels * 4)
     internalError("high-cloud cache entry of the wrong size");
   LayeredImage exr;
   exr.width = exr.height = int(entry.size);
@@ -175,6 +180,10 @@ void writeCacheEntry(const fs::path& path, const std::string& key, const CacheEn
   for (size_t i = 0; i < texels; ++i)
     for (int c = 0; c < 3; ++c) normals.pixels[i * 3 + c] = entry.normals[i * 4 + c];
   exr.layers.push_back(std::move(normals));
+  ImageLayer rankShape{"rank_shape", {"rank", "shape"}, std::vector<float>(texels * 2)};
+  for (size_t i = 0; i < texels; ++i)
+    for (int c = 0; c < 2; ++c) rankShape.pixels[i * 2 + c] = entry.rankShape[i * 4 + c];
+  exr.layers.push_back(std::move(rankShape));
   std::error_code ec;
   fs::create_directories(path.parent_path(), ec);  // a failure shows up as writeExr's error
   writeExr(path, exr);

@@ -40,11 +40,13 @@ Texture readCoverMap(const std::filesystem::path& path, const std::string& key,
 // without reading it.
 std::string fileStamp(const std::filesystem::path& path);
 
-// A bake's cache entry: coefficients (RGBA) and normals (xyz; w = 0 on reading), N x N.
+// A bake's cache entry, N x N, RGBA each: coefficients, normals (xyz; w = 0 on reading) and
+// rank/shape (rank, shape; b = a = 0 on reading).
 struct CacheEntry {
   uint32_t size = 0;
   std::vector<float> coefficients;
   std::vector<float> normals;
+  std::vector<float> rankShape;
 };
 // nullopt when the file is missing, unreadable, of another key or size, or holds non-finite
 // values: the caller bakes again and overwrites it.

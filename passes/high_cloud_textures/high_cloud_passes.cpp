@@ -28,6 +28,7 @@ HighCloudBakePass::Outputs HighCloudBakePass::setup(GraphBuilder& b, const Input
   // A band writes only its rows; the others keep what earlier bands wrote, which the graph
   // preserves because imported images keep their layout between graphs.
   mOutputs.coefficients = b.write(in.coefficients, Access::StorageWriteCompute);
+  mOutputs.rankShape = b.write(in.rankShape, Access::StorageWriteCompute);
   b.sideEffect();
   return mOutputs;
 }
@@ -37,7 +38,8 @@ void HighCloudBakePass::execute(PassContext& ctx) const {
   ctx.dispatch(mPipeline,
                {Binding::of(HIGH_CLOUD_BAKE_BINDING_PARAMS, ctx.uniform(mInputs.params)),
                 Binding::of(HIGH_CLOUD_BAKE_BINDING_COVER_MAP, mInputs.coverMap, &mSampler),
-                Binding::of(HIGH_CLOUD_BAKE_BINDING_COEFFICIENTS, mOutputs.coefficients)},
+                Binding::of(HIGH_CLOUD_BAKE_BINDING_COEFFICIENTS, mOutputs.coefficients),
+                Binding::of(HIGH_CLOUD_BAKE_BINDING_RANK_SHAPE, mOutputs.rankShape)},
                mPipeline.groupsX(size.x), mPipeline.groupsY(size.z));
 }
 
@@ -93,6 +95,36 @@ void HighCloudReducePass::execute(PassContext& ctx) const {
                 Binding::of(HIGH_CLOUD_REDUCE_BINDING_COARSE, mOutputs.coarse)},
                mPipeline.groupsX(mInputs.coarseSize), mPipeline.groupsY(mInputs.coarseSize), 1,
                &push, sizeof push);
+}
+
+HighCloudCoverReducePass::HighCloudCoverReducePass(const Context& ctx, ShaderCompiler& compiler)
+    : mPipeline([&] {
+        CompiledShader shader = compiler.compile(std::string(kName) + ".comp");
+        return ComputePipeline(ctx, kName, shader.spirv, shader.reflection);
+      }()) {}
+
+HighCloudCoverReducePass::Outputs HighCloudCoverReducePass::setup(GraphBuilder& b,
+                                                                  const Inputs& in) {
+  if (in.coarseSize == 0 || in.size < in.coarseSize || in.size % in.coarseSize != 0)
+    internalError("high_cloud_cover_reduce: " + std::to_string(in.size) + " is not a multiple of " +
+                  std::to_string(in.coarseSize));
+  mInputs = in;
+  mInputs.rankShape = b.read(in.rankShape, Access::StorageReadCompute);
+  mOutputs.coverCoarse = b.write(in.coverCoarse, Access::StorageWriteCompute);
+  b.sideEffect();
+  return mOutputs;
+}
+
+void HighCloudCoverReducePass::execute(PassContext& ctx) const {
+  shared::HighCloudCoverReduceParams push{};
+  push.size = glm::uvec4(mInputs.size, mInputs.coarseSize, mInputs.size / mInputs.coarseSize,
+                         HIGH_CLOUD_COVER_STEPS);
+  push.ramp = glm::vec4(mInputs.rampWidth, 0.0f, 0.0f, 0.0f);
+  ctx.dispatch(mPipeline,
+               {Binding::of(HIGH_CLOUD_COVER_REDUCE_BINDING_RANK_SHAPE, mInputs.rankShape),
+                Binding::of(HIGH_CLOUD_COVER_REDUCE_BINDING_COARSE, mOutputs.coverCoarse)},
+               mPipeline.groupsX(mInputs.coarseSize), mPipeline.groupsY(mInputs.coarseSize),
+               mPipeline.groupsZ(HIGH_CLOUD_COVER_STEPS), &push, sizeof push);
 }
 
 }  // namespace sky

@@ -1,6 +1,6 @@
 #pragma once
-// The three graph passes behind HighCloudTextures (high_cloud_textures.h). Each writes an
-// imported persistent image and is a side effect: nothing in the bake graphs reads its result.
+// The graph passes behind HighCloudTextures (high_cloud_textures.h). Each writes an imported
+// persistent image and is a side effect: nothing in the bake graphs reads its result.
 #include <cstdint>
 
 #include "engine/gpu/compute_pipeline.h"
@@ -15,17 +15,19 @@ class Sampler;
 class ShaderCompiler;
 struct CompiledShader;
 
-// Procedural coefficients for one band of rows (shaders/high_cloud_bake.comp).
+// Procedural coefficients and rank/shape for one band of rows (shaders/high_cloud_bake.comp).
 class HighCloudBakePass {
 public:
   static constexpr const char* kName = "high_cloud_bake";
   struct Inputs {
     ImageId coefficients;  // N x N rgba16f, written in rows [size.y, size.y + size.z)
+    ImageId rankShape;     // N x N rgba16f, the same rows: R rank, G shape, BA 0
     ImageId coverMap;      // r16f, sampled with `sampler` (1x1 white when there is none)
     shared::HighCloudBakeParams params{};
   };
   struct Outputs {
     ImageId coefficients;
+    ImageId rankShape;
   };
   // Compiles the shader (once). `sampler` (linear, repeat) must outlive the pass.
   HighCloudBakePass(const Context& ctx, ShaderCompiler& compiler, const Sampler& sampler);
@@ -82,6 +84,32 @@ public:
     ImageId coarse;
   };
   HighCloudReducePass(const Context& ctx, ShaderCompiler& compiler);
+  Outputs setup(GraphBuilder& builder, const Inputs& inputs);
+  void execute(PassContext& ctx) const;
+
+private:
+  ComputePipeline mPipeline;
+  Inputs mInputs;
+  Outputs mOutputs;
+};
+
+// The per-cover coarse texture from the rank/shape texture
+// (shaders/high_cloud_cover_reduce.comp): layer k is the coarse coefficients at cover
+// k / (HIGH_CLOUD_COVER_STEPS - 1).
+class HighCloudCoverReducePass {
+public:
+  static constexpr const char* kName = "high_cloud_cover_reduce";
+  struct Inputs {
+    ImageId rankShape;        // N x N rgba16f
+    ImageId coverCoarse;      // C x C x HIGH_CLOUD_COVER_STEPS rgba16f (3D), overwritten
+    uint32_t size = 0;        // N
+    uint32_t coarseSize = 0;  // C; N must be a multiple of it
+    float rampWidth = 0.0f;   // the style's w
+  };
+  struct Outputs {
+    ImageId coverCoarse;
+  };
+  HighCloudCoverReducePass(const Context& ctx, ShaderCompiler& compiler);
   Outputs setup(GraphBuilder& builder, const Inputs& inputs);
   void execute(PassContext& ctx) const;
 

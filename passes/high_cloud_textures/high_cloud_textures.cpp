@@ -23,8 +23,9 @@ constexpr uint32_t kClearSize = high_clouds::kMinSize;
 constexpr VkImageUsageFlags kTextureUsage =
     VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
     VK_IMAGE_USAGE_TRANSFER_DST_BIT;
-// Bumped when the meaning of a cache entry changes without its shaders changing.
-constexpr std::string_view kCacheFormat = "high_clouds cache v1";
+// Bumped when the meaning of a cache entry changes without its shaders changing (v2: the
+// rank/shape layer).
+constexpr std::string_view kCacheFormat = "high_clouds cache v2";
 
 uint32_t coarseSizeOf(uint32_t n) {
   return std::max(n / HIGH_CLOUD_COARSE_DIVISOR, HIGH_CLOUD_COARSE_MIN);
@@ -34,6 +35,15 @@ uint32_t coarseSizeOf(uint32_t n) {
 // eight times and no single dispatch grows past 128 rows of a 4096 texture (a GPU watchdog).
 uint32_t bandsFor(uint32_t n) {
   return std::clamp(n / 64u, 1u, 32u);
+}
+
+// With regional cover the bake's cover is the reference cover and the cover map does not
+// apply: the weather map sets the cover per pixel at draw time.
+double bakeCover(const HighCloudSettings& h, bool regionalCover) {
+  return regionalCover ? HIGH_CLOUD_REGIONAL_REFERENCE_COVER : h.cover;
+}
+std::string bakeCoverMap(const HighCloudSettings& h, bool regionalCover) {
+  return regionalCover ? std::string() : h.coverMap;
 }
 
 uint32_t styleId(const std::string& style) {
@@ -68,12 +78,14 @@ std::vector<float> constantTexture(uint32_t size, glm::vec4 value) {
 }
 
 PersistentImage makeImage(const Context& ctx, const char* name, VkFormat format, uint32_t width,
-                          uint32_t height, VkImageUsageFlags usage) {
+                          uint32_t height, VkImageUsageFlags usage, uint32_t depth = 1) {
   ImageDesc desc;
   desc.name = name;
+  desc.dim = depth > 1 ? ImageDim::Tex3D : ImageDim::Tex2D;
   desc.format = format;
   desc.width = width;
   desc.height = height;
+  desc.depth = depth;
   desc.usage = usage;
   return {Image(ctx, desc), {}};
 }
@@ -87,22 +99,41 @@ HighCloudTextures::HighCloudTextures(const Context& ctx, ShaderCompiler& compile
       mSampler(ctx, SamplerWrap::Repeat, true),
       mBakePass(ctx, compiler, mSampler),
       mNormalsPass(ctx, compiler),
-      mReducePass(ctx, compiler) {}
+      mReducePass(ctx, compiler),
+      mCoverReducePass(ctx, compiler) {}
 
-HighCloudTextures::Outputs HighCloudTextures::addTo(FrameGraph& graph, const Scene& scene) {
+float HighCloudTextures::rampWidth(const std::string& style) {
+  switch (styleId(style)) {
+    case HIGH_CLOUD_STYLE_CIRROSTRATUS:
+      return float(HIGH_CLOUD_RAMP_CIRROSTRATUS);
+    case HIGH_CLOUD_STYLE_CIRROCUMULUS:
+      return float(HIGH_CLOUD_RAMP_CIRROCUMULUS);
+    default:
+      return float(HIGH_CLOUD_RAMP_CIRRUS);
+  }
+}
+
+HighCloudTextures::Outputs HighCloudTextures::addTo(FrameGraph& graph, const Scene& scene,
+                                                    bool regionalCover) {
   mActivity = {};
   const HighCloudSettings& h = scene.highClouds;
-  const std::string sig = signature(scene);
+  if (regionalCover && h.source != "procedural")
+    inputError(
+        "high_clouds.cover_source: a cover from the weather map needs high_clouds.source "
+        "procedural, not '" +
+        h.source + "'");
+  const std::string sig = signature(scene, regionalCover);
   if (!mSignature || *mSignature != sig) {
     // Forget what the images held until the new contents are complete: an error on the way
     // makes the next call load again.
     mSignature.reset();
+    mHasRankShape = mHasCoverCoarse = false;
     if (h.source == "image")
       loadImages(scene);
-    else if (h.cover <= 0.0)
+    else if (!regionalCover && h.cover <= 0.0)
       makeClear();
     else
-      loadProcedural(scene);
+      loadProcedural(scene, regionalCover);
     mSignature = sig;
   }
   Outputs out;
@@ -110,10 +141,18 @@ HighCloudTextures::Outputs HighCloudTextures::addTo(FrameGraph& graph, const Sce
   out.normals = graph.importImage(mNormals);
   out.coarse = graph.importImage(mCoarse);
   out.mean = mMean;
+  if (mHasRankShape) {
+    out.rankShape = graph.importImage(mRankShape);
+    out.rampWidth = mRampWidth;
+  }
+  if (mHasCoverCoarse) {
+    out.coverCoarse = graph.importImage(mCoverCoarse);
+    out.farField = mFarField;
+  }
   return out;
 }
 
-std::string HighCloudTextures::signature(const Scene& scene) const {
+std::string HighCloudTextures::signature(const Scene& scene, bool regionalCover) const {
   const HighCloudSettings& h = scene.highClouds;
   auto file = [&](const std::string& path) {
     if (path.empty()) return std::string("-");
@@ -123,22 +162,23 @@ std::string HighCloudTextures::signature(const Scene& scene) const {
   if (h.source == "image") return "image|" + file(h.coefficients) + "|" + file(h.normals);
   if (h.source != "procedural")
     inputError("high_clouds.source: '" + h.source + "' is not procedural or image");
-  if (h.cover <= 0.0) return "clear";
-  return "procedural|" + h.style + "|" + exact(h.cover) + "|" + std::to_string(h.seed) + "|" +
-         std::to_string(h.resolution) + "|" + file(h.coverMap);
+  if (!regionalCover && h.cover <= 0.0) return "clear";
+  return std::string(regionalCover ? "regional" : "procedural") + "|" + h.style + "|" +
+         exact(bakeCover(h, regionalCover)) + "|" + std::to_string(h.seed) + "|" +
+         std::to_string(h.resolution) + "|" + file(bakeCoverMap(h, regionalCover));
 }
 
-std::string HighCloudTextures::cacheKey(const Scene& scene) const {
+std::string HighCloudTextures::cacheKey(const Scene& scene, bool regionalCover) const {
   const HighCloudSettings& h = scene.highClouds;
+  const std::string coverMap = bakeCoverMap(h, regionalCover);
   std::string text(kCacheFormat);
-  text += "|" + h.style + "|" + exact(h.cover) + "|" + std::to_string(h.seed) + "|" +
-          std::to_string(h.resolution) + "|";
-  if (!h.coverMap.empty()) {
-    const fs::path path = scene.resolvePath(h.coverMap);
+  text += "|" + h.style + "|" + exact(bakeCover(h, regionalCover)) + "|" + std::to_string(h.seed) +
+          "|" + std::to_string(h.resolution) + "|";
+  if (!coverMap.empty()) {
+    const fs::path path = scene.resolvePath(coverMap);
     std::error_code ec;
     if (!fs::exists(path, ec))
-      inputError("high_clouds.cover_map: " + h.coverMap + ": file not found (" + path.string() +
-                 ")");
+      inputError("high_clouds.cover_map: " + coverMap + ": file not found (" + path.string() + ")");
     const std::vector<uint8_t> bytes = readBinaryFile(path);
     text += hex64(hash64({reinterpret_cast<const char*>(bytes.data()), bytes.size()}));
   }
@@ -146,18 +186,26 @@ std::string HighCloudTextures::cacheKey(const Scene& scene) const {
   return hex64(hash64(text));
 }
 
-void HighCloudTextures::allocate(uint32_t size) {
-  if (mSize == size && mCoefficients.image) return;
+void HighCloudTextures::allocate(uint32_t size, bool rankShape, bool coverCoarse) {
   const VkFormat f = VK_FORMAT_R16G16B16A16_SFLOAT;
   const uint32_t c = coarseSizeOf(size);
-  mCoefficients = makeImage(mCtx, "high_cloud_coefficients", f, size, size, kTextureUsage);
-  mNormals = makeImage(mCtx, "high_cloud_normals", f, size, size, kTextureUsage);
-  mCoarse = makeImage(mCtx, "high_cloud_coarse", f, c, c, kTextureUsage);
-  mSize = size;
+  if (mSize != size || !mCoefficients.image) {
+    mCoefficients = makeImage(mCtx, "high_cloud_coefficients", f, size, size, kTextureUsage);
+    mNormals = makeImage(mCtx, "high_cloud_normals", f, size, size, kTextureUsage);
+    mCoarse = makeImage(mCtx, "high_cloud_coarse", f, c, c, kTextureUsage);
+    mRankShape = {};
+    mCoverCoarse = {};
+    mSize = size;
+  }
+  if (rankShape && !mRankShape.image)
+    mRankShape = makeImage(mCtx, "high_cloud_rank_shape", f, size, size, kTextureUsage);
+  if (coverCoarse && !mCoverCoarse.image)
+    mCoverCoarse =
+        makeImage(mCtx, "high_cloud_cover_coarse", f, c, c, kTextureUsage, HIGH_CLOUD_COVER_STEPS);
 }
 
 void HighCloudTextures::makeClear() {
-  allocate(kClearSize);
+  allocate(kClearSize, false, false);
   const glm::vec4 clear(0, 0, 1, 0);
   uploadImage(mCtx, mCoefficients.image, mCoefficients.state, constantTexture(kClearSize, clear));
   uploadImage(mCtx, mNormals.image, mNormals.state, constantTexture(kClearSize, {0, 0, 1, 0}));
@@ -177,63 +225,74 @@ void HighCloudTextures::loadImages(const Scene& scene) {
   if (!h.normals.empty())
     normals = high_clouds::readNormals(scene.resolvePath(h.normals), "high_clouds.normals",
                                        h.normals, coefficients.width);
-  allocate(coefficients.width);
+  allocate(coefficients.width, false, false);
   uploadImage(mCtx, mCoefficients.image, mCoefficients.state, coefficients.pixels);
   if (!normals.pixels.empty()) uploadImage(mCtx, mNormals.image, mNormals.state, normals.pixels);
-  finish(normals.pixels.empty(), false);
+  finish(normals.pixels.empty(), false, false);
   mActivity.loadedImages = true;
 }
 
-void HighCloudTextures::loadProcedural(const Scene& scene) {
+void HighCloudTextures::loadProcedural(const Scene& scene, bool regionalCover) {
   const HighCloudSettings& h = scene.highClouds;
   const uint32_t size = resolutionOf(h);
-  styleId(h.style);  // a bad style is an error even when the cache would answer
-  const std::string key = cacheKey(scene);
+  // A bad style is an error even when the cache would answer.
+  mRampWidth = rampWidth(h.style);
+  const std::string key = cacheKey(scene, regionalCover);
   const fs::path file = cacheDir() / "high_clouds" / (key + ".exr");
   mActivity.cacheFile = file;
   if (std::optional<high_clouds::CacheEntry> entry = high_clouds::readCacheEntry(file, key, size)) {
-    allocate(size);
+    allocate(size, true, regionalCover);
     uploadImage(mCtx, mCoefficients.image, mCoefficients.state, entry->coefficients);
     uploadImage(mCtx, mNormals.image, mNormals.state, entry->normals);
-    finish(false, false);
+    uploadImage(mCtx, mRankShape.image, mRankShape.state, entry->rankShape);
+    mHasRankShape = true;
+    finish(false, false, regionalCover);
     mActivity.loadedCache = true;
     return;
   }
-  bake(scene, size, key, file);
+  bake(scene, size, key, file, regionalCover);
 }
 
 void HighCloudTextures::bake(const Scene& scene, uint32_t size, const std::string& key,
-                             const fs::path& file) {
+                             const fs::path& file, bool regionalCover) {
   const HighCloudSettings& h = scene.highClouds;
   report(0.0);
-  const bool hasMap = !h.coverMap.empty();
-  const Texture map = hasMap ? high_clouds::readCoverMap(scene.resolvePath(h.coverMap),
-                                                         "high_clouds.cover_map", h.coverMap)
+  const std::string coverMap = bakeCoverMap(h, regionalCover);
+  const bool hasMap = !coverMap.empty();
+  const Texture map = hasMap ? high_clouds::readCoverMap(scene.resolvePath(coverMap),
+                                                         "high_clouds.cover_map", coverMap)
                              : Texture{1, 1, 1, {1.0f}};
   if (!mCoverMap.image || mCoverMap.image.desc().width != map.width ||
       mCoverMap.image.desc().height != map.height)
     mCoverMap = makeImage(mCtx, "high_cloud_cover_map", VK_FORMAT_R16_SFLOAT, map.width, map.height,
                           VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
   uploadImage(mCtx, mCoverMap.image, mCoverMap.state, map.pixels);
-  allocate(size);
+  allocate(size, true, regionalCover);
 
   const uint32_t bands = bandsFor(size), rows = size / bands;
   for (uint32_t b = 0; b < bands; ++b) {
     FrameGraph graph(mRuntime);
     HighCloudBakePass::Inputs in;
     in.coefficients = graph.importImage(mCoefficients);
+    in.rankShape = graph.importImage(mRankShape);
     in.coverMap = graph.importImage(mCoverMap);
     in.params.size = glm::uvec4(size, b * rows, rows, styleId(h.style));
-    in.params.cover = glm::vec4(float(h.cover), hasMap ? 1.0f : 0.0f, 0.0f, 0.0f);
+    in.params.cover =
+        glm::vec4(float(bakeCover(h, regionalCover)), hasMap ? 1.0f : 0.0f, 0.0f, 0.0f);
     in.params.seed = glm::uvec4(static_cast<uint32_t>(h.seed), 0, 0, 0);
     graph.add(mBakePass, in);
     addTimings(graph.execute());
     report(double(b + 1) / double(bands + 1));
   }
 
-  FrameResult result = finish(true, true);
-  high_clouds::CacheEntry entry{size, std::move(result.outputs[1].pixels),
-                                std::move(result.outputs[2].pixels)};
+  mHasRankShape = true;
+  FrameResult result = finish(true, true, regionalCover);
+  auto take = [&](std::string_view label) {
+    for (ReadbackImage& o : result.outputs)
+      if (o.label == label) return std::move(o.pixels);
+    internalError("high_clouds: no read-back '" + std::string(label) + "'");
+  };
+  high_clouds::CacheEntry entry{size, take("coefficients"), take("normals"), take("rank_shape")};
   try {
     high_clouds::writeCacheEntry(file, key, entry);
     mActivity.wroteCache = true;
@@ -244,27 +303,48 @@ void HighCloudTextures::bake(const Scene& scene, uint32_t size, const std::strin
   report(1.0);
 }
 
-FrameResult HighCloudTextures::finish(bool deriveNormals, bool readAll) {
+FrameResult HighCloudTextures::finish(bool deriveNormals, bool readAll, bool regionalCover) {
+  const uint32_t coarseSize = coarseSizeOf(mSize);
   FrameGraph graph(mRuntime);
   const ImageId coefficients = graph.importImage(mCoefficients);
   ImageId normals = graph.importImage(mNormals);
   ImageId coarse = graph.importImage(mCoarse);
+  const ImageId rankShape = mHasRankShape ? graph.importImage(mRankShape) : ImageId{};
   if (deriveNormals) normals = graph.add(mNormalsPass, {coefficients, normals, mSize}).normals;
-  coarse = graph.add(mReducePass, {coefficients, coarse, mSize, coarseSizeOf(mSize)}).coarse;
-  // Output 0 is always the coarse texture; 1 and 2 the full textures when asked.
+  coarse = graph.add(mReducePass, {coefficients, coarse, mSize, coarseSize}).coarse;
   graph.requestOutput(coarse, "coarse");
+  if (regionalCover) {
+    if (!mHasRankShape) internalError("high_clouds: regional cover without a rank/shape texture");
+    ImageId coverCoarse = graph.importImage(mCoverCoarse);
+    coverCoarse =
+        graph.add(mCoverReducePass, {rankShape, coverCoarse, mSize, coarseSize, mRampWidth})
+            .coverCoarse;
+    graph.requestOutput(coverCoarse, "cover_coarse");
+  }
   if (readAll) {
     graph.requestOutput(coefficients, "coefficients");
     graph.requestOutput(normals, "normals");
+    if (mHasRankShape) graph.requestOutput(rankShape, "rank_shape");
   }
   FrameResult result = graph.execute();
   addTimings(result);
   // Equal boxes: the mean of the coarse texels is the mean of the texture.
-  const std::vector<float>& px = result.outputs[0].pixels;
-  glm::dvec4 sum(0.0);
-  for (size_t i = 0; i < px.size(); i += 4)
-    sum += glm::dvec4(px[i], px[i + 1], px[i + 2], px[i + 3]);
-  mMean = glm::vec4(sum / double(px.size() / 4));
+  auto meanOf = [](const float* px, size_t texels) {
+    glm::dvec4 sum(0.0);
+    for (size_t i = 0; i < texels * 4; i += 4)
+      sum += glm::dvec4(px[i], px[i + 1], px[i + 2], px[i + 3]);
+    return glm::vec4(sum / double(texels));
+  };
+  const std::vector<float>& px = result.output("coarse").pixels;
+  mMean = meanOf(px.data(), px.size() / 4);
+  if (regionalCover) {
+    // The far-field table: the mean of each cover's layer (z-major read-back).
+    const std::vector<float>& layers = result.output("cover_coarse").pixels;
+    const size_t perLayer = size_t(coarseSize) * coarseSize;
+    for (uint32_t k = 0; k < HIGH_CLOUD_COVER_STEPS; ++k)
+      mFarField[k] = meanOf(layers.data() + k * perLayer * 4, perLayer);
+    mHasCoverCoarse = true;
+  }
   return result;
 }
 

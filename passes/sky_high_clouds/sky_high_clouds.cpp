@@ -7,18 +7,26 @@
 #include "engine/gpu/sampler.h"
 #include "engine/lighting/light_model.h"
 #include "engine/shader/shader_compiler.h"
+#include "engine/weather/geo.h"
 
 namespace sky {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kDeg = kPi / 180.0;
-constexpr double kEarthRadiusM = 6371000.0;  // for the kozlov model, which has no planet
+// The kozlov model has no planet of its own: it uses the geographic Earth (kEarthRadiusM).
 
-ComputePipeline buildPipeline(const Context& ctx, ShaderCompiler& compiler, bool physical) {
-  CompiledShader shader =
-      compiler.compile("sky_high_clouds.comp", {{"SKY_PHYSICAL_SKY", physical ? "1" : "0"}});
+ComputePipeline buildPipeline(const Context& ctx, ShaderCompiler& compiler, bool physical,
+                              bool regional) {
+  CompiledShader shader = compiler.compile("sky_high_clouds.comp",
+                                           {{"SKY_PHYSICAL_SKY", physical ? "1" : "0"},
+                                            {"SKY_HIGH_CLOUDS_REGIONAL", regional ? "1" : "0"}});
   return ComputePipeline(ctx, SkyHighCloudsPass::kName, shader.spirv, shader.reflection);
+}
+
+// The sphere the pass puts the ground on: the physical atmosphere's ground, or the Earth.
+double planetRadiusM(const Scene& scene) {
+  return scene.sky.model == "physical" ? scene.atmosphere.groundRadiusKm * 1000.0 : kEarthRadiusM;
 }
 
 }  // namespace
@@ -49,16 +57,18 @@ shared::SkyHighCloudsParams skyHighCloudsParams(const Scene& scene, const Lighti
                                                 const IsoTime& time, const shared::ViewState& view,
                                                 bool cloudsPresent, uint32_t textureSize,
                                                 uint32_t coarseSize,
-                                                const glm::vec4& meanCoefficients) {
+                                                const glm::vec4& meanCoefficients,
+                                                std::optional<double> layerAltitudeM) {
   const HighCloudSettings& hc = scene.highClouds;
-  const bool physical = scene.sky.model == "physical";
-  const double planetR = physical ? scene.atmosphere.groundRadiusKm * 1000.0 : kEarthRadiusM;
+  const double altitudeM = layerAltitudeM.value_or(hc.altitudeM);
   shared::SkyHighCloudsParams p{};
   p.view = view;
-  // Altitudes are above sea level; the camera may not sit below the ground sphere.
+  // Altitudes are above sea level; the camera may not sit below the ground sphere (setRegionalCover
+  // places it the same way).
+  const double planetR = planetRadiusM(scene);
   p.layer = glm::vec4(static_cast<float>(planetR),
                       static_cast<float>(planetR + std::max(scene.camera.altitudeM, 1.0)),
-                      static_cast<float>(planetR + hc.altitudeM), cloudsPresent ? 1.0f : 0.0f);
+                      static_cast<float>(planetR + altitudeM), cloudsPresent ? 1.0f : 0.0f);
 
   // The wind blows from `windFrom`: the clouds drift toward windFrom + 180 degrees. The drift
   // is measured from the start of the scene's time so a time-lapse moves smoothly; the texture
@@ -81,25 +91,72 @@ shared::SkyHighCloudsParams skyHighCloudsParams(const Scene& scene, const Lighti
   const double turbidity = scene.lighting.turbidity;
   p.sunAtLayer =
       glm::vec4(illuminanceAtAltitude(glm::vec3(lighting.gpu.sunSpace), lighting.sun.elevationDeg,
-                                      lighting.sun.angularRadiusDeg, hc.altitudeM, turbidity),
+                                      lighting.sun.angularRadiusDeg, altitudeM, turbidity),
                 0.0f);
   p.moonAtLayer =
       glm::vec4(illuminanceAtAltitude(glm::vec3(lighting.gpu.moonSpace), lighting.moon.elevationDeg,
-                                      lighting.moon.angularRadiusDeg, hc.altitudeM, turbidity),
+                                      lighting.moon.angularRadiusDeg, altitudeM, turbidity),
                 0.0f);
   return p;
 }
 
+void setRegionalCover(shared::SkyHighCloudsParams& params, const Scene& scene,
+                      const WeatherRegion& region, const HighCloudTextures::Outputs& textures) {
+  if (!textures.rankShape.valid() || !textures.coverCoarse.valid())
+    internalError("sky_high_clouds: regional cover needs textures made with regionalCover");
+  // The pass puts the camera at (0, 0, layer.y) from the centre of a sphere of radius layer.x
+  // and the layer point at t V in the camera's ENU frame: a geographic frame on that same
+  // sphere maps t V to the latitude and longitude below it.
+  shared::GeoFrame geo = geoFrame(
+      {scene.camera.latitude, scene.camera.longitude, std::max(scene.camera.altitudeM, 1.0)});
+  geo.origin.w = static_cast<float>(planetRadiusM(scene));
+  params.geo = geo;
+  params.region = geoRegion(region);
+  params.regional = glm::vec4(1.0f, textures.rampWidth, 0.0f, 0.0f);
+  for (uint32_t k = 0; k < HIGH_CLOUD_COVER_STEPS; ++k) params.farField[k] = textures.farField[k];
+}
+
+bool highCloudsFromWeather(const Scene& scene, const WeatherMap& map) {
+  const HighCloudSettings& hc = scene.highClouds;
+  const bool hasHighLayer =
+      map.width > 0 && map.height > 0 && map.coverHigh.size() == size_t(map.width) * map.height;
+  const bool procedural = hc.source == "procedural";
+  if (hc.coverSource == "scene") return false;
+  if (hc.coverSource == "auto") return procedural && hasHighLayer;
+  if (hc.coverSource != "weather")
+    inputError("high_clouds.cover_source: '" + hc.coverSource + "' is not auto, scene or weather");
+  if (!procedural)
+    inputError("high_clouds.cover_source: weather needs high_clouds.source procedural, not '" +
+               hc.source + "'");
+  if (!hasHighLayer)
+    inputError(
+        "high_clouds.cover_source: weather needs a weather map with a high layer "
+        "(weather.source file); this map has none");
+  return true;
+}
+
 SkyHighCloudsPass::SkyHighCloudsPass(const Context& ctx, ShaderCompiler& compiler)
-    : mKozlov(buildPipeline(ctx, compiler, false)), mPhysical(buildPipeline(ctx, compiler, true)) {}
+    : mKozlov(buildPipeline(ctx, compiler, false, false)),
+      mPhysical(buildPipeline(ctx, compiler, true, false)),
+      mKozlovRegional(buildPipeline(ctx, compiler, false, true)),
+      mPhysicalRegional(buildPipeline(ctx, compiler, true, true)) {}
 
 SkyHighCloudsPass::Outputs SkyHighCloudsPass::setup(GraphBuilder& b, const Inputs& in) {
   if (!in.textures.sampler) internalError("sky_high_clouds: no texture sampler");
   if (in.physical && !in.atmosphere.sampler) internalError("sky_high_clouds: no LUT sampler");
   mInputs = in;
-  b.read(in.textures.coefficients, Access::SampledCompute);
   b.read(in.textures.normals, Access::SampledCompute);
-  b.read(in.textures.coarse, Access::SampledCompute);
+  if (regional()) {
+    const Regional& r = in.regional;
+    if (!r.cover.valid() || !r.coverSampler || !r.rankShape.valid() || !r.coverCoarse.valid())
+      internalError("sky_high_clouds: regional cover without its textures");
+    b.read(r.cover, Access::SampledCompute);
+    b.read(r.rankShape, Access::SampledCompute);
+    b.read(r.coverCoarse, Access::SampledCompute);
+  } else {
+    b.read(in.textures.coefficients, Access::SampledCompute);
+    b.read(in.textures.coarse, Access::SampledCompute);
+  }
   if (in.physical) {
     b.read(in.atmosphere.transmittance, Access::SampledCompute);
     b.read(in.atmosphere.skyViewSun, Access::SampledCompute);
@@ -119,9 +176,12 @@ SkyHighCloudsPass::Outputs SkyHighCloudsPass::setup(GraphBuilder& b, const Input
 void SkyHighCloudsPass::execute(PassContext& ctx) const {
   const auto& size = mInputs.params.view.size;
   const Textures& tex = mInputs.textures;
+  const Regional& r = mInputs.regional;
   const UniformRange params = ctx.uniform(mInputs.params);
   const UniformRange lighting = ctx.uniform(mInputs.lighting);
-  if (!mInputs.physical) {
+  const Atmosphere& atm = mInputs.atmosphere;
+  // One binding list per variant: each shader declares exactly these.
+  if (!mInputs.physical && !regional()) {
     ctx.dispatch(mKozlov,
                  {Binding::of(SKY_HIGH_CLOUDS_BINDING_PARAMS, params),
                   Binding::of(SKY_HIGH_CLOUDS_BINDING_LIGHTING, lighting),
@@ -131,22 +191,49 @@ void SkyHighCloudsPass::execute(PassContext& ctx) const {
                   Binding::of(SKY_HIGH_CLOUDS_BINDING_NORMALS, tex.normals, tex.sampler),
                   Binding::of(SKY_HIGH_CLOUDS_BINDING_COARSE, tex.coarse, tex.sampler)},
                  mKozlov.groupsX(size.x), mKozlov.groupsY(size.y));
-    return;
+  } else if (!mInputs.physical) {
+    ctx.dispatch(mKozlovRegional,
+                 {Binding::of(SKY_HIGH_CLOUDS_BINDING_PARAMS, params),
+                  Binding::of(SKY_HIGH_CLOUDS_BINDING_LIGHTING, lighting),
+                  Binding::of(SKY_HIGH_CLOUDS_BINDING_SKY, mOutputs.sky),
+                  Binding::of(SKY_HIGH_CLOUDS_BINDING_CLOUDS, mOutputs.highClouds),
+                  Binding::of(SKY_HIGH_CLOUDS_BINDING_NORMALS, tex.normals, tex.sampler),
+                  Binding::of(SKY_HIGH_CLOUDS_BINDING_REGIONAL_COVER, r.cover, r.coverSampler),
+                  Binding::of(SKY_HIGH_CLOUDS_BINDING_RANK_SHAPE, r.rankShape, tex.sampler),
+                  Binding::of(SKY_HIGH_CLOUDS_BINDING_COVER_COARSE, r.coverCoarse, tex.sampler)},
+                 mKozlovRegional.groupsX(size.x), mKozlovRegional.groupsY(size.y));
+  } else if (!regional()) {
+    ctx.dispatch(
+        mPhysical,
+        {Binding::of(SKY_HIGH_CLOUDS_BINDING_PARAMS, params),
+         Binding::of(SKY_HIGH_CLOUDS_BINDING_LIGHTING, lighting),
+         Binding::of(SKY_HIGH_CLOUDS_BINDING_SKY, mOutputs.sky),
+         Binding::of(SKY_HIGH_CLOUDS_BINDING_CLOUDS, mOutputs.highClouds),
+         Binding::of(SKY_HIGH_CLOUDS_BINDING_COEFFICIENTS, tex.coefficients, tex.sampler),
+         Binding::of(SKY_HIGH_CLOUDS_BINDING_NORMALS, tex.normals, tex.sampler),
+         Binding::of(SKY_HIGH_CLOUDS_BINDING_COARSE, tex.coarse, tex.sampler),
+         Binding::of(SKY_HIGH_CLOUDS_BINDING_ATMOSPHERE, ctx.uniform(atm.params)),
+         Binding::of(SKY_HIGH_CLOUDS_BINDING_TRANSMITTANCE, atm.transmittance, atm.sampler),
+         Binding::of(SKY_HIGH_CLOUDS_BINDING_SKY_VIEW_SUN, atm.skyViewSun, atm.sampler),
+         Binding::of(SKY_HIGH_CLOUDS_BINDING_SKY_VIEW_MOON, atm.skyViewMoon, atm.sampler)},
+        mPhysical.groupsX(size.x), mPhysical.groupsY(size.y));
+  } else {
+    ctx.dispatch(
+        mPhysicalRegional,
+        {Binding::of(SKY_HIGH_CLOUDS_BINDING_PARAMS, params),
+         Binding::of(SKY_HIGH_CLOUDS_BINDING_LIGHTING, lighting),
+         Binding::of(SKY_HIGH_CLOUDS_BINDING_SKY, mOutputs.sky),
+         Binding::of(SKY_HIGH_CLOUDS_BINDING_CLOUDS, mOutputs.highClouds),
+         Binding::of(SKY_HIGH_CLOUDS_BINDING_NORMALS, tex.normals, tex.sampler),
+         Binding::of(SKY_HIGH_CLOUDS_BINDING_REGIONAL_COVER, r.cover, r.coverSampler),
+         Binding::of(SKY_HIGH_CLOUDS_BINDING_RANK_SHAPE, r.rankShape, tex.sampler),
+         Binding::of(SKY_HIGH_CLOUDS_BINDING_COVER_COARSE, r.coverCoarse, tex.sampler),
+         Binding::of(SKY_HIGH_CLOUDS_BINDING_ATMOSPHERE, ctx.uniform(atm.params)),
+         Binding::of(SKY_HIGH_CLOUDS_BINDING_TRANSMITTANCE, atm.transmittance, atm.sampler),
+         Binding::of(SKY_HIGH_CLOUDS_BINDING_SKY_VIEW_SUN, atm.skyViewSun, atm.sampler),
+         Binding::of(SKY_HIGH_CLOUDS_BINDING_SKY_VIEW_MOON, atm.skyViewMoon, atm.sampler)},
+        mPhysicalRegional.groupsX(size.x), mPhysicalRegional.groupsY(size.y));
   }
-  const Atmosphere& atm = mInputs.atmosphere;
-  ctx.dispatch(mPhysical,
-               {Binding::of(SKY_HIGH_CLOUDS_BINDING_PARAMS, params),
-                Binding::of(SKY_HIGH_CLOUDS_BINDING_LIGHTING, lighting),
-                Binding::of(SKY_HIGH_CLOUDS_BINDING_SKY, mOutputs.sky),
-                Binding::of(SKY_HIGH_CLOUDS_BINDING_CLOUDS, mOutputs.highClouds),
-                Binding::of(SKY_HIGH_CLOUDS_BINDING_COEFFICIENTS, tex.coefficients, tex.sampler),
-                Binding::of(SKY_HIGH_CLOUDS_BINDING_NORMALS, tex.normals, tex.sampler),
-                Binding::of(SKY_HIGH_CLOUDS_BINDING_COARSE, tex.coarse, tex.sampler),
-                Binding::of(SKY_HIGH_CLOUDS_BINDING_ATMOSPHERE, ctx.uniform(atm.params)),
-                Binding::of(SKY_HIGH_CLOUDS_BINDING_TRANSMITTANCE, atm.transmittance, atm.sampler),
-                Binding::of(SKY_HIGH_CLOUDS_BINDING_SKY_VIEW_SUN, atm.skyViewSun, atm.sampler),
-                Binding::of(SKY_HIGH_CLOUDS_BINDING_SKY_VIEW_MOON, atm.skyViewMoon, atm.sampler)},
-               mPhysical.groupsX(size.x), mPhysical.groupsY(size.y));
 }
 
 }  // namespace sky

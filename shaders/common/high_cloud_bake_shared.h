@@ -1,13 +1,19 @@
 // Parameters, bindings and constants of the high-cloud texture passes in
 // passes/high_cloud_textures (shaders/high_cloud_bake.comp, high_cloud_normals.comp,
-// high_cloud_reduce.comp). The channels and the conventions are in docs/high-clouds.md.
+// high_cloud_reduce.comp, high_cloud_cover_reduce.comp). The channels and the conventions
+// are in docs/high-clouds.md.
 //
-// All three textures are RGBA16F, row 0 = the north edge, column 0 = the west edge, and tile
-// in both directions.
+// All textures are RGBA16F, row 0 = the north edge, column 0 = the west edge, and tile in
+// both directions.
 //   coefficients (N x N): R thin lit parts, G dense parts, B clear sky (transmittance), A sparse
 //                         edges (Kozlov fig. 3), each in [0, 1]
 //   normals      (N x N): xyz the unit tangent-space normal (x east, y north, z up), w = 0
 //   coarse       (C x C): the coefficients box-filtered over (N / C)^2 texels
+//   rank/shape   (N x N): R the texel's rank r, G its optical depth factor `shape`, BA = 0:
+//                         tau(c) = shape * presence(r, c, w) at any cover c
+//                         (common/high_cloud_coverage.glsl); procedural bakes only
+//   cover coarse (C x C x HIGH_CLOUD_COVER_STEPS, 3D): layer k is the coarse texture the
+//                         rank/shape texture gives at cover k / (STEPS - 1)
 #ifndef SKY_HIGH_CLOUD_BAKE_SHARED_H
 #define SKY_HIGH_CLOUD_BAKE_SHARED_H
 #include "shared_prelude.h"
@@ -18,6 +24,7 @@
 #define HIGH_CLOUD_BAKE_BINDING_PARAMS 0
 #define HIGH_CLOUD_BAKE_BINDING_COVER_MAP 1
 #define HIGH_CLOUD_BAKE_BINDING_COEFFICIENTS 2
+#define HIGH_CLOUD_BAKE_BINDING_RANK_SHAPE 3
 
 #define HIGH_CLOUD_NORMALS_BINDING_COEFFICIENTS 0
 #define HIGH_CLOUD_NORMALS_BINDING_NORMALS 1
@@ -25,10 +32,29 @@
 #define HIGH_CLOUD_REDUCE_BINDING_COEFFICIENTS 0
 #define HIGH_CLOUD_REDUCE_BINDING_COARSE 1
 
+#define HIGH_CLOUD_COVER_REDUCE_BINDING_RANK_SHAPE 0
+#define HIGH_CLOUD_COVER_REDUCE_BINDING_COARSE 1
+
 // HighCloudBakeParams.size.w
 #define HIGH_CLOUD_STYLE_CIRRUS 0u
 #define HIGH_CLOUD_STYLE_CIRROSTRATUS 1u
 #define HIGH_CLOUD_STYLE_CIRROCUMULUS 2u
+
+// The soft width w of each style's cover ramp: cloud appears where the rank exceeds
+// 1 - c (1 + w) and reaches its full optical depth w later (high_cloud_coverage.glsl).
+#define HIGH_CLOUD_RAMP_CIRRUS 0.35
+#define HIGH_CLOUD_RAMP_CIRROSTRATUS 0.5
+#define HIGH_CLOUD_RAMP_CIRROCUMULUS 0.25
+
+// The covers the per-cover coarse texture and the far-field table hold: k / (STEPS - 1) for
+// k = 0 .. STEPS - 1, so cover 0 (clear) and 1 (the full-cover mean) are exact and a cover in
+// between interpolates linearly over steps of 1/16.
+#define HIGH_CLOUD_COVER_STEPS 17u
+
+// The cover the coefficient texture is baked at when the cover comes per pixel from the
+// weather map (regional cover): the draw then reads the rank/shape texture, and the
+// coefficients only shape the normals, which at full cover exist wherever cloud can be.
+#define HIGH_CLOUD_REGIONAL_REFERENCE_COVER 1.0
 
 // Optical depth tau at which a texel turns from thin (R) to dense (G): the dense share of the
 // opacity is smoothstep(LO, HI, tau).
@@ -64,6 +90,12 @@ struct HighCloudReduceParams {
   uvec4 size;  // x: N; y: C, the coarse size; z: N / C, the box width; w: unused
 };
 
+// Push constants of high_cloud_cover_reduce.comp.
+struct HighCloudCoverReduceParams {
+  uvec4 size;  // x: N; y: C, the coarse size; z: N / C, the box width; w: HIGH_CLOUD_COVER_STEPS
+  vec4 ramp;   // x: the style's ramp width w; yzw: unused
+};
+
 SKY_SHARED_END
 
 #ifdef __cplusplus
@@ -72,5 +104,7 @@ static_assert(sizeof(sky::shared::HighCloudBakeParams) == 48,
 static_assert(sizeof(sky::shared::HighCloudNormalsParams) == 32,
               "layout of HighCloudNormalsParams");
 static_assert(sizeof(sky::shared::HighCloudReduceParams) == 16, "layout of HighCloudReduceParams");
+static_assert(sizeof(sky::shared::HighCloudCoverReduceParams) == 32,
+              "layout of HighCloudCoverReduceParams");
 #endif
 #endif

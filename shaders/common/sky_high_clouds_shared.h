@@ -1,9 +1,14 @@
 // Parameters and bindings of passes/sky_high_clouds (shaders/sky_high_clouds.comp): the
 // clear sky and the Kozlov high-cloud layer. The physical variant (SKY_PHYSICAL_SKY 1) also
-// binds the atmosphere LUTs of passes/atmosphere_luts.
+// binds the atmosphere LUTs of passes/atmosphere_luts. The regional variant
+// (SKY_HIGH_CLOUDS_REGIONAL 1, chosen by regional.x) takes the cover per pixel from the
+// weather map's high layer: it binds the regional cover, the rank/shape texture and the
+// per-cover coarse texture instead of the coefficient and coarse textures.
 #ifndef SKY_SKY_HIGH_CLOUDS_SHARED_H
 #define SKY_SKY_HIGH_CLOUDS_SHARED_H
 #include "shared_prelude.h"
+#include "geo_shared.h"
+#include "high_cloud_bake_shared.h"
 #include "view_shared.h"
 
 #define SKY_HIGH_CLOUDS_GROUP_X 8
@@ -20,6 +25,10 @@
 #define SKY_HIGH_CLOUDS_BINDING_TRANSMITTANCE 8
 #define SKY_HIGH_CLOUDS_BINDING_SKY_VIEW_SUN 9
 #define SKY_HIGH_CLOUDS_BINDING_SKY_VIEW_MOON 10
+// regional cover only (replacing COEFFICIENTS and COARSE):
+#define SKY_HIGH_CLOUDS_BINDING_REGIONAL_COVER 11
+#define SKY_HIGH_CLOUDS_BINDING_RANK_SHAPE 12
+#define SKY_HIGH_CLOUDS_BINDING_COVER_COARSE 13
 
 SKY_SHARED_BEGIN
 
@@ -35,12 +44,20 @@ struct SkyHighCloudsParams {
   vec4 sunAtLayer;   // rgb: sun illuminance at the layer (kozlov model; the physical model
                      // takes it from the transmittance LUT per pixel); w: unused
   vec4 moonAtLayer;  // rgb: the same for the moon
+  // Regional cover (regional.x = 1) only:
+  GeoFrame geo;      // the camera's ENU frame on the pass's planet: origin.w = layer.x and
+                     // origin.z = layer.y - layer.x, so the layer point t V maps to lat/lon
+  GeoRegion region;  // the weather map's region; no high cloud outside it
+  vec4 regional;     // x: 1 = cover per pixel from the regional cover texture, 0 = the
+                     // baked coefficient texture; y: the style's ramp width w; zw: unused
+  vec4 farField[HIGH_CLOUD_COVER_STEPS];  // mean coefficients at cover k / (STEPS - 1)
 };
 
 SKY_SHARED_END
 
 #ifdef __cplusplus
-static_assert(sizeof(sky::shared::SkyHighCloudsParams) == 64 + 6 * 16,
+static_assert(sizeof(sky::shared::SkyHighCloudsParams) ==
+                  64 + 6 * 16 + 64 + 16 + 16 + HIGH_CLOUD_COVER_STEPS * 16,
               "std140 layout of SkyHighCloudsParams");
 #endif
 #endif

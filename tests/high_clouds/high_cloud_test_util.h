@@ -1,6 +1,7 @@
 #pragma once
 // Shared by the high-cloud texture tests: a fixture with its own disk cache folder (so every
 // test really bakes), scenes, and the textures read back through a frame graph.
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -48,11 +49,14 @@ inline Scene imageScene(const std::string& coefficients, const std::string& norm
   return scene;
 }
 
-// The three textures as floats (RGBA interleaved, row 0 = north) plus what addTo reported.
+// The textures as floats (RGBA interleaved, row 0 = north) plus what addTo reported.
+// rankShape when addTo gave one (procedural), coverCoarse and the table with regional cover.
 struct Fetched {
   uint32_t size = 0, coarseSize = 0;
-  std::vector<float> coefficients, normals, coarse;
+  std::vector<float> coefficients, normals, coarse, rankShape, coverCoarse;
   glm::vec4 mean{0.0f};
+  float rampWidth = 0.0f;
+  std::array<glm::vec4, HIGH_CLOUD_COVER_STEPS> farField{};
   HighCloudTextures::Activity activity;
   std::vector<std::string> graphPasses;  // the passes addTo left in the caller's graph
 
@@ -70,22 +74,28 @@ protected:
     return std::make_unique<HighCloudTextures>(ctx(), compiler(), runtime());
   }
 
-  // addTo on a fresh graph that only reads the three textures back.
-  Fetched fetch(HighCloudTextures& textures, const Scene& scene) {
+  // addTo on a fresh graph that only reads the textures back.
+  Fetched fetch(HighCloudTextures& textures, const Scene& scene, bool regionalCover = false) {
     FrameGraph graph(runtime());
-    HighCloudTextures::Outputs out = textures.addTo(graph, scene);
+    HighCloudTextures::Outputs out = textures.addTo(graph, scene, regionalCover);
     Fetched f;
     for (const PassNode& p : graph.desc().passes) f.graphPasses.push_back(p.name);
     graph.requestOutput(out.coefficients, "coefficients");
     graph.requestOutput(out.normals, "normals");
     graph.requestOutput(out.coarse, "coarse");
+    if (out.rankShape.valid()) graph.requestOutput(out.rankShape, "rank_shape");
+    if (out.coverCoarse.valid()) graph.requestOutput(out.coverCoarse, "cover_coarse");
     FrameResult r = graph.execute();
     f.size = r.output("coefficients").width;
     f.coarseSize = r.output("coarse").width;
     f.coefficients = r.output("coefficients").pixels;
     f.normals = r.output("normals").pixels;
     f.coarse = r.output("coarse").pixels;
+    if (out.rankShape.valid()) f.rankShape = r.output("rank_shape").pixels;
+    if (out.coverCoarse.valid()) f.coverCoarse = r.output("cover_coarse").pixels;
     f.mean = out.mean;
+    f.rampWidth = out.rampWidth;
+    f.farField = out.farField;
     f.activity = textures.lastActivity();
     return f;
   }

@@ -3,7 +3,9 @@
 // cover seen from above (1 - (1 - low)(1 - mid), as `skyrender dsc` reads it) at the data's
 // cell size: Lu (28)'s Dice, the mean absolute error and the correlation of 8 px block
 // averages. Over Lu's region and over Europe and the North Atlantic (across 0E). Each case
-// prints its figures (docs/weather.md quotes them).
+// prints its figures (docs/weather.md quotes them). And the high layer, drawn by the
+// high-cloud pass from the map's high cover, seen from below.
+#include <algorithm>
 #include <cstdio>
 #include <ostream>
 #include <string>
@@ -13,6 +15,7 @@
 
 #include "../volumetric_clouds/cloud_test_util.h"
 #include "engine/weather/coverage_metrics.h"
+#include "engine/weather/weather_source.h"
 #include "gfs_fixture.h"
 
 namespace sky {
@@ -29,6 +32,7 @@ void PrintTo(const RenderCase& c, std::ostream* os) {
 }
 
 class GfsRender : public test::CloudRenderTest, public ::testing::WithParamInterface<RenderCase> {};
+class GfsHighClouds : public test::CloudRenderTest {};
 
 TEST_P(GfsRender, MatchesTheMapAtTheDataCellSize) {
   const RenderCase& c = GetParam();
@@ -70,6 +74,57 @@ INSTANTIATE_TEST_SUITE_P(
     [](const ::testing::TestParamInfo<RenderCase>& param) {
       return std::string(param.param.name);
     });
+
+// The high layer follows the forecast too: looking straight up from under the most and the
+// least high-covered spots of Lu's region, the high-cloud layer is there and is not.
+TEST_F(GfsHighClouds, SitWhereTheMapsHighCoverSaysAndTheLightKnowsIt) {
+  Scene scene = test::cloudScene(
+      "cumulus_noon", {"camera.pitch=90", "camera.vertical_fov=20", "high_clouds.resolution=256"});
+  const Scene gfs = test::gfsScene(test::kLuRegion, "rh");
+  scene.baseDir = gfs.baseDir;
+  scene.weather = gfs.weather;
+  scene.output.width = 32;
+  scene.output.height = 18;
+  scene.time.start = *IsoTime::parse("2011-01-15T05:00:00Z");  // about noon at 105E
+  const WeatherMap map = WeatherSource().map(scene, scene.time.start);
+  ASSERT_FALSE(map.coverHigh.empty());
+  // The texels whose 5 x 5 neighbourhood (about 60 x 60 km) is most and least covered.
+  float most = -1.0f, least = 2.0f;
+  glm::uvec2 wet{0}, dry{0};
+  for (uint32_t y = 2; y + 2 < map.height; ++y)
+    for (uint32_t x = 2; x + 2 < map.width; ++x) {
+      float lo = 1.0f, hi = 0.0f;
+      for (uint32_t j = y - 2; j <= y + 2; ++j)
+        for (uint32_t i = x - 2; i <= x + 2; ++i) {
+          lo = std::min(lo, map.coverHigh[size_t(j) * map.width + i]);
+          hi = std::max(hi, map.coverHigh[size_t(j) * map.width + i]);
+        }
+      if (lo > most) most = lo, wet = {x, y};
+      if (hi < least) least = hi, dry = {x, y};
+    }
+  ASSERT_GT(most, 0.9f);
+  ASSERT_EQ(least, 0.0f);
+  const auto alphaAt = [&](glm::uvec2 texel, double* overcastHigh) {
+    const WeatherRegion& r = map.region;
+    scene.camera.latitude = r.lat[1] - (texel.y + 0.5) / map.height * (r.lat[1] - r.lat[0]);
+    scene.camera.longitude = r.lon[0] + (texel.x + 0.5) / map.width * (r.lon[1] - r.lon[0]);
+    const RenderedFrame frame = render(scene);
+    *overcastHigh = frame.localWeather.high;
+    const ImageLayer* high = frame.image.find("high_clouds");
+    double sum = 0.0;
+    for (size_t i = 3; i < high->pixels.size(); i += 4) sum += high->pixels[i];
+    return sum / double(high->pixels.size() / 4);
+  };
+  double wetHigh = 0.0, dryHigh = 1.0;
+  const double wetAlpha = alphaAt(wet, &wetHigh), dryAlpha = alphaAt(dry, &dryHigh);
+  std::printf("high-cloud opacity overhead: %.3f under cover %.2f, %.3f under cover 0\n", wetAlpha,
+              most, dryAlpha);
+  EXPECT_GT(wetAlpha, 0.3) << "full high cover overhead: cirrus at every pixel";
+  EXPECT_EQ(dryAlpha, 0.0) << "no high cover anywhere near: no high cloud at all";
+  // The local weather saw the same map.
+  EXPECT_GT(wetHigh, 0.9);
+  EXPECT_EQ(dryHigh, 0.0);
+}
 
 }  // namespace
 }  // namespace sky
