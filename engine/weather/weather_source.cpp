@@ -85,6 +85,31 @@ WeatherMap WeatherSource::moved(const Scene& scene, double timeUnix) {
   return map;
 }
 
+void WeatherSource::evolve(const Scene& scene, const std::string& signature, double timeUnix,
+                           WeatherMap& map) {
+  // Between two forecast steps the automaton runs from one to the next, so the data hold
+  // exactly at the steps; elsewhere (a single step, a painted or procedural map) in fixed
+  // windows of automaton.window_h.
+  std::pair<double, double> window = automatonWindow(timeUnix, scene.weather.automaton);
+  if (mFields && scene.weather.source == "file") {
+    const std::vector<WeatherStep>& steps = mFields->steps;
+    for (size_t i = 0; i + 1 < steps.size(); ++i)
+      if (timeUnix >= steps[i].validTimeUnix && timeUnix < steps[i + 1].validTimeUnix)
+        window = {steps[i].validTimeUnix, steps[i + 1].validTimeUnix};
+  }
+  std::ostringstream key;
+  key.precision(17);
+  key << signature << "|w" << window.first << ',' << window.second;
+  if (!mEnds[0] || !mEnds[1] || key.str() != mEndsSignature) {
+    mEnds[0].reset();
+    mEnds[1].reset();
+    mEnds[0] = moved(scene, window.first);
+    mEnds[1] = moved(scene, window.second);
+    mEndsSignature = key.str();
+  }
+  mAutomaton.apply(map, *mEnds[0], *mEnds[1], window.first, window.second, timeUnix, scene.weather);
+}
+
 const WeatherMap& WeatherSource::map(const Scene& scene, const IsoTime& frame) {
   const WeatherSettings& w = scene.weather;
   if (w.advection == "data" && w.source != "file")
@@ -115,6 +140,7 @@ const WeatherMap& WeatherSource::map(const Scene& scene, const IsoTime& frame) {
   // advection carries it, the automaton evolves it.
   const bool timeDependent = (w.source == "file" && mFields->steps.size() > 1) ||
                              w.advection != "none" || w.evolution == "ca";
+  const std::string base = signature;
   if (timeDependent) {
     std::ostringstream s;
     s.precision(17);
@@ -123,8 +149,10 @@ const WeatherMap& WeatherSource::map(const Scene& scene, const IsoTime& frame) {
   }
   if (!mMap || signature != mMapSignature) {
     mMap.reset();
-    mMap = moved(scene, t);
     mMapSignature = signature;
+    WeatherMap map = moved(scene, t);
+    if (w.evolution == "ca") evolve(scene, base, t, map);
+    mMap = std::move(map);
     ++mRevision;
   }
   return *mMap;

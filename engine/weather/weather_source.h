@@ -11,6 +11,7 @@
 #include <glm/vec2.hpp>
 
 #include "engine/scene/scene.h"
+#include "engine/weather/cloud_automaton.h"
 #include "engine/weather/weather_fields.h"
 #include "engine/weather/weather_map.h"
 
@@ -36,11 +37,16 @@ public:
   const WeatherFields* fields() const { return mFields ? &*mFields : nullptr; }
   // How many maps map() has built (a cache hit builds none).
   uint64_t revision() const { return mRevision; }
+  // The automaton's work in the last map() that built a map with evolution "ca".
+  const CloudAutomaton::Stats& automatonStats() const { return mAutomaton.lastStats(); }
 
 private:
   // The map at `timeUnix` before evolution: the forecast interpolated or carried, or the
   // procedural/image map carried by the scene's wind.
   WeatherMap moved(const Scene& scene, double timeUnix);
+  // evolution "ca": the automaton's window around `timeUnix` (the forecast steps that bracket
+  // it, else automatonWindow) and its work on `map`. `signature`: the map's, without the time.
+  void evolve(const Scene& scene, const std::string& signature, double timeUnix, WeatherMap& map);
 
   std::optional<WeatherFields> mFields;
   std::string mFieldsStamp;
@@ -48,6 +54,9 @@ private:
   std::string mStillSignature;
   std::optional<WeatherMap> mMap;
   std::string mMapSignature;
+  std::optional<WeatherMap> mEnds[2];  // the maps at the automaton window's ends
+  std::string mEndsSignature;
+  CloudAutomaton mAutomaton;
   uint64_t mRevision = 0;
 };
 

@@ -231,5 +231,38 @@ TEST(WeatherSource, TheSceneWindCarriesAProceduralMapFromTheFirstFrame) {
       << e.what();
 }
 
+TEST(WeatherSource, TheAutomatonEvolvesTheCoverBetweenWindowEndsOnly) {
+  Scene scene;
+  scene.weather.coverLow = 0.5;
+  scene.weather.resolution = 64;
+  scene.weather.region = {{45.0, 46.0}, {5.0, 6.5}};
+  scene.time.start = instant("2024-06-21T12:00:00Z");  // a whole hour: a window starts here
+  scene.weather.automaton.windowH = 1.0;
+  WeatherSource still;
+  const WeatherMap plain = still.map(scene, scene.time.start);
+
+  scene.weather.evolution = "ca";
+  WeatherSource source;
+  EXPECT_EQ(source.map(scene, scene.time.start).texels, plain.texels)
+      << "at the window's start the map is the data's";
+  const IsoTime halfway = scene.time.start.plusSeconds(1800.0);
+  const WeatherMap evolved = source.map(scene, halfway);
+  EXPECT_GT(source.automatonStats().stepsRun, 0);
+  double change = 0.0;
+  for (size_t i = 0; i < plain.texels.size(); ++i) {
+    ASSERT_GE(evolved.texels[i].r, 0.0f);
+    ASSERT_LE(evolved.texels[i].r, 1.0f);
+    EXPECT_EQ(evolved.texels[i].b, plain.texels[i].b) << "the type stays";
+    change += std::fabs(evolved.texels[i].r - plain.texels[i].r);
+  }
+  change /= double(plain.texels.size());
+  std::printf("mean |cover change| halfway through the window: %.3f\n", change);
+  EXPECT_GT(change, 0.02) << "the automaton really moves the clouds";
+  EXPECT_EQ(WeatherSource().map(scene, halfway).texels, evolved.texels)
+      << "the same seed and time give the same clouds, whatever came before";
+  EXPECT_EQ(source.map(scene, scene.time.start.plusSeconds(3600.0)).texels, plain.texels)
+      << "at the window's end the map is the data's again";
+}
+
 }  // namespace
 }  // namespace sky
