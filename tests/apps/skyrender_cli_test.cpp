@@ -552,6 +552,21 @@ TEST_F(SkyrenderCli, HelpDocumentsEveryOption) {
     EXPECT_THAT(r.out, HasSubstr(opt));
 }
 
+// The forecast example as a user runs it, at dusk: weather.time, the file's wind, the
+// automaton and the high layer from the data all on, from the command line.
+TEST_F(SkyrenderCli, ForecastExampleRendersAtDusk) {
+  const fs::path example =
+      fs::path(std::getenv("SKY_DATA_DIR")) / "configs" / "examples" / "gfs_east_asia.yaml";
+  CliRun r = run("render " + example.string() + " --width 48 --height 27 --name dusk" +
+                 " --time 2011-01-15T09:30:00Z --out " + out());
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const nlohmann::json report = nlohmann::json::parse(readTextFile(mDir / "out" / "dusk.json"));
+  EXPECT_EQ(report["volumetric_clouds"]["present"], true);
+  EXPECT_EQ(report["settings"]["weather"]["evolution"], "ca");
+  EXPECT_LT(report["sun"]["elevation_deg"].get<double>(), 5.0);
+  EXPECT_TRUE(report.contains("local_weather"));
+}
+
 TEST_F(SkyrenderCli, WeatherCommandWritesTheForecastMapAndFigures) {
   const fs::path grib = fs::path(std::getenv("SKY_DATA_DIR")) / "tests" / "data" / "weather" /
                         "gfs_2p5deg_r_gh_t_tcc_uv500.grib2";

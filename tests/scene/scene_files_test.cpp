@@ -117,6 +117,24 @@ TEST(SceneFiles, ExampleJsonScene) {
   EXPECT_EQ(s.output.name, "clear_noon");
 }
 
+// Every example a user is pointed to loads, and any file it names exists (relative to it).
+TEST(SceneFiles, EveryExampleLoadsAndItsFilesExist) {
+  int examples = 0;
+  for (const std::filesystem::directory_entry& e :
+       std::filesystem::directory_iterator(configs() / "examples")) {
+    SCOPED_TRACE(e.path().filename().string());
+    const Scene s = loadSceneFile(e.path());
+    if (s.weather.source == "file") {
+      EXPECT_TRUE(std::filesystem::exists(s.resolvePath(s.weather.file))) << s.weather.file;
+    }
+    if (s.weather.source == "image") {
+      EXPECT_TRUE(std::filesystem::exists(s.resolvePath(s.weather.image))) << s.weather.image;
+    }
+    ++examples;
+  }
+  EXPECT_GE(examples, 8);
+}
+
 TEST(SceneFiles, GoldenImageScenesShareTheCamera) {
   const char* names[] = {"clear_sky_high.yaml", "clear_sky_low.yaml", "clear_sky_sunset.yaml"};
   const double elevations[] = {60, 15, 1};
