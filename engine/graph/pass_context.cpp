@@ -39,7 +39,7 @@ UniformRange PassContext::uniform(const void* data, VkDeviceSize size) const {
   return mGraph.mRuntime->uploadUniform(data, size);
 }
 
-void PassContext::dispatch(const ComputePipeline& pipeline, std::initializer_list<Binding> bindings,
+void PassContext::dispatch(const ComputePipeline& pipeline, std::span<const Binding> bindings,
                            uint32_t gx, uint32_t gy, uint32_t gz, const void* push,
                            uint32_t pushSize) const {
   // Built only when a check fails: dispatch runs for every pass every frame.

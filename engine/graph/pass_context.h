@@ -4,6 +4,7 @@
 // commands only; a resource that setup() did not declare is an error here.
 #include <cstdint>
 #include <initializer_list>
+#include <span>
 
 #include <vulkan/vulkan.h>
 
@@ -53,9 +54,15 @@ public:
   }
   // Binds `pipeline`, writes every binding its shader declares (all must be given, types
   // must match the reflection), pushes constants and dispatches `groups`.
-  void dispatch(const ComputePipeline& pipeline, std::initializer_list<Binding> bindings,
+  void dispatch(const ComputePipeline& pipeline, std::span<const Binding> bindings,
                 uint32_t groupsX, uint32_t groupsY, uint32_t groupsZ = 1,
                 const void* pushConstants = nullptr, uint32_t pushSize = 0) const;
+  void dispatch(const ComputePipeline& pipeline, std::initializer_list<Binding> bindings,
+                uint32_t groupsX, uint32_t groupsY, uint32_t groupsZ = 1,
+                const void* pushConstants = nullptr, uint32_t pushSize = 0) const {
+    dispatch(pipeline, std::span<const Binding>(bindings.begin(), bindings.size()), groupsX,
+             groupsY, groupsZ, pushConstants, pushSize);
+  }
 
 private:
   friend class FrameGraph;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "engine/core/error.h"
 #include "engine/gpu/sampler.h"
@@ -180,60 +181,37 @@ void SkyHighCloudsPass::execute(PassContext& ctx) const {
   const UniformRange params = ctx.uniform(mInputs.params);
   const UniformRange lighting = ctx.uniform(mInputs.lighting);
   const Atmosphere& atm = mInputs.atmosphere;
-  // One binding list per variant: each shader declares exactly these.
-  if (!mInputs.physical && !regional()) {
-    ctx.dispatch(mKozlov,
-                 {Binding::of(SKY_HIGH_CLOUDS_BINDING_PARAMS, params),
-                  Binding::of(SKY_HIGH_CLOUDS_BINDING_LIGHTING, lighting),
-                  Binding::of(SKY_HIGH_CLOUDS_BINDING_SKY, mOutputs.sky),
-                  Binding::of(SKY_HIGH_CLOUDS_BINDING_CLOUDS, mOutputs.highClouds),
-                  Binding::of(SKY_HIGH_CLOUDS_BINDING_COEFFICIENTS, tex.coefficients, tex.sampler),
-                  Binding::of(SKY_HIGH_CLOUDS_BINDING_NORMALS, tex.normals, tex.sampler),
-                  Binding::of(SKY_HIGH_CLOUDS_BINDING_COARSE, tex.coarse, tex.sampler)},
-                 mKozlov.groupsX(size.x), mKozlov.groupsY(size.y));
-  } else if (!mInputs.physical) {
-    ctx.dispatch(mKozlovRegional,
-                 {Binding::of(SKY_HIGH_CLOUDS_BINDING_PARAMS, params),
-                  Binding::of(SKY_HIGH_CLOUDS_BINDING_LIGHTING, lighting),
-                  Binding::of(SKY_HIGH_CLOUDS_BINDING_SKY, mOutputs.sky),
-                  Binding::of(SKY_HIGH_CLOUDS_BINDING_CLOUDS, mOutputs.highClouds),
-                  Binding::of(SKY_HIGH_CLOUDS_BINDING_NORMALS, tex.normals, tex.sampler),
-                  Binding::of(SKY_HIGH_CLOUDS_BINDING_REGIONAL_COVER, r.cover, r.coverSampler),
-                  Binding::of(SKY_HIGH_CLOUDS_BINDING_RANK_SHAPE, r.rankShape, tex.sampler),
-                  Binding::of(SKY_HIGH_CLOUDS_BINDING_COVER_COARSE, r.coverCoarse, tex.sampler)},
-                 mKozlovRegional.groupsX(size.x), mKozlovRegional.groupsY(size.y));
-  } else if (!regional()) {
-    ctx.dispatch(
-        mPhysical,
-        {Binding::of(SKY_HIGH_CLOUDS_BINDING_PARAMS, params),
-         Binding::of(SKY_HIGH_CLOUDS_BINDING_LIGHTING, lighting),
-         Binding::of(SKY_HIGH_CLOUDS_BINDING_SKY, mOutputs.sky),
-         Binding::of(SKY_HIGH_CLOUDS_BINDING_CLOUDS, mOutputs.highClouds),
-         Binding::of(SKY_HIGH_CLOUDS_BINDING_COEFFICIENTS, tex.coefficients, tex.sampler),
-         Binding::of(SKY_HIGH_CLOUDS_BINDING_NORMALS, tex.normals, tex.sampler),
-         Binding::of(SKY_HIGH_CLOUDS_BINDING_COARSE, tex.coarse, tex.sampler),
-         Binding::of(SKY_HIGH_CLOUDS_BINDING_ATMOSPHERE, ctx.uniform(atm.params)),
-         Binding::of(SKY_HIGH_CLOUDS_BINDING_TRANSMITTANCE, atm.transmittance, atm.sampler),
-         Binding::of(SKY_HIGH_CLOUDS_BINDING_SKY_VIEW_SUN, atm.skyViewSun, atm.sampler),
-         Binding::of(SKY_HIGH_CLOUDS_BINDING_SKY_VIEW_MOON, atm.skyViewMoon, atm.sampler)},
-        mPhysical.groupsX(size.x), mPhysical.groupsY(size.y));
+  // Each variant's shader declares exactly these: the common ones, the cloud textures of its
+  // cover mode and, for the physical sky, the atmosphere LUTs.
+  std::vector<Binding> bindings = {
+      Binding::of(SKY_HIGH_CLOUDS_BINDING_PARAMS, params),
+      Binding::of(SKY_HIGH_CLOUDS_BINDING_LIGHTING, lighting),
+      Binding::of(SKY_HIGH_CLOUDS_BINDING_SKY, mOutputs.sky),
+      Binding::of(SKY_HIGH_CLOUDS_BINDING_CLOUDS, mOutputs.highClouds),
+      Binding::of(SKY_HIGH_CLOUDS_BINDING_NORMALS, tex.normals, tex.sampler)};
+  if (regional()) {
+    bindings.push_back(
+        Binding::of(SKY_HIGH_CLOUDS_BINDING_REGIONAL_COVER, r.cover, r.coverSampler));
+    bindings.push_back(Binding::of(SKY_HIGH_CLOUDS_BINDING_RANK_SHAPE, r.rankShape, tex.sampler));
+    bindings.push_back(
+        Binding::of(SKY_HIGH_CLOUDS_BINDING_COVER_COARSE, r.coverCoarse, tex.sampler));
   } else {
-    ctx.dispatch(
-        mPhysicalRegional,
-        {Binding::of(SKY_HIGH_CLOUDS_BINDING_PARAMS, params),
-         Binding::of(SKY_HIGH_CLOUDS_BINDING_LIGHTING, lighting),
-         Binding::of(SKY_HIGH_CLOUDS_BINDING_SKY, mOutputs.sky),
-         Binding::of(SKY_HIGH_CLOUDS_BINDING_CLOUDS, mOutputs.highClouds),
-         Binding::of(SKY_HIGH_CLOUDS_BINDING_NORMALS, tex.normals, tex.sampler),
-         Binding::of(SKY_HIGH_CLOUDS_BINDING_REGIONAL_COVER, r.cover, r.coverSampler),
-         Binding::of(SKY_HIGH_CLOUDS_BINDING_RANK_SHAPE, r.rankShape, tex.sampler),
-         Binding::of(SKY_HIGH_CLOUDS_BINDING_COVER_COARSE, r.coverCoarse, tex.sampler),
-         Binding::of(SKY_HIGH_CLOUDS_BINDING_ATMOSPHERE, ctx.uniform(atm.params)),
-         Binding::of(SKY_HIGH_CLOUDS_BINDING_TRANSMITTANCE, atm.transmittance, atm.sampler),
-         Binding::of(SKY_HIGH_CLOUDS_BINDING_SKY_VIEW_SUN, atm.skyViewSun, atm.sampler),
-         Binding::of(SKY_HIGH_CLOUDS_BINDING_SKY_VIEW_MOON, atm.skyViewMoon, atm.sampler)},
-        mPhysicalRegional.groupsX(size.x), mPhysicalRegional.groupsY(size.y));
+    bindings.push_back(
+        Binding::of(SKY_HIGH_CLOUDS_BINDING_COEFFICIENTS, tex.coefficients, tex.sampler));
+    bindings.push_back(Binding::of(SKY_HIGH_CLOUDS_BINDING_COARSE, tex.coarse, tex.sampler));
   }
+  if (mInputs.physical) {
+    bindings.push_back(Binding::of(SKY_HIGH_CLOUDS_BINDING_ATMOSPHERE, ctx.uniform(atm.params)));
+    bindings.push_back(
+        Binding::of(SKY_HIGH_CLOUDS_BINDING_TRANSMITTANCE, atm.transmittance, atm.sampler));
+    bindings.push_back(
+        Binding::of(SKY_HIGH_CLOUDS_BINDING_SKY_VIEW_SUN, atm.skyViewSun, atm.sampler));
+    bindings.push_back(
+        Binding::of(SKY_HIGH_CLOUDS_BINDING_SKY_VIEW_MOON, atm.skyViewMoon, atm.sampler));
+  }
+  const ComputePipeline& pipeline = mInputs.physical ? (regional() ? mPhysicalRegional : mPhysical)
+                                                     : (regional() ? mKozlovRegional : mKozlov);
+  ctx.dispatch(pipeline, bindings, pipeline.groupsX(size.x), pipeline.groupsY(size.y));
 }
 
 }  // namespace sky
