@@ -364,53 +364,59 @@ void checkColumns(const char* what, size_t a, size_t b, size_t columns) {
 }
 }  // namespace
 
+namespace {
+// The walk seed() and perturb() share: every word of the grid row by row, with one random
+// stream per (y, z) row of voxels keyed by `key` (so a row's draws do not depend on any other
+// row's), and the thresholds of the two per-column probability sets `a` and `b` for the word's
+// 64 columns. Calls f(wordX, y, z, thresholdsA, thresholdsB, stream).
+template <class F>
+void forEachWord(uint32_t width, uint32_t height, uint32_t depth, std::span<const uint32_t> a,
+                 std::span<const uint32_t> b, uint64_t key, F&& f) {
+  LaneThresholds ta, tb;
+  std::vector<Stream> rows(depth);
+  const uint32_t wordsPerRow = (width + 63) / 64;
+  for (uint32_t y = 0; y < height; ++y) {
+    for (uint32_t z = 0; z < depth; ++z) rows[z] = {hashCombine(key, uint64_t(z) * height + y)};
+    for (uint32_t wx = 0; wx < wordsPerRow; ++wx) {
+      const size_t column = size_t(y) * width + size_t(wx) * 64;
+      const uint32_t lanes = std::min(64u, width - wx * 64);
+      laneThresholds(a.data() + column, lanes, ta);
+      laneThresholds(b.data() + column, lanes, tb);
+      for (uint32_t z = 0; z < depth; ++z) f(wx, y, z, ta, tb, rows[z]);
+    }
+  }
+}
+}  // namespace
+
 void CloudVoxelGrid::seed(std::span<const uint32_t> cld, std::span<const uint32_t> hum,
                           uint64_t key) {
   checkColumns("seed", cld.size(), hum.size(), size_t(mWidth) * mHeight);
-  LaneThresholds tCld, tHum;
-  std::vector<Stream> rows(mDepth);
-  for (uint32_t y = 0; y < mHeight; ++y) {
-    for (uint32_t z = 0; z < mDepth; ++z) rows[z] = {hashCombine(key, uint64_t(z) * mHeight + y)};
-    for (uint32_t wx = 0; wx < mWordsPerRow; ++wx) {
-      const size_t column = size_t(y) * mWidth + size_t(wx) * 64;
-      const uint32_t lanes = std::min(64u, mWidth - wx * 64);
-      laneThresholds(cld.data() + column, lanes, tCld);
-      laneThresholds(hum.data() + column, lanes, tHum);
-      const uint64_t valid = validBits(wx);
-      for (uint32_t z = 0; z < mDepth; ++z) {
-        const size_t i = wordIndex(wx, y, z);
-        mCld[i] = drawLanes(valid, tCld, 0, tHum, rows[z]).first;
-        mHum[i] = drawLanes(0, tCld, valid, tHum, rows[z]).second;
-        mAct[i] = 0;
-      }
-    }
-  }
+  forEachWord(mWidth, mHeight, mDepth, cld, hum, key,
+              [&](uint32_t wx, uint32_t y, uint32_t z, const LaneThresholds& tCld,
+                  const LaneThresholds& tHum, Stream& rng) {
+                const size_t i = wordIndex(wx, y, z);
+                const uint64_t valid = validBits(wx);
+                mCld[i] = drawLanes(valid, tCld, 0, tHum, rng).first;
+                mHum[i] = drawLanes(0, tCld, valid, tHum, rng).second;
+                mAct[i] = 0;
+              });
 }
 
 void CloudVoxelGrid::perturb(double pExt, std::span<const uint32_t> hum,
                              std::span<const uint32_t> act, uint64_t key) {
   checkColumns("perturb", hum.size(), act.size(), size_t(mWidth) * mHeight);
   const uint32_t tExt = threshold(pExt);
-  LaneThresholds tHum, tAct;
-  std::vector<Stream> rows(mDepth);
-  for (uint32_t y = 0; y < mHeight; ++y) {
-    for (uint32_t z = 0; z < mDepth; ++z) rows[z] = {hashCombine(key, uint64_t(z) * mHeight + y)};
-    for (uint32_t wx = 0; wx < mWordsPerRow; ++wx) {
-      const size_t column = size_t(y) * mWidth + size_t(wx) * 64;
-      const uint32_t lanes = std::min(64u, mWidth - wx * 64);
-      laneThresholds(hum.data() + column, lanes, tHum);
-      laneThresholds(act.data() + column, lanes, tAct);
-      const uint64_t valid = validBits(wx);
-      for (uint32_t z = 0; z < mDepth; ++z) {
-        const size_t i = wordIndex(wx, y, z);
-        // Dobashi: cld &= rnd > p_ext; hum |= rnd < p_hum; act |= rnd < p_act.
-        mCld[i] &= ~drawUniform(mCld[i], tExt, rows[z]);
-        const auto [h, a] = drawLanes(valid & ~mHum[i], tHum, valid & ~mAct[i], tAct, rows[z]);
-        mHum[i] |= h;
-        mAct[i] |= a;
-      }
-    }
-  }
+  forEachWord(mWidth, mHeight, mDepth, hum, act, key,
+              [&](uint32_t wx, uint32_t y, uint32_t z, const LaneThresholds& tHum,
+                  const LaneThresholds& tAct, Stream& rng) {
+                const size_t i = wordIndex(wx, y, z);
+                const uint64_t valid = validBits(wx);
+                // Dobashi: cld &= rnd > p_ext; hum |= rnd < p_hum; act |= rnd < p_act.
+                mCld[i] &= ~drawUniform(mCld[i], tExt, rng);
+                const auto [h, a] = drawLanes(valid & ~mHum[i], tHum, valid & ~mAct[i], tAct, rng);
+                mHum[i] |= h;
+                mAct[i] |= a;
+              });
 }
 
 void CloudVoxelGrid::grow() {
