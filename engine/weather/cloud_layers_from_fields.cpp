@@ -652,9 +652,7 @@ WeatherMap weatherMapFromFields(const WeatherFields& fields, double timeUnix,
                     timeUnix < fields.steps.back().validTimeUnix))
     return map;
   if (weather.advection == "wind") {
-    const size_t n = map.texels.size();
-    advectMap(map, std::vector<float>(n, float(sceneWindMs.x)),
-              std::vector<float>(n, float(sceneWindMs.y)), dt);
+    advectMap(map, sceneWindMs, dt);
     return map;
   }
   const LevelField* u = step.find("u", weather.steeringHpa);
@@ -687,6 +685,12 @@ std::array<std::vector<float>, 6> layerAltitudeMaps(const WeatherFields& fields,
     maps[i] = resampler.apply(a, false);
   }
   return maps;
+}
+
+void advectMap(WeatherMap& map, glm::dvec2 windMs, double seconds) {
+  const size_t n = map.texels.size();
+  advectMap(map, std::vector<float>(n, float(windMs.x)), std::vector<float>(n, float(windMs.y)),
+            seconds);
 }
 
 void advectMap(WeatherMap& map, std::span<const float> eastMs, std::span<const float> northMs,

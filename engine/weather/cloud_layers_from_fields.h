@@ -80,5 +80,7 @@ std::array<std::vector<float>, 6> layerAltitudeMaps(const WeatherFields& fields,
 // map's bilinear value upstream. Values from beyond the region are its edge's.
 void advectMap(WeatherMap& map, std::span<const float> eastMs, std::span<const float> northMs,
                double seconds);
+// The same with one wind everywhere (east, north, m/s), e.g. sceneWindMs().
+void advectMap(WeatherMap& map, glm::dvec2 windMs, double seconds);
 
 }  // namespace sky

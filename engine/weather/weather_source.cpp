@@ -76,12 +76,7 @@ WeatherMap WeatherSource::moved(const Scene& scene, double timeUnix) {
   WeatherMap map = *mStill;
   // A painted or procedural map shows the scene's first frame; the wind carries it from there.
   const double seconds = timeUnix - weatherTimeUnix(scene, scene.time.start);
-  if (w.advection == "wind" && seconds != 0.0) {
-    const glm::dvec2 wind = sceneWindMs(scene.clouds);
-    const size_t n = map.texels.size();
-    advectMap(map, std::vector<float>(n, float(wind.x)), std::vector<float>(n, float(wind.y)),
-              seconds);
-  }
+  if (w.advection == "wind" && seconds != 0.0) advectMap(map, sceneWindMs(scene.clouds), seconds);
   return map;
 }
 
@@ -126,14 +121,11 @@ const WeatherMap& WeatherSource::map(const Scene& scene, const IsoTime& frame) {
       mFieldsStamp = stamp;
     }
     signature += '|' + stamp;
-  } else {
-    const std::string still = settingsSignature(scene);
-    if (!mStill || still != mStillSignature) {
-      mStill.reset();
-      mMap.reset();
-      mStill = makeWeatherMap(scene);
-      mStillSignature = still;
-    }
+  } else if (!mStill || signature != mStillSignature) {
+    mStill.reset();
+    mMap.reset();
+    mStill = makeWeatherMap(scene);
+    mStillSignature = signature;
   }
   const double t = weatherTimeUnix(scene, frame);
   // Whether the map changes with time: between a file's steps the cover is interpolated,
