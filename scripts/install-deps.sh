@@ -8,6 +8,10 @@ PACKAGES=(
   glslang-dev glslang-tools spirv-tools
   libglm-dev libglfw3-dev libopenexr-dev libopencolorio-dev opencolorio-tools
   libyaml-cpp-dev nlohmann-json3-dev libeccodes-dev libnetcdf-dev
+  # libeccodes-dev's CMake package (eccodes-targets.cmake) imports the command-line tools
+  # (codes_info, grib_dump, ...) and fails find_package() when /usr/bin/codes_info is
+  # absent, but Debian does not make it depend on the package that ships them.
+  libeccodes-tools
   libgtest-dev libgmock-dev libbenchmark-dev libstb-dev
 )
 
