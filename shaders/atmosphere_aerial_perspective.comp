@@ -9,7 +9,7 @@
 
 layout(local_size_x = ATMOSPHERE_GROUP_X, local_size_y = ATMOSPHERE_GROUP_Y) in;
 
-layout(std140, binding = ATMOSPHERE_BINDING_PARAMS) uniform Params {
+layout(std140, binding = ATMOSPHERE_BINDING_PARAMS) readonly buffer Params {
   AtmosphereParams params;
 };
 layout(binding = ATMOSPHERE_AP_BINDING_TRANSMITTANCE) uniform sampler2D transmittanceLut;

@@ -12,7 +12,7 @@
 
 layout(local_size_x = ATMOSPHERE_COMPOSITE_GROUP_X, local_size_y = ATMOSPHERE_COMPOSITE_GROUP_Y) in;
 
-layout(std140, binding = ATMOSPHERE_COMPOSITE_BINDING_PARAMS) uniform Params {
+layout(std140, binding = ATMOSPHERE_COMPOSITE_BINDING_PARAMS) readonly buffer Params {
   AtmosphereCompositeParams params;
 };
 layout(binding = ATMOSPHERE_COMPOSITE_BINDING_BEAUTY, rgba16f) uniform writeonly image2D beautyImage;

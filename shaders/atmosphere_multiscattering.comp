@@ -10,7 +10,7 @@
 #define DIRECTIONS (ATMOSPHERE_MS_ZENITH_BANDS * ATMOSPHERE_MS_AZIMUTHS)
 layout(local_size_x = DIRECTIONS) in;
 
-layout(std140, binding = ATMOSPHERE_BINDING_PARAMS) uniform Params {
+layout(std140, binding = ATMOSPHERE_BINDING_PARAMS) readonly buffer Params {
   AtmosphereParams params;
 };
 layout(binding = ATMOSPHERE_MULTISCATTERING_BINDING_TRANSMITTANCE) uniform sampler2D transmittanceLut;

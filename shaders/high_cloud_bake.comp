@@ -12,7 +12,7 @@
 
 layout(local_size_x = HIGH_CLOUD_GROUP_X, local_size_y = HIGH_CLOUD_GROUP_Y) in;
 
-layout(std140, binding = HIGH_CLOUD_BAKE_BINDING_PARAMS) uniform Params {
+layout(std140, binding = HIGH_CLOUD_BAKE_BINDING_PARAMS) readonly buffer Params {
   HighCloudBakeParams params;
 };
 // Greyscale, sampled bilinearly with wrap over one tile; multiplies the cover when used.

@@ -20,7 +20,7 @@
 
 layout(local_size_x = SKY_HIGH_CLOUDS_GROUP_X, local_size_y = SKY_HIGH_CLOUDS_GROUP_Y) in;
 
-layout(std140, binding = SKY_HIGH_CLOUDS_BINDING_PARAMS) uniform Params {
+layout(std140, binding = SKY_HIGH_CLOUDS_BINDING_PARAMS) readonly buffer Params {
   SkyHighCloudsParams params;
 };
 layout(binding = SKY_HIGH_CLOUDS_BINDING_SKY, rgba16f) uniform writeonly image2D skyImage;
@@ -37,7 +37,7 @@ layout(binding = SKY_HIGH_CLOUDS_BINDING_COEFFICIENTS) uniform sampler2D coeffic
 layout(binding = SKY_HIGH_CLOUDS_BINDING_COARSE) uniform sampler2D coarseTexture;
 #endif
 #if SKY_PHYSICAL_SKY
-layout(std140, binding = SKY_HIGH_CLOUDS_BINDING_ATMOSPHERE) uniform AtmosphereBlock {
+layout(std140, binding = SKY_HIGH_CLOUDS_BINDING_ATMOSPHERE) readonly buffer AtmosphereBlock {
   AtmosphereParams atmosphere;
 };
 layout(binding = SKY_HIGH_CLOUDS_BINDING_TRANSMITTANCE) uniform sampler2D transmittanceLut;

@@ -9,7 +9,7 @@
 
 layout(local_size_x = STAR_FIELD_GROUP_SIZE) in;
 
-layout(std140, binding = STAR_FIELD_BINDING_PARAMS) uniform Params {
+layout(std140, binding = STAR_FIELD_BINDING_PARAMS) readonly buffer Params {
   StarFieldParams params;
 };
 layout(std430, binding = STAR_FIELD_BINDING_STARS) readonly buffer Stars {

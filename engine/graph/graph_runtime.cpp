@@ -1,5 +1,6 @@
 #include "engine/graph/graph_runtime.h"
 
+#include <algorithm>
 #include <cstring>
 
 #include "engine/gpu/context.h"
@@ -67,8 +68,16 @@ void GraphRuntime::submitAndWait() {
   SKY_VK(vkWaitForFences(mCtx.device(), 1, &mFence, VK_TRUE, UINT64_MAX));
 }
 
+// The arena's ranges are bound as uniform buffers or as read-only storage buffers. Every
+// pass's parameter block is the latter (`layout(std140) readonly buffer`, same layout as a
+// uniform block): Mesa's lavapipe (22.3, Debian 12) re-inlines uniform-buffer values that
+// feed a branch or a loop bound into a freshly compiled shader at every dispatch and keeps
+// each copy until the pipeline is destroyed, so a time-lapse grew by ~2 MB per frame and paid
+// a JIT compile per pass per frame. Storage-buffer loads are never inlined; on GPUs a
+// uniformly indexed read-only storage buffer costs the same as a uniform buffer.
 UniformRange GraphRuntime::uploadUniform(const void* data, VkDeviceSize size) {
-  const VkDeviceSize align = mCtx.properties().limits.minUniformBufferOffsetAlignment;
+  const VkDeviceSize align = std::max(mCtx.properties().limits.minUniformBufferOffsetAlignment,
+                                      mCtx.properties().limits.minStorageBufferOffsetAlignment);
   if (size > kUniformChunk)
     internalError("uniform block of " + std::to_string(size) + " bytes is too large");
   mUniformOffset = (mUniformOffset + align - 1) / align * align;
@@ -78,7 +87,8 @@ UniformRange GraphRuntime::uploadUniform(const void* data, VkDeviceSize size) {
   }
   if (mUniformChunk >= mUniformChunks.size())
     mUniformChunks.emplace_back(
-        mCtx, BufferDesc{"uniforms", kUniformChunk, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+        mCtx, BufferDesc{"uniforms", kUniformChunk,
+                         VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                          BufferMemory::HostVisible});
   Buffer& chunk = mUniformChunks[mUniformChunk];
   std::memcpy(static_cast<uint8_t*>(chunk.mapped()) + mUniformOffset, data, size);

@@ -8,7 +8,7 @@
 #include "kozlov_sky.glsl"
 
 #ifdef LIGHTING_BINDING
-layout(std140, binding = LIGHTING_BINDING) uniform LightingBlock {
+layout(std140, binding = LIGHTING_BINDING) readonly buffer LightingBlock {
   LightingState lighting;
 };
 #endif
