@@ -45,12 +45,12 @@ vec3 cloudScattering(vec3 p, vec3 d, CloudSample s) {
     vec3 E = s.layer == 0 ? params.lightAtLow[i].rgb : params.lightAtMid[i].rgb;
     if (max(E.r, max(E.g, E.b)) <= 0.0) continue;
     vec3 L = params.lightDirection[i].xyz;
-    float tau = params.medium.x * lightMarchDensity(p, L, params.light.x, int(params.frame.z));
+    float tau = params.medium.x * lightMarchDensity(p, L, params.light.x, CLOUD_LIGHT_STEPS);
     // The phase function is per steradian; in the renderer's units (illuminance 1 = pi x
     // radiance 1, lighting_shared.h) radiance = pi * E * phase.
     S += VIEW_PI * E *
          cloudInScatter(tau, tauClamp, dot(d, L), params.medium.y, params.medium.z,
-                        params.medium.w, int(params.options.x), int(params.frame.w));
+                        params.medium.w, CLOUD_DUAL_LOBE, CLOUD_OCTAVES);
   }
   // Isotropic in-scattering of a hemisphere of ambient radiance is half of it.
   S += 0.5 * cloudAmbient(params.ambientTop.rgb, params.ambientBottom.rgb, sigmaT, s.hTop, s.hBottom);
@@ -112,7 +112,7 @@ void main() {
   // Ray origin and direction in the frame's ENU coordinates.
   vec3 o = vec3(0.0);
   vec3 d = viewDirection(params.view, pixel);
-  if (params.frame.x == CLOUD_FRAME_TOPDOWN) {
+  if (CLOUD_TOPDOWN != 0) {
     // Row 0 is the north edge, column 0 the west edge, equal lat/lon spacing.
     vec2 uv = pixel / vec2(params.view.size.xy);
     vec4 b = params.region.bounds;
@@ -162,7 +162,7 @@ void main() {
           float sigmaT = params.medium.x * s.density;
           vec3 S = cloudScattering(p, d, s);
           float stepT = exp(-sigmaT * dt);  // Lu (19)(20) over one step
-          vec3 integrated = params.options.y != 0u ? integrateStep(S, sigmaT, dt) : S * dt;
+          vec3 integrated = CLOUD_ENERGY_CONSERVING != 0 ? integrateStep(S, sigmaT, dt) : S * dt;
           radiance += transmittance * integrated;
           depthSum += transmittance * (1.0 - stepT) * (t + 0.5 * dt);
           transmittance *= stepT;

@@ -86,12 +86,14 @@ int weatherCommand(const std::vector<std::string>& argv) {
 
   // The map the renderer would draw in the scene's first frame (weather.time, advection and
   // evolution included).
+  // Without weather.region the map shows the file's whole grid.
   WeatherSource source;
+  source.setWholeDataRegion(true);
   const WeatherMap map = source.map(scene, scene.time.start);
   const WeatherFields& fields = *source.fields();
   const double time = weatherTimeUnix(scene, scene.time.start);
   const std::array<std::vector<float>, 6> altitudes =
-      layerAltitudeMaps(fields, time, scene.weather);
+      layerAltitudeMaps(fields, time, scene.weather, map.region);
   const int w = int(map.width), h = int(map.height);
 
   // The map: cover per layer, type, and each layer's base and top altitude per texel (m above
@@ -136,8 +138,8 @@ int weatherCommand(const std::vector<std::string>& argv) {
   writePng8(pngPath, w, h, rgba);
 
   std::printf("%s: %dx%d map over lat [%g, %g], lon [%g, %g], cover from %s\n",
-              file.filename().string().c_str(), w, h, scene.weather.region.lat[0],
-              scene.weather.region.lat[1], scene.weather.region.lon[0], scene.weather.region.lon[1],
+              file.filename().string().c_str(), w, h, map.region.lat[0], map.region.lat[1],
+              map.region.lon[0], map.region.lon[1],
               scene.weather.cover.c_str());
   const std::vector<float> layers[3] = {channel(map, 0), channel(map, 1), map.coverHigh};
   const char* names[3] = {"low", "mid", "high"};
@@ -146,7 +148,7 @@ int weatherCommand(const std::vector<std::string>& argv) {
   if (scene.weather.cover == "rh" && hasTcc(fields)) {
     WeatherSettings settings = scene.weather;
     settings.cover = "tcc";
-    tcc = weatherMapFromFields(fields, time, settings, sceneWindMs(scene.clouds));
+    tcc = weatherMapFromFields(fields, time, settings, map.region, sceneWindMs(scene.clouds));
   }
   for (int l = 0; l < 3; ++l) {
     const LayerFigures f = figures(layers[l]);
@@ -155,7 +157,7 @@ int weatherCommand(const std::vector<std::string>& argv) {
         std::minmax_element(altitudes[2 * l].begin(), altitudes[2 * l].end());
     const auto [topLo, topHi] =
         std::minmax_element(altitudes[2 * l + 1].begin(), altitudes[2 * l + 1].end());
-    std::printf("  base %.0f-%.0f m  top %.0f-%.0f m", *baseLo, *baseHi, *topLo, *topHi);
+    std::printf("  base %.0f to %.0f m  top %.0f to %.0f m", *baseLo, *baseHi, *topLo, *topHi);
     if (tcc) {
       const std::vector<float> other = l == 2 ? tcc->coverHigh : channel(*tcc, l);
       CoverageOptions options;

@@ -134,6 +134,8 @@ RenderedFrame Renderer::render(const Scene& scene, const IsoTime& time,
   // A forecast file places the layers at the altitudes of its pressure levels (from gh); the
   // scene's clouds.low/mid apply otherwise.
   Scene cloudScene = scene;
+  // The map's region, resolved from the camera when the scene gives none.
+  cloudScene.weather.region = weather.region;
   if (weather.layerAltitudesM) {
     const glm::dvec4& a = *weather.layerAltitudesM;
     cloudScene.clouds.low = {a.x, a.y};
@@ -148,6 +150,8 @@ RenderedFrame Renderer::render(const Scene& scene, const IsoTime& time,
   // The weather where the camera stands sets the ambient light and the haze.
   out.localWeather =
       localWeather(weather, geometry.latDeg, geometry.lonDeg, scene.weather.localRadiusKm);
+  out.weatherRegion = weather.region;
+  out.weatherTexels = glm::uvec2(weather.width, weather.height);
   applyOvercast(out.lighting, scene.sky, out.localWeather.overcast);
   const uint32_t width = static_cast<uint32_t>(scene.output.width);
   const uint32_t height = static_cast<uint32_t>(scene.output.height);
@@ -286,7 +290,7 @@ RenderedFrame Renderer::render(const Scene& scene, const IsoTime& time,
                                         out.clouds ? &out.frame.output("clouds_depth") : nullptr,
                                         width, height));
   if (topDown)
-    out.image.layers.push_back(weatherCoverLayer(weather, scene.weather.region, width, height));
+    out.image.layers.push_back(weatherCoverLayer(weather, weather.region, width, height));
   for (const std::string& name : options.debugOutputs)
     for (const DebugSource& s : sources)
       if (name == s.name) {

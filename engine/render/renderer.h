@@ -62,6 +62,9 @@ struct RenderedFrame {
   CloudNoise::Activity cloudNoise;         // whether the cloud noise was baked, loaded or kept
   // The weather around the camera (Kozlov section 5), already applied to `lighting`.
   LocalWeather localWeather;
+  // Where the weather map lay (weather.region, or the square around the camera) and its size.
+  WeatherRegion weatherRegion;
+  glm::uvec2 weatherTexels{0};
   std::vector<DebugImage> debug;  // as requested in RenderOptions
 };
 

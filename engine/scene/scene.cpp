@@ -52,4 +52,16 @@ std::filesystem::path Scene::resolvePath(const std::string& path) const {
   return p.is_relative() && !baseDir.empty() ? baseDir / p : p;
 }
 
+Scene Scene::withAbsolutePaths() const {
+  Scene out = *this;
+  for (std::string* key : {&out.highClouds.coverMap, &out.highClouds.coefficients,
+                           &out.highClouds.normals, &out.weather.image, &out.weather.file}) {
+    if (key->empty()) continue;
+    std::error_code ec;
+    const std::filesystem::path p = std::filesystem::absolute(resolvePath(*key), ec);
+    if (!ec) *key = p.lexically_normal().string();
+  }
+  return out;
+}
+
 }  // namespace sky

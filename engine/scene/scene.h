@@ -162,8 +162,8 @@ struct CloudSettings {
 
 // The weather region: latitudes [south, north] and longitudes [west, east] in degrees.
 struct WeatherRegion {
-  glm::dvec2 lat{45.0, 50.0};
-  glm::dvec2 lon{5.0, 12.0};
+  glm::dvec2 lat{0.0, 1.0};
+  glm::dvec2 lon{0.0, 1.0};
 
   bool operator==(const WeatherRegion&) const = default;
 };
@@ -179,10 +179,10 @@ struct WeatherLevelSettings {
 
 // The cellular automaton of weather.evolution "ca" (engine/weather/cloud_automaton.h).
 struct WeatherAutomatonSettings {
-  double stepS = 300.0;        // scene time per automaton step, seconds, 10..3600
-  double windowH = 6.0;        // window length when the map has no forecast steps, hours
-  double lifetimeMin = 30.0;   // mean life of a cloud voxel (sets Dobashi's p_ext), minutes
-  double strength = 1.0;       // how far the automaton's density replaces the map cover, 0..1
+  double stepS = 300.0;       // scene time per automaton step, seconds, 10..3600
+  double windowH = 6.0;       // window length when the map has no forecast steps, hours
+  double lifetimeMin = 30.0;  // mean life of a cloud voxel (sets Dobashi's p_ext), minutes
+  double strength = 1.0;      // how far the automaton's density replaces the map cover, 0..1
 
   bool operator==(const WeatherAutomatonSettings&) const = default;
 };
@@ -191,7 +191,10 @@ struct WeatherAutomatonSettings {
 // CMc), the cloud type and a density scale. See docs/weather.md.
 struct WeatherSettings {
   std::string source = "procedural";  // "procedural" | "image" | "file"
-  WeatherRegion region;
+  // The map's bounds. Absent: a square of cameraRegionKm centred on the camera (snapped to the
+  // map's texels), clipped to the data for source "file" (engine/weather/weather_region.h).
+  std::optional<WeatherRegion> region;
+  double cameraRegionKm = 800.0;  // 10..10000
   // procedural: fbm cover around a mean, per layer.
   double coverLow = 0.0;   // mean low-layer cover, 0..1 (0: no low clouds)
   double coverMid = 0.0;   // mean mid-layer cover, 0..1
@@ -276,6 +279,10 @@ struct Scene {
   std::filesystem::path baseDir;
   // `path` as written in the scene, resolved against baseDir when relative.
   std::filesystem::path resolvePath(const std::string& path) const;
+  // This scene with every file key (high_clouds.cover_map, coefficients, normals,
+  // weather.image, weather.file) made absolute, so its printed text means the same from any
+  // folder (`skyrender validate`, render reports).
+  Scene withAbsolutePaths() const;
 };
 
 }  // namespace sky

@@ -259,7 +259,12 @@ void describe(V& v, WeatherSettings& s) {
           TextRule{1, 0, "^(procedural|image|file)$", "procedural, image or file"},
           "where the weather map comes from: procedural (fbm cover), image (painted) or file "
           "(a GRIB2 or NetCDF forecast)");
-  v.section("region", s.region, "the map's lat/lon bounds");
+  v.section("region", s.region,
+            "the map's lat/lon bounds, both keys (absent: a square of camera_region_km centred "
+            "on the camera, clipped to the data for source file)");
+  v.field("camera_region_km", s.cameraRegionKm, NumberRange{10, 10000},
+          "without region: the side of the square the map covers around the camera, km (the "
+          "default reaches past the horizon of clouds up to 6.5 km seen from the ground)");
   v.field("cover_low", s.coverLow, NumberRange{0, 1}, "procedural: mean low-layer cover");
   v.field("cover_mid", s.coverMid, NumberRange{0, 1}, "procedural: mean mid-layer cover");
   v.field("spread", s.spread, NumberRange{0, 1},
@@ -286,8 +291,7 @@ void describe(V& v, WeatherSettings& s) {
   v.section("low", s.low, "file source: the low layer's pressure levels and rh_cr");
   v.section("mid", s.mid, "file source: the mid layer's pressure levels and rh_cr");
   v.section("high", s.high, "file source: the high layer's pressure levels and rh_cr");
-  v.field("advection", s.advection,
-          TextRule{1, 0, "^(none|data|wind)$", "none, data or wind"},
+  v.field("advection", s.advection, TextRule{1, 0, "^(none|data|wind)$", "none, data or wind"},
           "how the map moves with time: not at all (none), with the forecast file's wind at "
           "steering_hpa outside the file's steps (data), or with clouds.wind_speed_ms and "
           "wind_from (wind); between a file's steps the cover is interpolated");

@@ -623,16 +623,17 @@ std::vector<float> resampleToRegion(const GridGeometry& grid, std::span<const fl
 }
 
 WeatherMap weatherMapFromFields(const WeatherFields& fields, double timeUnix,
-                                const WeatherSettings& weather, glm::dvec2 sceneWindMs) {
+                                const WeatherSettings& weather, const WeatherRegion& region,
+                                glm::dvec2 sceneWindMs) {
   const float type = cloudTypeValue(weather.cloudType);
-  const glm::uvec2 size = proceduralMapSize(weather);
-  const LayerCover layers = layerCover(fields, timeUnix, weather, weather.region);
-  const GridResampler resampler(fields.grid, weather.region, size.x, size.y);
+  const glm::uvec2 size = proceduralMapSize(weather, region);
+  const LayerCover layers = layerCover(fields, timeUnix, weather, region);
+  const GridResampler resampler(fields.grid, region, size.x, size.y);
   const std::vector<float> low = resampler.apply(layers.low, true);
   const std::vector<float> mid = resampler.apply(layers.mid, true);
 
   WeatherMap map;
-  map.region = weather.region;
+  map.region = region;
   map.width = size.x;
   map.height = size.y;
   map.texels.resize(low.size());
@@ -658,9 +659,12 @@ WeatherMap weatherMapFromFields(const WeatherFields& fields, double timeUnix,
   const LevelField* u = step.find("u", weather.steeringHpa);
   const LevelField* v = step.find("v", weather.steeringHpa);
   if (!u || !v) {
+    const std::vector<double> levels = step.levels(u ? "v" : "u");
     inputError("weather.advection: data needs the wind (u and v) at steering_hpa " +
-               formatNumber(weather.steeringHpa) + " hPa; " + fileName(fields) + " has u at " +
-               formatLevels(step.levels("u")) + " hPa");
+               formatNumber(weather.steeringHpa) + " hPa; " + fileName(fields) +
+               (levels.empty() ? std::string(" has no ") + (u ? "v" : "u") + " wind at any level"
+                               : std::string(" has ") + (u ? "v" : "u") + " at " +
+                                     formatLevels(levels) + " hPa"));
   }
   advectMap(map, resampler.apply(withoutNaN(u->values, 0.0f), false),
             resampler.apply(withoutNaN(v->values, 0.0f), false), dt);
@@ -668,10 +672,11 @@ WeatherMap weatherMapFromFields(const WeatherFields& fields, double timeUnix,
 }
 
 std::array<std::vector<float>, 6> layerAltitudeMaps(const WeatherFields& fields, double timeUnix,
-                                                    const WeatherSettings& weather) {
+                                                    const WeatherSettings& weather,
+                                                    const WeatherRegion& region) {
   if (fields.steps.empty()) inputError("weather.file: " + fileName(fields) + " holds no fields");
-  const glm::uvec2 size = proceduralMapSize(weather);
-  const GridResampler resampler(fields.grid, weather.region, size.x, size.y);
+  const glm::uvec2 size = proceduralMapSize(weather, region);
+  const GridResampler resampler(fields.grid, region, size.x, size.y);
   const Bracket b = bracketTime(fields.steps, timeUnix);
   const double pressures[6] = {weather.low.bottomHpa, weather.low.topHpa,     weather.mid.bottomHpa,
                                weather.mid.topHpa,    weather.high.bottomHpa, weather.high.topHpa};

@@ -56,7 +56,7 @@ std::vector<float> resampleToRegion(const GridGeometry& grid, std::span<const fl
                                     const WeatherRegion& region, uint32_t width, uint32_t height,
                                     bool clampUnit);
 
-// The weather map of `fields` at `timeUnix` over weather.region: proceduralMapSize texels,
+// The weather map of `fields` at `timeUnix` over `region`: proceduralMapSize texels,
 // R low cover, G mid cover, B cloudTypeValue(weather.cloudType) (the data carry no type),
 // A 1, coverHigh the high layer's cover and layerAltitudesM the low and mid altitudes. With
 // weather.advection "data", a time before the first step or after the last (any time, for a
@@ -64,7 +64,7 @@ std::vector<float> resampleToRegion(const GridGeometry& grid, std::span<const fl
 // (advectMap); BadInput naming weather.advection when the file has no u/v there. With
 // advection "wind" the same, with the uniform `sceneWindMs` (east, north; sceneWindMs()).
 WeatherMap weatherMapFromFields(const WeatherFields& fields, double timeUnix,
-                                const WeatherSettings& weather,
+                                const WeatherSettings& weather, const WeatherRegion& region,
                                 glm::dvec2 sceneWindMs = glm::dvec2(0.0));
 
 // The layers' base and top altitudes (m above sea level) at each texel of the map
@@ -73,7 +73,8 @@ WeatherMap weatherMapFromFields(const WeatherFields& fields, double timeUnix,
 // interpolated in time like the cover. In order low base, low top, mid base, mid top, high
 // base, high top. (The renderer uses their region means, layerAltitudesM.)
 std::array<std::vector<float>, 6> layerAltitudeMaps(const WeatherFields& fields, double timeUnix,
-                                                    const WeatherSettings& weather);
+                                                    const WeatherSettings& weather,
+                                                    const WeatherRegion& region);
 
 // Moves the map's cover (all channels and coverHigh) with a wind given per texel (m/s east,
 // north; row-major like the texels) over `seconds`, semi-Lagrangian: each texel takes the

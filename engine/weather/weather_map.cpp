@@ -19,6 +19,7 @@
 #include "engine/weather/geo.h"
 #include "engine/weather/grib_reader.h"
 #include "engine/weather/netcdf_reader.h"
+#include "engine/weather/weather_region.h"
 
 namespace sky {
 namespace {
@@ -45,7 +46,7 @@ std::string lowerExtension(const fs::path& path) {
   return ext;
 }
 
-WeatherMap readImageMap(const Scene& scene) {
+WeatherMap readImageMap(const Scene& scene, const WeatherRegion& region) {
   const std::string& written = scene.weather.image;
   if (written.empty()) inputError("weather.image: is required when source is image");
   const fs::path path = scene.resolvePath(written);
@@ -55,7 +56,7 @@ WeatherMap readImageMap(const Scene& scene) {
   if (ext != ".png" && ext != ".exr") imageError(written, "must be a PNG or EXR file");
 
   WeatherMap map;
-  map.region = scene.weather.region;
+  map.region = region;
   std::vector<float> pixels;
   size_t channels = 0;
   try {
@@ -123,12 +124,12 @@ void forEachRow(uint32_t rows, F body) {
   for (std::thread& t : threads) t.join();
 }
 
-WeatherMap proceduralMap(const Scene& scene) {
+WeatherMap proceduralMap(const Scene& scene, const WeatherRegion& region) {
   const WeatherSettings& w = scene.weather;
   if (!(w.scaleKm > 0.0)) inputError("weather.scale_km: must be above 0");
-  const glm::uvec2 size = proceduralMapSize(w);
+  const glm::uvec2 size = proceduralMapSize(w, region);
   WeatherMap map;
-  map.region = w.region;
+  map.region = region;
   map.width = size.x;
   map.height = size.y;
   const size_t count = size_t(size.x) * size.y;
@@ -142,10 +143,9 @@ WeatherMap proceduralMap(const Scene& scene) {
     const uint32_t lowSeed = hashIntegers({uint32_t(w.seed), kLowStream});
     const uint32_t midSeed = hashIntegers({uint32_t(w.seed), kMidStream});
     forEachRow(size.y, [&](uint32_t y) {
-      const double lat = w.region.lat[1] - (y + 0.5) / size.y * (w.region.lat[1] - w.region.lat[0]);
+      const double lat = region.lat[1] - (y + 0.5) / size.y * (region.lat[1] - region.lat[0]);
       for (uint32_t x = 0; x < size.x; ++x) {
-        const double lon =
-            w.region.lon[0] + (x + 0.5) / size.x * (w.region.lon[1] - w.region.lon[0]);
+        const double lon = region.lon[0] + (x + 0.5) / size.x * (region.lon[1] - region.lon[0]);
         const glm::dvec3 unit = enuToEcefRotation(lat, lon)[2];
         const size_t i = size_t(y) * size.x + x;
         if (needLow) low[i] = float(standardFbmOnEarth(unit, w.scaleKm, lowSeed));
@@ -298,30 +298,36 @@ float cloudTypeValue(const std::string& name) {
              "' is not stratus, stratocumulus, cumulus, altostratus or altocumulus");
 }
 
-glm::uvec2 proceduralMapSize(const WeatherSettings& weather) {
+glm::uvec2 proceduralMapSize(const WeatherSettings& weather, const WeatherRegion& region) {
   if (weather.resolution < 2) inputError("weather.resolution: must be at least 2");
-  const glm::dvec2 km = regionSizeKm(weather.region);
+  const glm::dvec2 km = regionSizeKm(region);
   const double longer = std::max(km.x, km.y), shorter = std::min(km.x, km.y);
   const auto n = uint32_t(weather.resolution);
   const auto other = uint32_t(std::max(2.0, std::round(n * shorter / longer)));
   return km.x >= km.y ? glm::uvec2(n, other) : glm::uvec2(other, n);
 }
 
-WeatherMap makeWeatherMap(const Scene& scene) {
+WeatherMap makeWeatherMap(const Scene& scene, const WeatherRegion& r) {
   const WeatherSettings& w = scene.weather;
-  const WeatherRegion& r = w.region;
   if (!(r.lat[0] < r.lat[1]) || r.lat[0] < -90.0 || r.lat[1] > 90.0)
     inputError("weather.region.lat: [south, north] must rise within [-90, 90]");
   if (!(r.lon[0] < r.lon[1]) || r.lon[1] - r.lon[0] > 360.0)
     inputError("weather.region.lon: [west, east] must rise and span at most 360 degrees");
-  if (w.source == "image") return readImageMap(scene);
-  if (w.source == "procedural") return proceduralMap(scene);
+  if (w.source == "image") return readImageMap(scene, r);
+  if (w.source == "procedural") return proceduralMap(scene, r);
   if (w.source == "file") {
     const WeatherFields fields = readWeatherFile(scene);
     // The forecast valid at the scene's time (its start for a time-lapse).
-    return weatherMapFromFields(fields, double(scene.time.start.unixSeconds), w);
+    return weatherMapFromFields(fields, double(scene.time.start.unixSeconds), w, r);
   }
   inputError("weather.source: '" + w.source + "' is not procedural, image or file");
+}
+
+WeatherMap makeWeatherMap(const Scene& scene) {
+  if (scene.weather.source != "file") return makeWeatherMap(scene, mapRegion(scene));
+  const WeatherFields fields = readWeatherFile(scene);
+  return weatherMapFromFields(fields, double(scene.time.start.unixSeconds), scene.weather,
+                              mapRegion(scene, &fields.grid));
 }
 
 }  // namespace sky

@@ -45,11 +45,13 @@ struct WeatherMap {
 // weather.cloud_type for any other name.
 float cloudTypeValue(const std::string& name);
 
-// The map of `scene.weather`: "procedural" (fbm cover, see weather_map.cpp and
-// docs/weather.md), "image" (an RGBA PNG/EXR over the region, resolved with
-// scene.resolvePath) or "file" (a GRIB2/NetCDF forecast at the scene's start time, through
-// engine/weather/cloud_layers_from_fields.h). Bad settings or files are BadInput errors
-// naming weather.<key> and the file.
+// The map of `scene.weather` over `region` (mapRegion(scene) for the scene's own):
+// "procedural" (fbm cover, see weather_map.cpp and docs/weather.md), "image" (an RGBA
+// PNG/EXR over the region, resolved with scene.resolvePath) or "file" (a GRIB2/NetCDF
+// forecast at the scene's start time, through engine/weather/cloud_layers_from_fields.h).
+// Bad settings or files are BadInput errors naming weather.<key> and the file.
+WeatherMap makeWeatherMap(const Scene& scene, const WeatherRegion& region);
+// The same over the scene's region (weather_region.h mapRegion, clipped to a forecast's data).
 WeatherMap makeWeatherMap(const Scene& scene);
 
 // The forecast file(s) of source "file" (scene.weather.file, resolved against the scene's
@@ -65,8 +67,8 @@ WeatherFields readWeatherFile(const Scene& scene);
 // pattern matches nothing.
 std::vector<std::filesystem::path> weatherFiles(const Scene& scene);
 
-// The procedural map's size: `resolution` texels along the region's longer side in km, the
+// The map's size: `weather.resolution` texels along the region's longer side in km, the
 // other side in proportion (at least 2).
-glm::uvec2 proceduralMapSize(const WeatherSettings& weather);
+glm::uvec2 proceduralMapSize(const WeatherSettings& weather, const WeatherRegion& region);
 
 }  // namespace sky

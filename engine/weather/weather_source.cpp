@@ -7,6 +7,7 @@
 
 #include "engine/core/error.h"
 #include "engine/weather/cloud_layers_from_fields.h"
+#include "engine/weather/weather_region.h"
 
 namespace sky {
 namespace {
@@ -29,13 +30,14 @@ std::string filesStamp(const Scene& scene) {
   return stamp;
 }
 
-// What the map depends on besides the time and the forecast file: every weather setting.
-std::string settingsSignature(const Scene& scene) {
+// What the map depends on besides the time and the forecast file: every weather setting and
+// the region it covers.
+std::string settingsSignature(const Scene& scene, const WeatherRegion& region) {
   const WeatherSettings& w = scene.weather;
   std::ostringstream s;
   s.precision(17);
-  s << w.source << '|' << w.region.lat[0] << ',' << w.region.lat[1] << ',' << w.region.lon[0] << ','
-    << w.region.lon[1] << '|' << w.coverLow << '|' << w.coverMid << '|' << w.spread << '|'
+  s << w.source << '|' << region.lat[0] << ',' << region.lat[1] << ',' << region.lon[0] << ','
+    << region.lon[1] << '|' << w.coverLow << '|' << w.coverMid << '|' << w.spread << '|'
     << w.scaleKm << '|' << w.seed << '|' << w.resolution << '|' << w.cloudType << '|' << w.cover;
   for (const WeatherLevelSettings* l : {&w.low, &w.mid, &w.high})
     s << '|' << l->bottomHpa << ',' << l->topHpa << ',' << l->rhCritical;
@@ -72,7 +74,7 @@ glm::dvec2 sceneWindMs(const CloudSettings& clouds) {
 WeatherMap WeatherSource::moved(const Scene& scene, double timeUnix) {
   const WeatherSettings& w = scene.weather;
   if (w.source == "file")
-    return weatherMapFromFields(*mFields, timeUnix, w, sceneWindMs(scene.clouds));
+    return weatherMapFromFields(*mFields, timeUnix, w, mRegion, sceneWindMs(scene.clouds));
   WeatherMap map = *mStill;
   // A painted or procedural map shows the scene's first frame; the wind carries it from there.
   const double seconds = timeUnix - weatherTimeUnix(scene, scene.time.start);
@@ -111,7 +113,7 @@ const WeatherMap& WeatherSource::map(const Scene& scene, const IsoTime& frame) {
     inputError(
         "weather.advection: data needs source file (the wind comes from the forecast); "
         "use wind for the scene's wind");
-  std::string signature = settingsSignature(scene);
+  std::string signature;
   if (w.source == "file") {
     const std::string stamp = filesStamp(scene);
     if (!mFields || stamp != mFieldsStamp) {
@@ -120,12 +122,18 @@ const WeatherMap& WeatherSource::map(const Scene& scene, const IsoTime& frame) {
       mFields = readWeatherFile(scene);
       mFieldsStamp = stamp;
     }
-    signature += '|' + stamp;
-  } else if (!mStill || signature != mStillSignature) {
-    mStill.reset();
-    mMap.reset();
-    mStill = makeWeatherMap(scene);
-    mStillSignature = signature;
+    mRegion =
+        w.region || !mWholeData ? mapRegion(scene, &mFields->grid) : dataRegion(mFields->grid);
+    signature = settingsSignature(scene, mRegion) + '|' + stamp;
+  } else {
+    mRegion = mapRegion(scene);
+    signature = settingsSignature(scene, mRegion);
+    if (!mStill || signature != mStillSignature) {
+      mStill.reset();
+      mMap.reset();
+      mStill = makeWeatherMap(scene, mRegion);
+      mStillSignature = signature;
+    }
   }
   const double t = weatherTimeUnix(scene, frame);
   // Whether the map changes with time: between a file's steps the cover is interpolated,

@@ -31,7 +31,11 @@ public:
   // changed: the weather settings (and clouds.wind with advection "wind"), the input files
   // (size, modification time), and the time when the map moves with it. Forecast files are
   // read once. BadInput naming weather.<key> for bad settings or files.
+  // The map's region is weather.region, or else (weather_region.h mapRegion) the square around
+  // the camera, clipped to the forecast's data; with setWholeDataRegion(true) a forecast
+  // without weather.region shows its whole grid (skyrender weather).
   const WeatherMap& map(const Scene& scene, const IsoTime& frame);
+  void setWholeDataRegion(bool whole) { mWholeData = whole; }
 
   // The forecast of source "file" as read by the last map() (nullptr for other sources).
   const WeatherFields* fields() const { return mFields ? &*mFields : nullptr; }
@@ -48,6 +52,8 @@ private:
   // it, else automatonWindow) and its work on `map`. `signature`: the map's, without the time.
   void evolve(const Scene& scene, const std::string& signature, double timeUnix, WeatherMap& map);
 
+  bool mWholeData = false;
+  WeatherRegion mRegion;  // of the last map()
   std::optional<WeatherFields> mFields;
   std::string mFieldsStamp;
   std::optional<WeatherMap> mStill;  // procedural/image map, before any advection

@@ -7,6 +7,7 @@
 #include "engine/gpu/sampler.h"
 #include "engine/shader/shader_compiler.h"
 #include "engine/weather/geo.h"
+#include "engine/weather/weather_region.h"
 #include "passes/sky_high_clouds/sky_high_clouds.h"
 
 namespace sky {
@@ -22,12 +23,6 @@ constexpr float kLightShare = 1e-3f;
 // Top-down rays start this far above the highest layer.
 constexpr double kTopDownMarginM = 500.0;
 
-ComputePipeline buildPipeline(const Context& ctx, ShaderCompiler& compiler, const char* file,
-                              const char* name) {
-  CompiledShader shader = compiler.compile(file);
-  return ComputePipeline(ctx, name, shader.spirv, shader.reflection);
-}
-
 void readTextures(GraphBuilder& b, const CloudTextures& t) {
   if (!t.noiseSampler || !t.weatherSampler) internalError("volumetric clouds: no sampler");
   for (ImageId id : {t.shape, t.detail, t.curl, t.weather, t.weatherCoarse})
@@ -40,9 +35,34 @@ float luminance(const glm::vec3& c) {
 
 }  // namespace
 
+CloudPipelines::CloudPipelines(const Context& ctx, ShaderCompiler& compiler, const char* file,
+                               const char* name)
+    : mCtx(ctx), mCompiler(compiler), mFile(file), mName(name) {}
+
+const ComputePipeline& CloudPipelines::get(const shared::CloudParams& p) {
+  const std::array<uint32_t, 7> key = {p.frame.x == CLOUD_FRAME_TOPDOWN ? 1u : 0u,
+                                       p.frame.z,
+                                       p.frame.w,
+                                       p.options.x,
+                                       p.options.y,
+                                       p.options.z,
+                                       p.options.w};
+  std::unique_ptr<ComputePipeline>& pipeline = mPipelines[key];
+  if (!pipeline) {
+    const char* names[7] = {"CLOUD_TOPDOWN",   "CLOUD_LIGHT_STEPS",       "CLOUD_OCTAVES",
+                            "CLOUD_DUAL_LOBE", "CLOUD_ENERGY_CONSERVING", "CLOUD_CALIBRATED",
+                            "CLOUD_TANG"};
+    std::vector<ShaderDefine> defines;
+    for (size_t i = 0; i < key.size(); ++i) defines.push_back({names[i], std::to_string(key[i])});
+    CompiledShader shader = mCompiler.compile(mFile, defines);
+    pipeline = std::make_unique<ComputePipeline>(mCtx, mName, shader.spirv, shader.reflection);
+  }
+  return *pipeline;
+}
+
 CloudFrameGeometry cloudFrameGeometry(const Scene& scene) {
   if (scene.camera.mode == "geographic_topdown") {
-    const WeatherRegion& r = scene.weather.region;
+    const WeatherRegion& r = resolvedRegion(scene.weather);
     const double top = std::max(scene.clouds.low.topM, scene.clouds.mid.topM);
     return {0.5 * (r.lat[0] + r.lat[1]), 0.5 * (r.lon[0] + r.lon[1]), top + kTopDownMarginM, true};
   }
@@ -54,7 +74,7 @@ shared::CloudParams cloudParams(const Scene& scene, const LightingState& lightin
                                 const glm::vec2& maxCover, const glm::uvec2& weatherSize,
                                 const CoverageTables& coverage) {
   const CloudSettings& c = scene.clouds;
-  const WeatherRegion& region = scene.weather.region;
+  const WeatherRegion& region = resolvedRegion(scene.weather);
   const CloudFrameGeometry g = cloudFrameGeometry(scene);
   shared::CloudParams p{};
   p.view = view;
@@ -75,20 +95,29 @@ shared::CloudParams cloudParams(const Scene& scene, const LightingState& lightin
                       static_cast<float>(std::max(c.low.topM, c.mid.topM) + kTopDownMarginM),
                       low || mid ? 1.0f : 0.0f);
 
-  // The noise is tied to the ground: its frame is Earth-fixed, centred on the region's middle
-  // (so floats keep their precision), and drifts with the wind from the start of the scene's
-  // time (a cloud at x now was at x - drift then).
-  const double midLat = 0.5 * (region.lat[0] + region.lat[1]);
-  const double midLon = 0.5 * (region.lon[0] + region.lon[1]);
-  const glm::dvec3 reference = ecefFromLatLonAltitude(midLat, midLon, 0.0);
+  // The noise is tied to the ground: it tiles Earth-fixed (ECEF) space, whatever the region or
+  // the camera, and drifts with the wind from the start of the scene's time (a cloud at x now
+  // was at x - drift then). Each texture's origin is the camera's ECEF position less the drift,
+  // reduced in double by whole repeats of that texture, so floats keep their precision and the
+  // lookups equal those of the unreduced position exactly.
+  const double shapeM = c.shapeScaleKm * 1000.0, detailM = c.detailScaleKm * 1000.0;
   const glm::dvec3 camera = ecefFromLatLonAltitude(g.latDeg, g.lonDeg, g.altitudeM);
-  const glm::dmat3 enu = enuToEcefRotation(midLat, midLon);
+  const glm::dmat3 enu = enuToEcefRotation(g.latDeg, g.lonDeg);
   const double elapsed = time.secondsSince(scene.time.start);
   const double toward = (c.windFrom + 180.0) * kDeg;
   const glm::dvec3 drift =
       c.windSpeedMs * elapsed * (std::sin(toward) * enu[0] + std::cos(toward) * enu[1]);
-  p.noiseOrigin = glm::vec4(glm::vec3(camera - reference - drift), 0.0f);
-  const double shapeM = c.shapeScaleKm * 1000.0, detailM = c.detailScaleKm * 1000.0;
+  const glm::dvec3 noise = camera - drift;
+  auto reduced = [](const glm::dvec3& v, double period) {
+    return glm::vec3(v - period * glm::floor(v / period));
+  };
+  p.shapeOrigin = glm::vec4(reduced(noise, shapeM), 0.0f);
+  p.detailOrigin = glm::vec4(reduced(noise, detailM), 0.0f);
+  // The curl texture lies on the ground plane at the camera (east, north): its origin is the
+  // noise position's east and north coordinates, reduced by whole repeats (shapeM) likewise.
+  const glm::dvec2 ground(glm::dot(noise, enu[0]), glm::dot(noise, enu[1]));
+  const glm::dvec2 curl = ground - shapeM * glm::floor(ground / shapeM);
+  p.curlOrigin = glm::vec4(float(curl.x), float(curl.y), 0.0f, 0.0f);
   p.noiseScale = glm::vec4(static_cast<float>(1.0 / shapeM), static_cast<float>(1.0 / detailM),
                            kCurlStrength, static_cast<float>(1.0 / shapeM));
   p.march = glm::vec4(static_cast<float>(c.stepM), static_cast<float>(c.stepGrowth),
@@ -142,10 +171,11 @@ shared::CloudParams cloudParams(const Scene& scene, const LightingState& lightin
 }
 
 VolumetricCloudsPass::VolumetricCloudsPass(const Context& ctx, ShaderCompiler& compiler)
-    : mPipeline(buildPipeline(ctx, compiler, "volumetric_clouds.comp", kName)) {}
+    : mPipelines(ctx, compiler, "volumetric_clouds.comp", kName) {}
 
 VolumetricCloudsPass::Outputs VolumetricCloudsPass::setup(GraphBuilder& b, const Inputs& in) {
   mInputs = in;
+  mPipeline = &mPipelines.get(in.params);
   readTextures(b, in.textures);
   ImageDesc desc;
   desc.width = in.params.view.size.x;
@@ -166,7 +196,7 @@ void VolumetricCloudsPass::execute(PassContext& ctx) const {
   const auto& size = mInputs.params.view.size;
   const CloudTextures& t = mInputs.textures;
   ctx.dispatch(
-      mPipeline,
+      *mPipeline,
       {Binding::of(VOLUMETRIC_CLOUDS_BINDING_PARAMS, ctx.uniform(mInputs.params)),
        Binding::of(VOLUMETRIC_CLOUDS_BINDING_LIGHTING, ctx.uniform(mInputs.lighting)),
        Binding::of(VOLUMETRIC_CLOUDS_BINDING_CLOUDS, mOutputs.clouds),
@@ -177,14 +207,15 @@ void VolumetricCloudsPass::execute(PassContext& ctx) const {
        Binding::of(VOLUMETRIC_CLOUDS_BINDING_CURL, t.curl, t.noiseSampler),
        Binding::of(VOLUMETRIC_CLOUDS_BINDING_WEATHER, t.weather, t.weatherSampler),
        Binding::of(VOLUMETRIC_CLOUDS_BINDING_WEATHER_COARSE, t.weatherCoarse, t.weatherSampler)},
-      mPipeline.groupsX(size.x), mPipeline.groupsY(size.y));
+      mPipeline->groupsX(size.x), mPipeline->groupsY(size.y));
 }
 
 CloudDensitySlicePass::CloudDensitySlicePass(const Context& ctx, ShaderCompiler& compiler)
-    : mPipeline(buildPipeline(ctx, compiler, "cloud_density_slice.comp", kName)) {}
+    : mPipelines(ctx, compiler, "cloud_density_slice.comp", kName) {}
 
 CloudDensitySlicePass::Outputs CloudDensitySlicePass::setup(GraphBuilder& b, const Inputs& in) {
   mInputs = in;
+  mPipeline = &mPipelines.get(in.params);
   readTextures(b, in.textures);
   ImageDesc desc;
   desc.width = kWidth;
@@ -198,7 +229,7 @@ CloudDensitySlicePass::Outputs CloudDensitySlicePass::setup(GraphBuilder& b, con
 void CloudDensitySlicePass::execute(PassContext& ctx) const {
   const CloudTextures& t = mInputs.textures;
   ctx.dispatch(
-      mPipeline,
+      *mPipeline,
       {Binding::of(VOLUMETRIC_CLOUDS_BINDING_PARAMS, ctx.uniform(mInputs.params)),
        Binding::of(CLOUD_SLICE_BINDING_IMAGE, mOutputs.slice),
        Binding::of(VOLUMETRIC_CLOUDS_BINDING_SHAPE, t.shape, t.noiseSampler),
@@ -206,7 +237,7 @@ void CloudDensitySlicePass::execute(PassContext& ctx) const {
        Binding::of(VOLUMETRIC_CLOUDS_BINDING_CURL, t.curl, t.noiseSampler),
        Binding::of(VOLUMETRIC_CLOUDS_BINDING_WEATHER, t.weather, t.weatherSampler),
        Binding::of(VOLUMETRIC_CLOUDS_BINDING_WEATHER_COARSE, t.weatherCoarse, t.weatherSampler)},
-      mPipeline.groupsX(kWidth), mPipeline.groupsY(kHeight));
+      mPipeline->groupsX(kWidth), mPipeline->groupsY(kHeight));
 }
 
 }  // namespace sky

@@ -5,6 +5,8 @@
 // density, lit by the frame's LightingState. Also the density-slice debug view, a vertical
 // cut through the density field along the camera's heading. See docs/clouds.md.
 #include <array>
+#include <map>
+#include <memory>
 
 #include "engine/gpu/compute_pipeline.h"
 #include "engine/graph/frame_graph.h"
@@ -28,6 +30,23 @@ struct CloudTextures {
   const Sampler* weatherSampler = nullptr;  // linear, clamp
 };
 
+// The cloud shaders compiled for the scene's fixed choices (CloudParams.frame x/z/w and
+// .options: ray start, light steps, octaves, phase, energy-conserving steps, coverage mode and
+// model) as constants, one pipeline per combination, built on first use and kept. A
+// time-lapse uses one; changing a choice costs one compile.
+class CloudPipelines {
+public:
+  CloudPipelines(const Context& ctx, ShaderCompiler& compiler, const char* file, const char* name);
+  const ComputePipeline& get(const shared::CloudParams& params);
+
+private:
+  const Context& mCtx;
+  ShaderCompiler& mCompiler;
+  const char* mFile;
+  const char* mName;
+  std::map<std::array<uint32_t, 7>, std::unique_ptr<ComputePipeline>> mPipelines;
+};
+
 class VolumetricCloudsPass {
 public:
   static constexpr const char* kName = "volumetric_clouds";
@@ -47,7 +66,8 @@ public:
   void execute(PassContext& ctx) const;
 
 private:
-  ComputePipeline mPipeline;
+  CloudPipelines mPipelines;
+  const ComputePipeline* mPipeline = nullptr;  // this frame's variant, chosen in setup()
   Inputs mInputs{};
   Outputs mOutputs;
 };
@@ -69,7 +89,8 @@ public:
   void execute(PassContext& ctx) const;
 
 private:
-  ComputePipeline mPipeline;
+  CloudPipelines mPipelines;
+  const ComputePipeline* mPipeline = nullptr;
   Inputs mInputs{};
   Outputs mOutputs;
 };

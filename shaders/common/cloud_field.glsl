@@ -10,7 +10,36 @@
 #include "geo.glsl"
 #include "cloud_density.glsl"
 
-layout(std140, binding = VOLUMETRIC_CLOUDS_BINDING_PARAMS) uniform CloudParamsBlock {
+// The scene's fixed choices are compile-time constants, one pipeline per combination
+// (passes/volumetric_clouds, CloudPipelines): CLOUD_TOPDOWN, CLOUD_LIGHT_STEPS, CLOUD_OCTAVES,
+// CLOUD_DUAL_LOBE, CLOUD_ENERGY_CONSERVING, CLOUD_CALIBRATED and CLOUD_TANG mirror
+// CloudParams.frame and .options. The compiler then drops the unused model and unrolls the
+// light march, which a uniform cannot give (lavapipe did it by recompiling every frame).
+// Standing alone (the shader tests compile every file on its own) the file takes the default
+// scene's choices; the pass always defines all seven.
+#ifndef CLOUD_TOPDOWN
+#define CLOUD_TOPDOWN 0
+#endif
+#ifndef CLOUD_LIGHT_STEPS
+#define CLOUD_LIGHT_STEPS 5
+#endif
+#ifndef CLOUD_OCTAVES
+#define CLOUD_OCTAVES 3
+#endif
+#ifndef CLOUD_DUAL_LOBE
+#define CLOUD_DUAL_LOBE 1
+#endif
+#ifndef CLOUD_ENERGY_CONSERVING
+#define CLOUD_ENERGY_CONSERVING 1
+#endif
+#ifndef CLOUD_CALIBRATED
+#define CLOUD_CALIBRATED 1
+#endif
+#ifndef CLOUD_TANG
+#define CLOUD_TANG 0
+#endif
+
+layout(std140, binding = VOLUMETRIC_CLOUDS_BINDING_PARAMS) readonly buffer CloudParamsBlock {
   CloudParams params;
 };
 layout(binding = VOLUMETRIC_CLOUDS_BINDING_SHAPE) uniform sampler3D shapeNoise;
@@ -35,7 +64,7 @@ float coverageLutEntry(int index) {
 // from the table built from the baked noise (passes/volumetric_clouds), bilinear in cover and
 // type so a map whose type varies stays continuous.
 float coverageThreshold(int layer, float type, float cover) {
-  if (params.options.z == 0u) return 1.0 - cover;
+  if (CLOUD_CALIBRATED == 0) return 1.0 - cover;
   float x = clamp(cover, 0.0, 1.0) * float(CLOUD_COVERAGE_LUT_SIZE - 1);
   float y = clamp(type, 0.0, 1.0) * float(CLOUD_COVERAGE_TYPE_KEYS - 1);
   int x0 = min(int(x), CLOUD_COVERAGE_LUT_SIZE - 2);
@@ -49,10 +78,11 @@ float coverageThreshold(int layer, float type, float cover) {
   return mix(a, b, fy);
 }
 
-// The noise's Earth-fixed coordinates (m) of point p of the frame: the noise stays with the
-// ground (and the wind) when the camera moves.
-vec3 noisePosition(vec3 p) {
-  return params.noiseOrigin.xyz + p.x * params.geo.east.xyz + p.y * params.geo.north.xyz + p.z * params.geo.up.xyz;
+// Point p of the frame in ECEF axes relative to the camera (m). Added to a texture's origin
+// (shapeOrigin, detailOrigin) it gives the point's Earth-fixed noise position, so the noise
+// stays with the ground (and the wind) when the camera moves.
+vec3 ecefOffset(vec3 p) {
+  return p.x * params.geo.east.xyz + p.y * params.geo.north.xyz + p.z * params.geo.up.xyz;
 }
 
 // The cloud at point p. Returns false where no cloud can be (outside both layers, outside the
@@ -87,26 +117,26 @@ bool cloudSampleAt(vec3 p, out CloudSample s) {
   s.hBottom = max(f - range.x, 0.0) * (top - base);
   if (cover <= 0.0 || s.ph < 0.0 || s.ph > 1.0) return true;
 
-  vec3 q = noisePosition(p);
-  vec4 shape = textureLod(shapeNoise, q * params.noiseScale.x, 0.0);
-  vec3 dq = q * params.noiseScale.y;
+  vec3 offset = ecefOffset(p);
+  vec4 shape = textureLod(shapeNoise, (params.shapeOrigin.xyz + offset) * params.noiseScale.x, 0.0);
+  vec3 dq = (params.detailOrigin.xyz + offset) * params.noiseScale.y;
   float threshold = coverageThreshold(layer, type, cover);
   // The detail noise only erodes (Lu (18), Tang's erosion): where the shape alone leaves no
   // cloud there is none, and the costly detail lookup is skipped.
-  bool tang = params.options.w == 1u;
+  const bool tang = CLOUD_TANG != 0;
   // Lu's height profile (6)(10) and erosion (15) read CMc too: a cell at 30 % cover gets
   // clouds only 30 % of the layer tall and a third as dense, which no threshold can make look
   // 30 % covered. Calibrated coverage therefore evaluates them as for full cover (the shape of
   // a well-developed cloud) and leaves the cover to the calibrated threshold alone; the paper's
   // mode keeps CMc everywhere. engine/clouds/coverage_calibration.h calibrates the same way.
-  float profileCover = params.options.z != 0u ? 1.0 : cover;
+  float profileCover = CLOUD_CALIBRATED != 0 ? 1.0 : cover;
   float shapeOnly = tang ? tangDensity(tangBaseShape(shape, s.ph, type), 0.0, cover, threshold)
                          : luNSfinal(luNStex(shape), luGS(s.ph, profileCover), threshold);
   if (shapeOnly <= 0.0) return true;
   float density;
   if (tang) {
     // Tang: curl noise bends the detail lookup, more at the bottom where the billows are.
-    vec2 ground = vec2(dot(q, params.geo.east.xyz), dot(q, params.geo.north.xyz));
+    vec2 ground = params.curlOrigin.xy + p.xy;  // east, north on the camera's ground plane
     vec3 curl = textureLod(curlNoise, ground * params.noiseScale.w, 0.0).xyz * 2.0 - 1.0;
     dq += curl * params.noiseScale.z * (1.0 - s.ph);
     vec3 detail = textureLod(detailNoise, dq, 0.0).rgb;

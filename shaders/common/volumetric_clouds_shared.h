@@ -38,13 +38,20 @@ struct CloudParams {
   ViewState view;
   GeoFrame geo;         // the camera's frame (top-down: the region's centre, above the clouds)
   GeoRegion region;     // the weather map's bounds
+  // frame.xzw and options pick the shader variant (compile-time constants, cloud_field.glsl);
+  // the shader reads only frame.y.
   uvec4 frame;          // x: CLOUD_FRAME_*; y: max view steps; z: light steps; w: octaves
   uvec4 options;        // x: phase (0 hg, 1 dual lobe); y: energy-conserving steps (1) or not;
                         // z: calibrated coverage (1) or paper (0); w: model (0 lu2023, 1 tang2019)
   vec4 layers;          // low base, low top, mid base, mid top (m above sea level)
   vec4 shell;           // x, y: march between these altitudes (the layers with cover);
                         // z: top-down rays start at this altitude; w: 1 if any cover, else 0
-  vec4 noiseOrigin;     // xyz: the camera in the noise's Earth-fixed frame (m), wind included
+  // The camera in each noise texture's Earth-fixed frame (ECEF axes, m, wind drift taken
+  // off), reduced by whole repeats of that texture so floats keep their precision.
+  vec4 shapeOrigin;     // xyz: for the shape noise (repeat 1 / noiseScale.x)
+  vec4 detailOrigin;    // xyz: for the detail noise (repeat 1 / noiseScale.y)
+  vec4 curlOrigin;      // xy: east and north on the ground plane at the camera, for the curl
+                        // noise (repeat 1 / noiseScale.w)
   vec4 noiseScale;      // x: shape repeats per metre; y: detail repeats per metre;
                         // z: curl strength (tang2019, detail repeats); w: curl repeats per metre
   vec4 march;           // x: step at the camera (m); y: growth per metre; z: transmittance
@@ -67,7 +74,7 @@ SKY_SHARED_END
 
 #ifdef __cplusplus
 static_assert(sizeof(sky::shared::CloudParams) ==
-                  64 + 64 + 16 + 2 * 16 + 17 * 16 + CLOUD_COVERAGE_LUT_VEC4S * 16,
+                  64 + 64 + 16 + 2 * 16 + 19 * 16 + CLOUD_COVERAGE_LUT_VEC4S * 16,
               "std140 layout of CloudParams");
 #endif
 #endif

@@ -445,8 +445,8 @@ TEST_F(RegionalCoverTest, CoverUploadsOncePerRevision) {
 TEST(HighCloudCoverSource, WeatherWhenTheMapHasAHighLayer) {
   Scene scene;
   scene.highClouds.source = "procedural";
-  WeatherMap withHigh =
-      highCoverMap(scene.weather.region, 2, 2, [](uint32_t, uint32_t) { return 0.5f; });
+  WeatherMap withHigh = highCoverMap(WeatherRegion{{45.0, 50.0}, {5.0, 12.0}}, 2, 2,
+                                     [](uint32_t, uint32_t) { return 0.5f; });
   WeatherMap without = withHigh;
   without.coverHigh.clear();
 

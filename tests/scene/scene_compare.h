@@ -137,10 +137,14 @@ inline void expectSameScene(const Scene& a, const Scene& b) {
   EXPECT_EQ(ac.mid.topM, bc.mid.topM);
   const WeatherSettings &aw = a.weather, &bw = b.weather;
   EXPECT_EQ(aw.source, bw.source);
-  EXPECT_EQ(aw.region.lat[0], bw.region.lat[0]);
-  EXPECT_EQ(aw.region.lat[1], bw.region.lat[1]);
-  EXPECT_EQ(aw.region.lon[0], bw.region.lon[0]);
-  EXPECT_EQ(aw.region.lon[1], bw.region.lon[1]);
+  EXPECT_EQ(aw.region.has_value(), bw.region.has_value());
+  if (aw.region && bw.region) {
+    EXPECT_EQ(aw.region->lat[0], bw.region->lat[0]);
+    EXPECT_EQ(aw.region->lat[1], bw.region->lat[1]);
+    EXPECT_EQ(aw.region->lon[0], bw.region->lon[0]);
+    EXPECT_EQ(aw.region->lon[1], bw.region->lon[1]);
+  }
+  EXPECT_EQ(aw.cameraRegionKm, bw.cameraRegionKm);
   EXPECT_EQ(aw.coverLow, bw.coverLow);
   EXPECT_EQ(aw.coverMid, bw.coverMid);
   EXPECT_EQ(aw.spread, bw.spread);
@@ -248,8 +252,8 @@ inline Scene unusualScene() {
   s.clouds.low = {0.0, 1e-3};
   s.clouds.mid = {1e-3, 30000.0};
   s.weather.source = "image";
-  s.weather.region.lat = {-90.0, -89.99999999999999};
-  s.weather.region.lon = {-180.0, 1.0 / 3.0};
+  s.weather.region = WeatherRegion{{-90.0, -89.99999999999999}, {-180.0, 1.0 / 3.0}};
+  s.weather.cameraRegionKm = 10000.0 / 3.0;
   s.weather.coverLow = 1.0;
   s.weather.coverMid = 0.30000000000000004;
   s.weather.spread = 0.0;

@@ -528,13 +528,18 @@ TEST(SceneErrors, CloudAndWeatherRules) {
             "x.yaml:3:5: clouds.mid: base_m must not lie below low.top_m");
   EXPECT_EQ(yamlError("weather:\n  cover_low: 1.5\n"),
             "x.yaml:2:14: weather.cover_low: 1.5 is out of range [0, 1]");
-  EXPECT_EQ(yamlError("weather:\n  region:\n    lat: [50, 45]\n"),
+  EXPECT_EQ(yamlError("weather:\n  region:\n    lat: [50, 45]\n    lon: [5, 12]\n"),
             "x.yaml:3:10: weather.region.lat: south (first) must be below north (second)");
-  EXPECT_EQ(yamlError("weather:\n  region:\n    lon: [5]\n"),
+  EXPECT_EQ(yamlError("weather:\n  region:\n    lon: [5]\n    lat: [45, 50]\n"),
             "x.yaml:3:10: weather.region.lon: expected a list of 2 numbers [from, to], got a list "
             "of 1");
-  EXPECT_EQ(yamlError("weather:\n  region:\n    lat: [-95, 4]\n"),
+  EXPECT_EQ(yamlError("weather:\n  region:\n    lat: [-95, 4]\n    lon: [5, 12]\n"),
             "x.yaml:3:11: weather.region.lat[0]: -95 is out of range [-90, 90]");
+  // A region is both bounds or none: half of one filled in from defaults would be a guess.
+  EXPECT_EQ(yamlError("weather:\n  region:\n    lat: [45, 50]\n"),
+            "x.yaml:3:5: weather.region: missing key 'lon'");
+  EXPECT_EQ(yamlError("weather:\n  camera_region_km: 5\n"),
+            "x.yaml:2:21: weather.camera_region_km: 5 is out of range [10, 10000]");
   EXPECT_EQ(yamlError("clouds:\n  model: schneider\n"),
             "x.yaml:2:10: clouds.model: 'schneider' is not allowed: use lu2023 or tang2019");
   EXPECT_EQ(yamlError("clouds:\n  energy_conserving: yes\n"),

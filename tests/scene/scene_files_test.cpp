@@ -388,7 +388,8 @@ nlohmann::json defaultsOf(const nlohmann::json& schema) {
   nlohmann::json out = nlohmann::json::object();
   for (auto& [key, prop] : schema["properties"].items()) {
     nlohmann::json d = defaultsOf(prop);
-    if (!d.is_null()) out[key] = d;
+    // An optional section (weather.region) has no defaults: absent means absent.
+    if (!d.is_null() && !(d.is_object() && d.empty())) out[key] = d;
   }
   return out;
 }

@@ -150,9 +150,10 @@ TEST(SceneRoundTrip, UnusualSceneDiffersFromTheDefaultEverywhere) {
   // it even if the reader or writer forgot that field: every scalar above and the palette's
   // length (3 against 8). 66 before the clouds: + camera mode, 24 cloud and 13 + 2 + 9 + 2
   // weather values; then high_clouds.cover_source and weather time, local radius, evolution
-  // and automaton.
+  // and automaton. The weather region counts once (given against absent) where its four
+  // numbers counted before, and camera_region_km once.
   EXPECT_EQ(failuresOf([] { expectSameScene(test::unusualScene(), Scene()); }),
-            66 + 1 + 24 + 13 + 2 + 9 + 2 + 1 + 4);
+            66 + 1 + 24 + 13 + 2 + 9 + 2 + 1 + 4 - 4 + 1 + 1);
   const std::vector<PaletteKey> palette = test::unusualScene().lighting.palette;
   for (size_t i = 0; i < palette.size(); ++i) {
     const PaletteKey& k = palette[i];
@@ -323,9 +324,7 @@ TEST(SceneRoundTrip, PrintedYamlLooksLikeAScene) {
             "    top_m: 6500\n"
             "weather:\n"
             "  source: \"procedural\"\n"
-            "  region:\n"
-            "    lat: [45, 50]\n"
-            "    lon: [5, 12]\n"
+            "  camera_region_km: 800\n"
             "  cover_low: 0\n"
             "  cover_mid: 0\n"
             "  spread: 0.5\n"
@@ -495,10 +494,7 @@ TEST(SceneRoundTrip, PrintedJsonLooksLikeAScene) {
             "  },\n"
             "  \"weather\": {\n"
             "    \"source\": \"procedural\",\n"
-            "    \"region\": {\n"
-            "      \"lat\": [45, 50],\n"
-            "      \"lon\": [5, 12]\n"
-            "    },\n"
+            "    \"camera_region_km\": 800,\n"
             "    \"cover_low\": 0,\n"
             "    \"cover_mid\": 0,\n"
             "    \"spread\": 0.5,\n"

@@ -245,7 +245,7 @@ TEST_F(CloudViewTest, WindCarriesTheCloudsDownwind) {
                        "weather.spread=0", "weather.cover_low=0.5", "clouds.shape_scale_km=40",
                        "clouds.wind_speed_ms=20", "clouds.wind_from=270"});
   const int w = scene.output.width, h = scene.output.height;
-  const glm::dvec2 pixelKm = regionSizeKm(scene.weather.region) / glm::dvec2(w, h);
+  const glm::dvec2 pixelKm = regionSizeKm(*scene.weather.region) / glm::dvec2(w, h);
   const double km = 20.0 * 600.0 / 1000.0;  // 20 m/s for 10 minutes
   const IsoTime later = scene.time.start.plusSeconds(600.0);
   const std::vector<float> now = CloudLayerView(render(scene)).alpha();
@@ -372,6 +372,58 @@ TEST_F(CloudViewTest, CloudDebugOutputWithoutCloudsIsBadInput) {
         << e.what();
     EXPECT_NE(std::string(e.what()).find("no low or mid clouds"), std::string::npos) << e.what();
   }
+}
+
+}  // namespace
+}  // namespace sky
+
+namespace sky {
+namespace {
+
+// The noise is tied to the ground, not to the camera or the region: a fixed point of the
+// Earth finds the same texels of every noise texture from two cameras 1.3 km apart at
+// different altitudes, over different regions (or none), and the wind moves it by exactly
+// speed x time. Compared modulo each texture's repeat, since the textures tile.
+TEST(CloudNoiseFrame, TheNoiseStaysWithTheGround) {
+  Scene a = cloudScene("cumulus_noon");
+  Scene b = a;
+  b.camera.latitude += 0.009;
+  b.camera.longitude -= 0.011;
+  b.camera.altitudeM = 1800.0;
+  b.weather.region = WeatherRegion{{46.0, 49.0}, {7.0, 10.5}};
+  const shared::ViewState view = makeViewState(a.camera, 8, 8);
+  const auto params = [&](const Scene& s, const IsoTime& t) {
+    return cloudParams(s, computeLighting(s, t), t, view, glm::vec2(0.5f, 0.0f), glm::uvec2(256),
+                       {});
+  };
+  const double shapeM = a.clouds.shapeScaleKm * 1000.0, detailM = a.clouds.detailScaleKm * 1000.0;
+  const glm::dvec3 point = ecefFromLatLonAltitude(47.38, 8.53, 1200.0);
+  // The texel coordinate of `point` (m, before the repeat) seen from `s`.
+  const auto at = [&](const Scene& s, const glm::vec4& origin) {
+    const glm::dvec3 camera =
+        ecefFromLatLonAltitude(s.camera.latitude, s.camera.longitude, s.camera.altitudeM);
+    return glm::dvec3(origin) + (point - camera);
+  };
+  const auto sameTexel = [](const glm::dvec3& p, const glm::dvec3& q, double period) {
+    for (int k = 0; k < 3; ++k) {
+      const double d = std::remainder(p[k] - q[k], period);
+      EXPECT_NEAR(d, 0.0, 0.05) << "axis " << k << " (m)";
+    }
+  };
+  const shared::CloudParams pa = params(a, a.time.start), pb = params(b, b.time.start);
+  sameTexel(at(a, pa.shapeOrigin), at(b, pb.shapeOrigin), shapeM);
+  sameTexel(at(a, pa.detailOrigin), at(b, pb.detailOrigin), detailM);
+  // The origins keep float precision: within one repeat.
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_GE(pa.shapeOrigin[k], 0.0f);
+    EXPECT_LT(pa.shapeOrigin[k], float(shapeM));
+  }
+  // An hour later the noise has moved with the wind (from 270: toward the east).
+  const IsoTime later{a.time.start.unixSeconds + 3600, 0.0, a.time.start.offsetMinutes};
+  const shared::CloudParams pl = params(a, later);
+  const glm::dvec3 east = enuToEcefRotation(a.camera.latitude, a.camera.longitude)[0];
+  sameTexel(at(a, pl.shapeOrigin) + a.clouds.windSpeedMs * 3600.0 * east, at(a, pa.shapeOrigin),
+            shapeM);
 }
 
 }  // namespace

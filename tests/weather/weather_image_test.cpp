@@ -37,8 +37,7 @@ protected:
     Scene s;
     s.weather.source = "image";
     s.weather.image = image;
-    s.weather.region.lat = {40.0, 44.0};
-    s.weather.region.lon = {-2.0, 4.0};
+    s.weather.region = WeatherRegion{{40.0, 44.0}, {-2.0, 4.0}};
     s.baseDir = mDir;
     return s;
   }

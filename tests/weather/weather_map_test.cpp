@@ -23,8 +23,7 @@ using test::catchError;
 Scene proceduralScene(double low, double mid, double spread, int resolution = 96, int seed = 1) {
   Scene scene;
   scene.weather.source = "procedural";
-  scene.weather.region.lat = {44.0, 50.0};
-  scene.weather.region.lon = {4.0, 13.0};
+  scene.weather.region = WeatherRegion{{44.0, 50.0}, {4.0, 13.0}};
   scene.weather.coverLow = low;
   scene.weather.coverMid = mid;
   scene.weather.spread = spread;
@@ -149,12 +148,10 @@ double crossingsPerKm(const WeatherMap& map, double widthKm) {
 TEST(WeatherMapProcedural, FeatureSizeIsInKilometresAtEveryLatitude) {
   // Two regions about 1110 km square: at the equator 10 degrees of longitude, at 60N 20.
   Scene equator = proceduralScene(0.5, 0.0, 0.5, 160);
-  equator.weather.region.lat = {-5.0, 5.0};
-  equator.weather.region.lon = {0.0, 10.0};
+  equator.weather.region = WeatherRegion{{-5.0, 5.0}, {0.0, 10.0}};
   equator.weather.scaleKm = 60.0;
   Scene north = equator;
-  north.weather.region.lat = {55.0, 65.0};
-  north.weather.region.lon = {0.0, 20.0};
+  north.weather.region = WeatherRegion{{55.0, 65.0}, {0.0, 20.0}};
   const WeatherMap a = makeWeatherMap(equator), b = makeWeatherMap(north);
   EXPECT_EQ(a.width, b.width);
   const double ratio = crossingsPerKm(b, 1112.0) / crossingsPerKm(a, 1112.0);
@@ -169,8 +166,8 @@ TEST(WeatherMapProcedural, FeatureSizeIsInKilometresAtEveryLatitude) {
 
 TEST(WeatherMapProcedural, SizeFollowsTheRegionInKilometres) {
   Scene wide = proceduralScene(0.3, 0.0, 0.5, 100);
-  wide.weather.region.lat = {0.0, 10.0};
-  wide.weather.region.lon = {0.0, 20.0};  // 2 : 1 in km at 5N (cos 5 = 0.996)
+  wide.weather.region =
+      WeatherRegion{{0.0, 10.0}, {0.0, 20.0}};  // 2 : 1 in km at 5N (cos 5 = 0.996)
   WeatherMap map = makeWeatherMap(wide);
   EXPECT_EQ(map.width, 100u);
   EXPECT_EQ(map.height, 50u);
@@ -178,15 +175,15 @@ TEST(WeatherMapProcedural, SizeFollowsTheRegionInKilometres) {
   EXPECT_EQ(map.region, wide.weather.region);
 
   Scene tall = wide;
-  tall.weather.region.lat = {50.0, 70.0};  // 2224 km north-south
-  tall.weather.region.lon = {0.0, 10.0};   // 10 degrees at 60N: 556 km
+  // 2224 km north-south, 10 degrees at 60N: 556 km east-west.
+  tall.weather.region = WeatherRegion{{50.0, 70.0}, {0.0, 10.0}};
   map = makeWeatherMap(tall);
   EXPECT_EQ(map.height, 100u);
   EXPECT_EQ(map.width, 25u);
 
   Scene thin = wide;
-  thin.weather.region.lat = {0.0, 0.05};  // a sliver: still two texels across
-  EXPECT_EQ(proceduralMapSize(thin.weather), glm::uvec2(100, 2));
+  thin.weather.region->lat = {0.0, 0.05};  // a sliver: still two texels across
+  EXPECT_EQ(proceduralMapSize(thin.weather, *thin.weather.region), glm::uvec2(100, 2));
 }
 
 TEST(WeatherMapProcedural, TheFbmIsStandardised) {
@@ -217,7 +214,7 @@ TEST(WeatherMapProcedural, BadSettingsNameTheKey) {
   EXPECT_EQ(e.kind(), ErrorKind::BadInput);
   EXPECT_NE(std::string(e.what()).find("weather.cloud_type: 'nimbus'"), std::string::npos);
   scene = proceduralScene(0.3, 0.0, 0.5);
-  scene.weather.region.lat = {50.0, 40.0};
+  scene.weather.region = WeatherRegion{{50.0, 40.0}, {5.0, 12.0}};
   e = catchError([&] { makeWeatherMap(scene); });
   EXPECT_NE(std::string(e.what()).find("weather.region.lat"), std::string::npos);
   scene = proceduralScene(0.3, 0.0, 0.5);
@@ -239,8 +236,7 @@ TEST(CloudType, ValuesByFamily) {
 // centres sit at lon 0.5, 1.5, 2.5 and lat 41.5 (row 0, north), 40.5 (row 1).
 WeatherMap handMap() {
   WeatherMap map;
-  map.region.lat = {40.0, 42.0};
-  map.region.lon = {0.0, 3.0};
+  map.region = WeatherRegion{{40.0, 42.0}, {0.0, 3.0}};
   map.width = 3;
   map.height = 2;
   for (int y = 0; y < 2; ++y)

@@ -27,8 +27,7 @@ using test::GpuTest;
 // with empty space to skip and cloud edges at every phase of the coarse grid.
 WeatherMap sparseMap(uint32_t width, uint32_t height, uint32_t seed) {
   WeatherMap map;
-  map.region.lat = {10.0, 12.0};
-  map.region.lon = {20.0, 23.0};
+  map.region = WeatherRegion{{10.0, 12.0}, {20.0, 23.0}};
   map.width = width;
   map.height = height;
   map.texels.assign(size_t(width) * height, glm::vec4(0.0f, 0.0f, 1.0f, 1.0f));

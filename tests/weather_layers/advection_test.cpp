@@ -66,10 +66,13 @@ TEST(Advection, TheForecastDriftsWithItsWindOnlyOutsideItsSteps) {
   const WeatherFields fields = readWeatherFile(scene);
   ASSERT_EQ(fields.steps.size(), 1u);
   const double valid = fields.steps[0].validTimeUnix;
-  const WeatherMap still = weatherMapFromFields(fields, valid + 6 * 3600.0, scene.weather);
+  const WeatherMap still =
+      weatherMapFromFields(fields, valid + 6 * 3600.0, scene.weather, *scene.weather.region);
   scene.weather.advection = "data";
-  const WeatherMap atStep = weatherMapFromFields(fields, valid, scene.weather);
-  const WeatherMap later = weatherMapFromFields(fields, valid + 6 * 3600.0, scene.weather);
+  const WeatherMap atStep =
+      weatherMapFromFields(fields, valid, scene.weather, *scene.weather.region);
+  const WeatherMap later =
+      weatherMapFromFields(fields, valid + 6 * 3600.0, scene.weather, *scene.weather.region);
   double same = 0.0, moved = 0.0;
   for (size_t i = 0; i < still.texels.size(); ++i) {
     same += std::fabs(atStep.texels[i].r - still.texels[i].r);
@@ -89,14 +92,25 @@ TEST(Advection, TheForecastDriftsWithItsWindOnlyOutsideItsSteps) {
 
   // No wind at the steering level: one line naming the key and the levels the file has.
   scene.weather.steeringHpa = 850.0;
-  const Error e =
-      test::catchError([&] { weatherMapFromFields(fields, valid + 3600.0, scene.weather); });
+  const WeatherRegion& region = *scene.weather.region;
+  const Error e = test::catchError(
+      [&] { weatherMapFromFields(fields, valid + 3600.0, scene.weather, region); });
   EXPECT_EQ(e.kind(), ErrorKind::BadInput);
   const std::string what = e.what();
   EXPECT_NE(what.find("weather.advection: data needs the wind (u and v) at steering_hpa 850"),
             std::string::npos)
       << what;
   EXPECT_NE(what.find("has u at 500 hPa"), std::string::npos) << what;
+
+  // A file with no wind at all says so, not "has u at  hPa" with an empty list.
+  WeatherFields calm = fields;
+  for (WeatherStep& step : calm.steps)
+    std::erase_if(step.fields, [](const LevelField& f) { return f.name == "u" || f.name == "v"; });
+  const std::string none = test::catchError([&] {
+                             weatherMapFromFields(calm, valid + 3600.0, scene.weather, region);
+                           }).what();
+  EXPECT_NE(none.find("has no u wind at any level"), std::string::npos) << none;
+  EXPECT_EQ(none.find(" at  hPa"), std::string::npos) << none;
 }
 
 }  // namespace

@@ -18,6 +18,10 @@
 
 namespace sky {
 namespace {
+
+// Where a test does not care about the region: layerCover's region only sets the altitudes'
+// means.
+const WeatherRegion kTestRegion{{45.0, 50.0}, {5.0, 12.0}};
 using test::catchError;
 
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
@@ -114,7 +118,7 @@ TEST(LayerCover, MaximumOverTheLayersLevels) {
   set(500, 0.72f);   // mid: 0.04
   set(300, 0.9f);    // high (rh_cr 0.8): 0.25
   const WeatherSettings w;
-  const LayerCover c = layerCover(oneStep(g, f), 0.0, w, w.region);
+  const LayerCover c = layerCover(oneStep(g, f), 0.0, w, kTestRegion);
   ASSERT_EQ(c.low.size(), g.size());
   EXPECT_NEAR(c.low[k], 0.5625f, 1e-6f);
   EXPECT_NEAR(c.mid[k], 0.25f, 1e-6f);
@@ -130,7 +134,7 @@ TEST(LayerCover, BoundaryLevelsBelongToBothLayersAndBoundsAreSettable) {
   for (LevelField& l : f)
     if (l.pressureHpa == 800) l.values.assign(g.size(), 1.0f);
   WeatherSettings w;
-  LayerCover c = layerCover(oneStep(g, f), 0.0, w, w.region);
+  LayerCover c = layerCover(oneStep(g, f), 0.0, w, kTestRegion);
   EXPECT_EQ(c.low[0], 1.0f);  // [800, 1000]
   EXPECT_EQ(c.mid[0], 1.0f);  // [450, 800]
   EXPECT_EQ(c.high[0], 0.0f);
@@ -140,7 +144,7 @@ TEST(LayerCover, BoundaryLevelsBelongToBothLayersAndBoundsAreSettable) {
   w.mid.rhCritical = 0.9;
   for (LevelField& l : f)
     if (l.pressureHpa == 800) l.values.assign(g.size(), 0.95f);
-  c = layerCover(oneStep(g, f), 0.0, w, w.region);
+  c = layerCover(oneStep(g, f), 0.0, w, kTestRegion);
   EXPECT_EQ(c.low[0], 0.0f);
   EXPECT_NEAR(c.mid[0], 0.25f, 1e-5f);
 }
@@ -153,7 +157,7 @@ TEST(LayerCover, TccIsTheModelsOwnCover) {
   f.push_back(constant(g, "tcc_high", 0.0, kNaN));
   WeatherSettings w;
   w.cover = "tcc";
-  const LayerCover c = layerCover(oneStep(g, f), 0.0, w, w.region);
+  const LayerCover c = layerCover(oneStep(g, f), 0.0, w, kTestRegion);
   EXPECT_FLOAT_EQ(c.low[pointAt(g, 45.0, 10.0)], 0.3f);
   EXPECT_FLOAT_EQ(c.low[pointAt(g, -45.0, 10.0)], 0.7f);
   EXPECT_FLOAT_EQ(c.mid[5], 0.2f);
@@ -166,20 +170,20 @@ TEST(LayerCover, Errors) {
   // No r level within the mid layer: the error names the key and the levels there are.
   std::vector<LevelField> f;
   for (double p : {1000.0, 850.0, 300.0}) f.push_back(constant(g, "r", p, 0.5f));
-  Error e = catchError([&] { layerCover(oneStep(g, f), 0.0, w, w.region); });
+  Error e = catchError([&] { layerCover(oneStep(g, f), 0.0, w, kTestRegion); });
   EXPECT_EQ(e.kind(), ErrorKind::BadInput);
   EXPECT_EQ(std::string(e.what()),
             "weather.mid: synthetic.grib2 has no relative humidity (r) between 450 and 800 hPa "
             "(r levels: 1000, 850, 300 hPa)");
   // No r at all.
   e = catchError(
-      [&] { layerCover(oneStep(g, {constant(g, "gh", 500, 5500.0f)}), 0.0, w, w.region); });
+      [&] { layerCover(oneStep(g, {constant(g, "gh", 500, 5500.0f)}), 0.0, w, kTestRegion); });
   EXPECT_EQ(std::string(e.what()),
             "weather.low: synthetic.grib2 has no relative humidity (r) between 800 and 1000 hPa "
             "(it has no r at all)");
   // tcc asked for but absent.
   w.cover = "tcc";
-  e = catchError([&] { layerCover(oneStep(g, allLevels(g, 0.5f)), 0.0, w, w.region); });
+  e = catchError([&] { layerCover(oneStep(g, allLevels(g, 0.5f)), 0.0, w, kTestRegion); });
   EXPECT_EQ(e.kind(), ErrorKind::BadInput);
   EXPECT_NE(std::string(e.what()).find("weather.cover: tcc needs tcc_low"), std::string::npos)
       << e.what();
@@ -188,7 +192,7 @@ TEST(LayerCover, Errors) {
   WeatherFields empty;
   empty.file = "empty.nc";
   empty.grid = g;
-  e = catchError([&] { layerCover(empty, 0.0, w, w.region); });
+  e = catchError([&] { layerCover(empty, 0.0, w, kTestRegion); });
   EXPECT_EQ(std::string(e.what()), "weather.file: empty.nc holds no fields");
 }
 
@@ -203,7 +207,7 @@ TEST(LayerCover, TimeBetweenStepsInterpolatesCover) {
   f.steps.push_back({8200.0, dry});
   f.steps[0].fields.push_back(constant(g, "gh", 1000.0, 200.0f));
   const WeatherSettings w;
-  const auto lowAt = [&](double t) { return layerCover(f, t, w, w.region).low[100]; };
+  const auto lowAt = [&](double t) { return layerCover(f, t, w, kTestRegion).low[100]; };
   EXPECT_EQ(lowAt(1000.0), 0.0f);
   EXPECT_NEAR(lowAt(1900.0), 0.25f, 1e-6f);
   EXPECT_NEAR(lowAt(4600.0), 1.0f, 1e-6f);
@@ -212,17 +216,16 @@ TEST(LayerCover, TimeBetweenStepsInterpolatesCover) {
   EXPECT_EQ(lowAt(-1e9), 0.0f);
   EXPECT_NEAR(lowAt(1e12), 0.25f, 1e-6f);
   // The base follows gh in time too: 200 m, 100 m, 300 m at the three steps.
-  EXPECT_NEAR(layerCover(f, 2800.0, w, w.region).lowAltM.x, 150.0, 1e-3);
-  EXPECT_NEAR(layerCover(f, 6400.0, w, w.region).lowAltM.x, 200.0, 1e-3);
+  EXPECT_NEAR(layerCover(f, 2800.0, w, kTestRegion).lowAltM.x, 150.0, 1e-3);
+  EXPECT_NEAR(layerCover(f, 6400.0, w, kTestRegion).lowAltM.x, 200.0, 1e-3);
 }
 
 TEST(LayerCover, AltitudesFromGeopotentialOrTheStandardAtmosphere) {
   const GridGeometry g = globalGrid();
   WeatherSettings w;
-  w.region.lat = {0.0, 55.0};
-  w.region.lon = {39.0, 105.0};
+  w.region = WeatherRegion{{0.0, 55.0}, {39.0, 105.0}};
   // Without gh: the standard atmosphere at each layer's bounds.
-  LayerCover c = layerCover(oneStep(g, allLevels(g, 0.5f)), 0.0, w, w.region);
+  LayerCover c = layerCover(oneStep(g, allLevels(g, 0.5f)), 0.0, w, *w.region);
   EXPECT_NEAR(c.lowAltM.x, standardAtmosphereAltitudeM(1000.0), 1e-6);
   EXPECT_NEAR(c.lowAltM.y, standardAtmosphereAltitudeM(800.0), 1e-6);
   EXPECT_NEAR(c.midAltM.y, standardAtmosphereAltitudeM(450.0), 1e-6);
@@ -234,7 +237,7 @@ TEST(LayerCover, AltitudesFromGeopotentialOrTheStandardAtmosphere) {
   f.push_back(field(g, "gh", 850, [](double lat, double) { return 1500.0 + 2.0 * lat; }));
   f.push_back(field(g, "gh", 700, [](double lat, double) { return 3000.0 + 4.0 * lat; }));
   f.push_back(field(g, "gh", 400, [](double, double) { return kNaN; }));  // no data: unused
-  c = layerCover(oneStep(g, f), 0.0, w, w.region);
+  c = layerCover(oneStep(g, f), 0.0, w, *w.region);
   const double gh850 = 1500.0 + 2.0 * 27.5, gh700 = 3000.0 + 4.0 * 27.5;
   const double t = std::log(850.0 / 800.0) / std::log(850.0 / 700.0);
   EXPECT_NEAR(c.lowAltM.y, gh850 + t * (gh700 - gh850), 0.5);
@@ -246,7 +249,7 @@ TEST(LayerCover, AltitudesFromGeopotentialOrTheStandardAtmosphere) {
               gh700 + standardAtmosphereAltitudeM(450.0) - standardAtmosphereAltitudeM(700.0), 0.5);
   // Never below sea level.
   f.push_back(constant(g, "gh", 1000, -80.0f));
-  c = layerCover(oneStep(g, f), 0.0, w, w.region);
+  c = layerCover(oneStep(g, f), 0.0, w, *w.region);
   EXPECT_EQ(c.lowAltM.x, 0.0);
 }
 
@@ -412,8 +415,8 @@ TEST(WeatherMapFromFields, ChannelsSizeAndAltitudes) {
   w.region = {{0.0, 55.0}, {39.0, 105.0}};
   w.resolution = 64;
   w.cloudType = "stratocumulus";
-  const WeatherMap map = weatherMapFromFields(oneStep(g, f), 0.0, w);
-  const glm::uvec2 size = proceduralMapSize(w);
+  const WeatherMap map = weatherMapFromFields(oneStep(g, f), 0.0, w, *w.region);
+  const glm::uvec2 size = proceduralMapSize(w, *w.region);
   EXPECT_EQ(map.width, size.x);
   EXPECT_EQ(map.height, size.y);
   ASSERT_EQ(map.texels.size(), size_t(size.x) * size.y);

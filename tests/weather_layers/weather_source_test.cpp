@@ -104,7 +104,8 @@ TEST(WeatherSource, WeatherTimeShowsTheForecastAtAnotherInstantAndMovesOnWithThe
   const double shown = weatherTimeUnix(scene, scene.time.start.plusSeconds(1800.0));
   EXPECT_EQ(shown, valid + 3.5 * 3600.0) << "weather.time plus the frame's time since the start";
   const WeatherMap& moved = source.map(scene, scene.time.start.plusSeconds(1800.0));
-  const WeatherMap expected = weatherMapFromFields(*source.fields(), shown, scene.weather);
+  const WeatherMap expected =
+      weatherMapFromFields(*source.fields(), shown, scene.weather, *scene.weather.region);
   ASSERT_EQ(moved.texels.size(), expected.texels.size());
   for (size_t i = 0; i < moved.texels.size(); ++i)
     ASSERT_EQ(moved.texels[i], expected.texels[i]) << "texel " << i;

@@ -63,6 +63,24 @@ public:
     read(*node, path, settings);
   }
 
+  // A section the scene may leave out (absent: no value, no defaults). When given it must give
+  // every key: half a region filled in from defaults is more likely a mistake than a wish.
+  template <class T>
+  void section(std::string_view key, std::optional<T>& settings, std::string_view) {
+    const ConfigNode* node = mMap.find(key);
+    if (!node) return;
+    std::string path = childPath(key);
+    if (!node->isMap())
+      fail(*node, path, "expected a map of settings, got " + node->describeKind());
+    KeyCollector known;
+    T value{};
+    describe(known, value);
+    checkKeys(*node, path, known.keys);
+    requireAll(*node, path, known.keys);
+    read(*node, path, value);
+    settings = value;
+  }
+
   void field(std::string_view key, int& value, NumberRange range, std::string_view);
   void field(std::string_view key, double& value, NumberRange range, std::string_view);
   void field(std::string_view key, std::optional<double>& value, NumberRange range,

@@ -34,6 +34,12 @@ public:
     write(mMap.add(std::string(key), {}, ConfigNode::makeMap({})), settings);
   }
 
+  // An optional section is written only when it has a value.
+  template <class T>
+  void section(std::string_view key, std::optional<T>& settings, std::string_view) {
+    if (settings) write(mMap.add(std::string(key), {}, ConfigNode::makeMap({})), *settings);
+  }
+
   void field(std::string_view key, const int& value, NumberRange, std::string_view);
   void field(std::string_view key, const double& value, NumberRange, std::string_view);
   void field(std::string_view key, const std::optional<double>& value, NumberRange,

@@ -38,6 +38,20 @@ public:
     mSchema["properties"][std::string(key)] = objectSchema(settings, description);
   }
 
+  // An optional section: no defaults (absent means absent), every key required when given.
+  template <class T>
+  void section(std::string_view key, std::optional<T>&, std::string_view description) {
+    T probe{};
+    Json s = objectSchema(probe, description);
+    Json required = Json::array();
+    for (auto& [name, prop] : s["properties"].items()) {
+      required.push_back(name);
+      prop.erase("default");
+    }
+    s["required"] = std::move(required);
+    mSchema["properties"][std::string(key)] = std::move(s);
+  }
+
   void field(std::string_view key, const int& value, NumberRange range,
              std::string_view description);
   void field(std::string_view key, const double& value, NumberRange range,
