@@ -4,13 +4,16 @@
 
 namespace sky {
 
-CliArgs::CliArgs(const std::vector<std::string>& args, const std::set<std::string>& valued,
-                 const std::set<std::string>& repeatable, const std::set<std::string>& flags) {
+CliArgs::CliArgs(const std::string& command, const std::vector<std::string>& args,
+                 const std::set<std::string>& valued, const std::set<std::string>& repeatable,
+                 const std::set<std::string>& flags)
+    : mCommand(command) {
+  const std::string see = " (see skyrender " + command + " --help)";
   for (size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
     if (a.size() < 2 || a.rfind("--", 0) != 0) {
       if (!a.empty() && a[0] == '-' && a != "-")
-        inputError("unknown option '" + a + "' (see --help)");
+        inputError(command + ": unknown option '" + a + "'" + see);
       mPositional.push_back(a);
       continue;
     }
@@ -22,20 +25,31 @@ CliArgs::CliArgs(const std::vector<std::string>& args, const std::set<std::strin
       inlineValue = true;
     }
     if (flags.count(name)) {
-      if (inlineValue) inputError("option " + name + " takes no value");
+      if (inlineValue) inputError(command + ": option " + name + " takes no value" + see);
       mFlags.insert(name);
     } else if (valued.count(name)) {
       if (!inlineValue) {
-        if (i + 1 >= args.size()) inputError("option " + name + " needs a value");
+        if (i + 1 >= args.size()) inputError(command + ": option " + name + " needs a value" + see);
         val = args[++i];
       }
       auto& list = mValues[name];
-      if (!list.empty() && !repeatable.count(name)) inputError("option " + name + " given twice");
+      if (!list.empty() && !repeatable.count(name))
+        inputError(command + ": option " + name + " given twice" + see);
       list.push_back(val);
     } else {
-      inputError("unknown option '" + name + "' (see --help)");
+      inputError(command + ": unknown option '" + name + "'" + see);
     }
   }
+}
+
+void CliArgs::expectPositionals(size_t min, size_t max, const std::string& what) const {
+  const std::string see = " (see skyrender " + mCommand + " --help)";
+  if (mPositional.size() > max) {
+    const std::string& extra = mPositional[max];
+    if (max == 0) inputError(mCommand + " takes no arguments: '" + extra + "'" + see);
+    inputError(mCommand + " takes " + what + ", got also '" + extra + "'" + see);
+  }
+  if (mPositional.size() < min) inputError(mCommand + " needs " + what + see);
 }
 
 std::optional<std::string> CliArgs::value(const std::string& option) const {

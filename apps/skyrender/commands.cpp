@@ -1,5 +1,6 @@
 #include "commands.h"
 
+#include <signal.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -16,6 +17,8 @@
 #include "default_scene.h"
 #include "engine/color/ocio_output.h"
 #include "engine/core/error.h"
+#include "engine/core/files.h"
+#include "engine/core/paths.h"
 #include "engine/gpu/context.h"
 #include "engine/lighting/lighting_state.h"
 #include "engine/render/render_files.h"
@@ -26,80 +29,6 @@
 
 namespace sky {
 namespace fs = std::filesystem;
-
-const char* usageText() {
-  return R"(skyrender - render skies and clouds with skylayers
-
-usage:
-  skyrender render [SCENE] [options]   render SCENE (YAML or JSON; the embedded default
-                                       scene when absent) into DIR/NAME.exr, .png and .json
-  skyrender validate SCENE [--set K=V]  check SCENE and print its effective settings
-                                       (defaults filled in) in the same format; the printed
-                                       file reproduces the render exactly
-  skyrender ephemeris --lat D --lon D --time ISO8601 [--height-m M]
-            [--pressure-hpa P] [--temperature-c T]
-                                       print sun and moon positions, moon phase and the
-                                       key light as JSON (defaults: 0 m, 1010 hPa, 10 C)
-  skyrender schema                     print the JSON Schema of scene files
-  skyrender devices                    list the Vulkan devices and which one is picked
-  skyrender dsc RENDER.exr [--cell PX] [--threshold T]
-                                       compare a camera.mode geographic_topdown render's
-                                       cloud opacity with its weather map's cover over
-                                       PX x PX blocks (default 8): Dice of the blocks
-                                       above T (default 0.1; Lu (28)), mean absolute
-                                       error, correlation, block count
-  skyrender weather FILE [--scene SCENE] [--out DIR] [--set K=V]
-                                       the cloud map a GRIB2/NetCDF forecast gives over
-                                       the scene's weather.region (default scene: its
-                                       region): DIR/STEM.weather.exr (cover_low, cover_mid,
-                                       cover_high, type) and .png (low red, mid green,
-                                       high blue); prints each layer's covered fraction,
-                                       mean cover, altitudes and Dice against the file's
-                                       own cloud cover (tcc) when it has one
-  skyrender --help                     this text
-
-render options:
-  --out DIR            output folder, created if missing (default: out)
-  --name NAME          file stem, same as --set output.name=NAME
-  --width W            same as --set output.width=W
-  --height H           same as --set output.height=H
-  --time TIME          same as --set time=TIME: an instant (ISO 8601 with a zone, Z or
-                       +HH:MM) or a time-lapse START/END/STEP, e.g.
-                       2024-06-21T00:00Z/2024-06-22T00:00Z/15m
-                       (a time-lapse writes NAME_0001.exr/.png/.json, ...)
-  --set KEY.PATH=VALUE override any scene key; VALUE is read as a YAML scalar or flow
-                       sequence (e.g. --set camera.heading=250); repeatable;
-                       validated exactly like the file
-  --dump-graph FILE    also write the compiled frame graph as Graphviz (dot -Tsvg FILE)
-  --debug-output NAME  also write NAME.<name>.exr; repeatable or comma-separated:
-                       coefficients, normals (high clouds); transmittance_lut,
-                       multiscattering_lut, sky_view_sun_lut, sky_view_moon_lut,
-                       aerial_perspective (sky.model physical); cloud_steps,
-                       cloud_density_slice, weather_map (with low or mid clouds)
-  --gpu NAME|INDEX     Vulkan device by index or name substring (default: a GPU if
-                       present, else lavapipe)
-  --ocio FILE          OpenColorIO config (default: $OCIO, else configs/ocio/config.ocio)
-
-outputs:
-  NAME.exr   scene-linear Rec.709, half float: R,G,B,A (beauty), layers sky.R/G/B
-             (clear sky), high_clouds.R/G/B/A (premultiplied, A = coverage) and
-             clouds.R/G/B/A/depth (volumetric clouds, premultiplied, A = opacity,
-             depth in m); camera.mode geographic_topdown adds weather.cover_low/_mid
-  NAME.png   8-bit display image through output.display / output.view, exposure applied
-  NAME.json  settings, time, sun, moon and light (as `ephemeris` prints them),
-             per-pass GPU milliseconds, total, device name
-
-environment:
-  SKY_VALIDATION=1   enable the Vulkan validation layers (messages go to stderr)
-  SKY_DATA_DIR       folder holding shaders/ and configs/ (default: the source tree)
-  SKY_CACHE_DIR      cache folder for SPIR-V, baked high-cloud textures and cloud noise
-                     (default: ~/.cache/skylayers)
-  OCIO               OpenColorIO config used when --ocio is absent
-
-exit codes: 0 success, 2 bad input (scene, arguments, files), 1 internal or device error.
-Every error is one line on stderr saying what and where.
-)";
-}
 
 namespace {
 
@@ -114,10 +43,8 @@ std::vector<std::string> overridesFrom(const CliArgs& args) {
 }
 
 Scene loadScene(const CliArgs& args, bool required) {
-  if (args.positional().size() > 1)
-    inputError("more than one scene given: '" + args.positional()[1] + "'");
+  args.expectPositionals(required ? 1 : 0, 1, "one scene file");
   if (args.positional().empty()) {
-    if (required) inputError("no scene given (see --help)");
     return loadSceneText(skyDefaultSceneText(), ConfigFormat::Yaml, "<default scene>",
                          overridesFrom(args));
   }
@@ -157,7 +84,8 @@ double numberOption(const CliArgs& args, const std::string& option, double min, 
                     std::optional<double> fallback) {
   std::optional<std::string> text = args.value(option);
   if (!text) {
-    if (!fallback) inputError(option + " is required (see --help)");
+    if (!fallback)
+      inputError(option + " is required (see skyrender " + args.command() + " --help)");
     return *fallback;
   }
   double v = 0.0;
@@ -175,11 +103,10 @@ double numberOption(const CliArgs& args, const std::string& option, double min, 
 }  // namespace
 
 int ephemerisCommand(const std::vector<std::string>& argv) {
-  CliArgs args(argv,
+  CliArgs args("ephemeris", argv,
                {"--lat", "--lon", "--time", "--height-m", "--pressure-hpa", "--temperature-c"}, {},
                {});
-  if (!args.positional().empty())
-    inputError("ephemeris takes no positional arguments: '" + args.positional()[0] + "'");
+  args.expectPositionals(0, 0, "");
   // The same lighting model a render uses, for a scene that is only a place and an instant.
   Scene scene;
   scene.camera.latitude = numberOption(args, "--lat", -90, 90, std::nullopt);
@@ -217,8 +144,54 @@ std::function<void(double)> bakeProgressBar() {
   };
 }
 
+namespace {
+
+// The signal that asked a render to stop (SIGINT or SIGTERM), 0 while none did. The handler
+// only records it: the frame being made is finished and written whole, then the loop stops.
+// SA_RESETHAND puts the default back, so a second Ctrl-C stops at once.
+volatile sig_atomic_t gStopSignal = 0;
+
+void recordStop(int signal) {
+  gStopSignal = signal;
+}
+
+class StopOnSignals {
+public:
+  StopOnSignals() {
+    gStopSignal = 0;
+    struct sigaction action {};
+    action.sa_handler = recordStop;
+    action.sa_flags = SA_RESETHAND;
+    sigemptyset(&action.sa_mask);
+    sigaction(SIGINT, &action, &mOldInt);
+    sigaction(SIGTERM, &action, &mOldTerm);
+  }
+  ~StopOnSignals() {
+    sigaction(SIGINT, &mOldInt, nullptr);
+    sigaction(SIGTERM, &mOldTerm, nullptr);
+  }
+  int signal() const { return gStopSignal; }
+
+private:
+  struct sigaction mOldInt {
+  }, mOldTerm{};
+};
+
+// Once per process: a cache that cannot be written makes every run bake and compile again.
+void warnIfCacheUnwritable() {
+  const CacheStatus& cache = cacheStatus();
+  if (!cache.writable)
+    std::fprintf(stderr,
+                 "warning: the cache folder %s cannot be written (%s): baked textures and "
+                 "compiled shaders are not kept, so the next run makes them again (set "
+                 "SKY_CACHE_DIR to a writable folder)\n",
+                 cache.folder.string().c_str(), cache.reason.c_str());
+}
+
+}  // namespace
+
 int renderCommand(const std::vector<std::string>& argv) {
-  CliArgs args(argv,
+  CliArgs args("render", argv,
                {"--out", "--name", "--width", "--height", "--time", "--set", "--dump-graph",
                 "--gpu", "--ocio", "--debug-output"},
                {"--set", "--debug-output"}, {});
@@ -242,14 +215,12 @@ int renderCommand(const std::vector<std::string>& argv) {
   OcioOutput ocio = OcioOutput::load(ocioPath);
   ocio.checkDisplayView(scene.output.display, scene.output.view);
 
-  fs::path outDir = args.value("--out").value_or("out");
-  std::error_code ec;
-  fs::create_directories(outDir, ec);
-  if (ec || !fs::is_directory(outDir))
-    inputError("--out " + outDir.string() + ": cannot create folder" +
-               (ec ? ": " + ec.message() : ""));
+  // Removed again, if the run made it, unless a frame was written into it.
+  OutputFolder folder(args.value("--out").value_or("out"), "--out");
+  const fs::path& outDir = folder.path();
   std::optional<fs::path> graphPath;
   if (auto v = args.value("--dump-graph")) graphPath = *v;
+  warnIfCacheUnwritable();
 
   ContextOptions options = ContextOptions::fromEnvironment();
   options.gpu = args.value("--gpu").value_or("");
@@ -258,11 +229,13 @@ int renderCommand(const std::vector<std::string>& argv) {
   Renderer renderer(ctx, compiler);
   renderer.setBakeProgress(bakeProgressBar());
 
+  const StopOnSignals stop;
   const int64_t count = scene.time.frameCount();
   Progress progress(count);
   RenderFiles first, last;
   double gpuMs = 0.0;
-  for (int64_t i = 0; i < count; ++i) {
+  int64_t written = 0;
+  for (int64_t i = 0; i < count && !stop.signal(); ++i) {
     const IsoTime time = scene.time.frame(i);
     progress.show(i, time);
     RenderedFrame frame = renderer.render(scene, time, renderOptions);
@@ -270,11 +243,19 @@ int renderCommand(const std::vector<std::string>& argv) {
     RenderFiles files =
         writeRenderFiles(outDir, frameStem(scene.output.name, i, count), scene, frame, ocio,
                          ctx.deviceName(), i == 0 ? graphPath : std::nullopt);
+    folder.keep();
     if (i == 0) first = files;
     last = files;
     gpuMs += frame.frame.gpuMs;
+    ++written;
   }
   progress.done();
+  if (const int signal = stop.signal()) {
+    std::fprintf(stderr, "interrupted after %lld of %lld frames (%s)\n",
+                 static_cast<long long>(written), static_cast<long long>(count),
+                 signal == SIGINT ? "SIGINT" : "SIGTERM");
+    return 128 + signal;
+  }
 
   if (count == 1) {
     std::printf("wrote %s, %s, %s (%dx%d, %.2f ms GPU on %s)\n", first.exr.string().c_str(),
@@ -293,25 +274,27 @@ int renderCommand(const std::vector<std::string>& argv) {
 }
 
 int validateCommand(const std::vector<std::string>& argv) {
-  CliArgs args(argv, {"--set", "--ocio"}, {"--set"}, {});
+  CliArgs args("validate", argv, {"--set", "--ocio"}, {"--set"}, {});
   Scene scene = loadScene(args, true);
   // Display and view are names in the OCIO config, so the config takes part in validation.
   std::optional<fs::path> ocioPath;
   if (auto v = args.value("--ocio")) ocioPath = *v;
   OcioOutput::load(ocioPath).checkDisplayView(scene.output.display, scene.output.view);
-  std::cout << writeScene(scene, formatForPath(args.positional()[0]));
+  // Paths printed resolved: the printed scene renders the same from any folder.
+  std::cout << writeScene(scene.withAbsolutePaths(), formatForPath(args.positional()[0]));
   return 0;
 }
 
 int schemaCommand(const std::vector<std::string>& argv) {
-  CliArgs args(argv, {}, {}, {});
-  if (!args.positional().empty()) inputError("schema takes no arguments");
+  CliArgs args("schema", argv, {}, {}, {});
+  args.expectPositionals(0, 0, "");
   std::cout << sceneJsonSchema();
   return 0;
 }
 
 int devicesCommand(const std::vector<std::string>& argv) {
-  CliArgs args(argv, {"--gpu"}, {}, {});
+  CliArgs args("devices", argv, {"--gpu"}, {}, {});
+  args.expectPositionals(0, 0, "");
   ContextOptions options = ContextOptions::fromEnvironment();
   options.gpu = args.value("--gpu").value_or("");
   Context ctx(options);
@@ -323,11 +306,8 @@ int devicesCommand(const std::vector<std::string>& argv) {
 }
 
 int dscCommand(const std::vector<std::string>& argv) {
-  CliArgs args(argv, {"--cell", "--threshold"}, {}, {});
-  if (args.positional().empty())
-    inputError("dsc needs the render's EXR (skyrender dsc RENDER.exr [--cell PX] [--threshold T])");
-  if (args.positional().size() > 1)
-    inputError("dsc takes one render EXR, got also '" + args.positional()[1] + "'");
+  CliArgs args("dsc", argv, {"--cell", "--threshold"}, {}, {});
+  args.expectPositionals(1, 1, "one render EXR");
   CoverageOptions options;
   const double cell = numberOption(args, "--cell", 1, 4096, options.cell);
   if (cell != std::floor(cell))
@@ -338,6 +318,15 @@ int dscCommand(const std::vector<std::string>& argv) {
     inputError("--threshold " + *args.value("--threshold") +
                ": must be below 1 (no block could be cloudy)");
   const RenderCoverage render = readRenderCoverage(args.positional()[0]);
+  // A correlation over fewer than two blocks along a side says nothing (one block: 0).
+  const int across = (render.width + options.cell - 1) / options.cell;
+  const int down = (render.height + options.cell - 1) / options.cell;
+  if (across < 2 || down < 2)
+    inputError(
+        "--cell " + std::to_string(options.cell) + ": the " + std::to_string(render.width) + "x" +
+        std::to_string(render.height) + " render holds " + std::to_string(across) + " x " +
+        std::to_string(down) + " blocks; the comparison needs at least 2 x 2 (use --cell " +
+        std::to_string(std::max(1, (std::min(render.width, render.height) + 1) / 2)) + " or less)");
   const CoverageMetrics m =
       compareCoverage(render.opacity, render.cover, render.width, render.height, options);
   std::printf("dsc %.3f\nmae %.3f\ncorrelation %.3f\nblocks %llu\n", m.dice, m.meanAbsoluteError,

@@ -12,6 +12,5 @@ int schemaCommand(const std::vector<std::string>& args);
 int devicesCommand(const std::vector<std::string>& args);
 int dscCommand(const std::vector<std::string>& args);
 int weatherCommand(const std::vector<std::string>& args);
-const char* usageText();
 
 }  // namespace sky

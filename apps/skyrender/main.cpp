@@ -6,6 +6,7 @@
 
 #include "commands.h"
 #include "engine/core/error.h"
+#include "help.h"
 
 namespace {
 
@@ -16,20 +17,49 @@ std::string oneLine(std::string s) {
   return s;
 }
 
+bool isHelp(const std::string& a) {
+  return a == "--help" || a == "-h";
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   std::vector<std::string> args(argv + 1, argv + argc);
   try {
-    if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
-      std::cout << sky::usageText();
-      return args.empty() ? 2 : 0;
+    if (args.empty()) {
+      std::cerr << sky::overviewText();
+      return 2;
+    }
+    if (isHelp(args[0])) {
+      std::cout << sky::overviewText();
+      return 0;
+    }
+    if (args[0] == "--version") {
+      if (args.size() > 1) sky::inputError("--version takes no arguments: '" + args[1] + "'");
+      std::cout << sky::versionText();
+      return 0;
+    }
+    if (args[0] == "help") {
+      if (args.size() == 1) {
+        std::cout << sky::overviewText();
+        return 0;
+      }
+      const sky::CommandHelp* help = sky::findCommandHelp(args[1]);
+      if (!help)
+        sky::inputError("help: unknown command '" + args[1] + "' (commands: " + sky::commandList() +
+                        ")");
+      std::cout << help->page;
+      return 0;
     }
     const std::string command = args[0];
     args.erase(args.begin());
+    const sky::CommandHelp* help = sky::findCommandHelp(command);
+    if (!help)
+      sky::inputError("unknown command '" + command + "' (commands: " + sky::commandList() +
+                      "; see skyrender --help)");
     for (const std::string& a : args)
-      if (a == "--help" || a == "-h") {
-        std::cout << sky::usageText();
+      if (isHelp(a)) {
+        std::cout << help->page;
         return 0;
       }
     if (command == "render") return sky::renderCommand(args);
@@ -39,9 +69,7 @@ int main(int argc, char** argv) {
     if (command == "devices") return sky::devicesCommand(args);
     if (command == "dsc") return sky::dscCommand(args);
     if (command == "weather") return sky::weatherCommand(args);
-    sky::inputError(
-        "unknown command '" + command +
-        "' (commands: render, validate, ephemeris, schema, devices, dsc, weather; see --help)");
+    sky::internalError("command '" + command + "' has help but no implementation");
   } catch (const sky::Error& e) {
     std::cerr << "error: " << oneLine(e.what()) << "\n";
     return e.exitCode();

@@ -12,6 +12,7 @@
 #include "commands.h"
 #include "default_scene.h"
 #include "engine/core/error.h"
+#include "engine/core/files.h"
 #include "engine/io/exr.h"
 #include "engine/io/png.h"
 #include "engine/scene/scene_io.h"
@@ -59,11 +60,8 @@ bool hasTcc(const WeatherFields& fields) {
 }  // namespace
 
 int weatherCommand(const std::vector<std::string>& argv) {
-  CliArgs args(argv, {"--scene", "--out", "--set"}, {"--set"}, {});
-  if (args.positional().size() != 1)
-    inputError(
-        "weather needs one forecast file (skyrender weather FILE [--scene SCENE] "
-        "[--out DIR])");
+  CliArgs args("weather", argv, {"--scene", "--out", "--set"}, {"--set"}, {});
+  args.expectPositionals(1, 1, "one forecast file");
   const fs::path file = fs::absolute(args.positional()[0]);
   std::vector<std::string> overrides = args.values("--set");
   overrides.push_back("weather.source=file");
@@ -78,11 +76,8 @@ int weatherCommand(const std::vector<std::string>& argv) {
   } else {
     scene = loadSceneText(skyDefaultSceneText(), ConfigFormat::Yaml, "<default scene>", overrides);
   }
-  const fs::path outDir = args.value("--out").value_or("out");
-  std::error_code ec;
-  fs::create_directories(outDir, ec);
-  if (ec || !fs::is_directory(outDir))
-    inputError("--out " + outDir.string() + ": cannot create folder");
+  OutputFolder folder(args.value("--out").value_or("out"), "--out");
+  const fs::path& outDir = folder.path();
 
   // The map the renderer would draw in the scene's first frame (weather.time, advection and
   // evolution included).
@@ -136,11 +131,11 @@ int weatherCommand(const std::vector<std::string>& argv) {
     rgba[i * 4 + 3] = 1.0f;
   }
   writePng8(pngPath, w, h, rgba);
+  folder.keep();
 
   std::printf("%s: %dx%d map over lat [%g, %g], lon [%g, %g], cover from %s\n",
               file.filename().string().c_str(), w, h, map.region.lat[0], map.region.lat[1],
-              map.region.lon[0], map.region.lon[1],
-              scene.weather.cover.c_str());
+              map.region.lon[0], map.region.lon[1], scene.weather.cover.c_str());
   const std::vector<float> layers[3] = {channel(map, 0), channel(map, 1), map.coverHigh};
   const char* names[3] = {"low", "mid", "high"};
   // The tcc map for comparison, when the file has the model's own cover and rh was used.

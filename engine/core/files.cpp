@@ -13,6 +13,9 @@ namespace sky {
 namespace fs = std::filesystem;
 
 std::string readTextFile(const fs::path& path) {
+  // An ifstream opens a folder and reads it as empty: say what it is instead.
+  std::error_code ec;
+  if (fs::is_directory(path, ec)) inputError(path.string() + ": is a directory, not a file");
   std::ifstream in(path, std::ios::binary);
   if (!in) inputError(path.string() + ": cannot open file: " + std::strerror(errno));
   std::ostringstream ss;
@@ -35,12 +38,32 @@ fs::path temporaryFor(const fs::path& path) {
   return dir / (".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++) + "-" +
                 path.filename().string());
 }
+
+// Runs write(tmp); an error it throws names the file the caller asked for, not the
+// temporary (a user never sees .tmp-... names).
+void writeNaming(const fs::path& tmp, const fs::path& path,
+                 const std::function<void(const fs::path&)>& write) {
+  try {
+    write(tmp);
+  } catch (const Error& e) {
+    std::string what = e.what();
+    const std::string from = tmp.string(), to = path.string();
+    for (size_t at = what.find(from); at != std::string::npos; at = what.find(from, at + to.size()))
+      what.replace(at, from.size(), to);
+    const std::string name = tmp.filename().string(), finalName = path.filename().string();
+    for (size_t at = what.find(name); at != std::string::npos;
+         at = what.find(name, at + finalName.size()))
+      what.replace(at, name.size(), finalName);
+    throw Error(e.kind(), what);
+  }
+}
+
 }  // namespace
 
 void writeFileAtomic(const fs::path& path, const std::function<void(const fs::path&)>& write) {
   fs::path tmp = temporaryFor(path);
   try {
-    write(tmp);
+    writeNaming(tmp, path, write);
     std::error_code ec;
     fs::rename(tmp, path, ec);
     if (ec) inputError(path.string() + ": cannot write file: " + ec.message());
@@ -69,7 +92,7 @@ AtomicFileSet::~AtomicFileSet() {
 void AtomicFileSet::stage(const fs::path& path, const std::function<void(const fs::path&)>& write) {
   fs::path tmp = temporaryFor(path);
   mStaged.emplace_back(tmp, path);  // registered first so a throwing writer is cleaned up
-  write(tmp);
+  writeNaming(tmp, path, write);
   if (!fs::exists(tmp)) internalError(path.string() + ": writer produced no file");
 }
 
@@ -80,6 +103,32 @@ void AtomicFileSet::commit() {
     if (ec) inputError(final.string() + ": cannot write file: " + ec.message());
   }
   mStaged.clear();
+}
+
+OutputFolder::OutputFolder(const fs::path& path, const std::string& what) : mPath(path) {
+  std::error_code ec;
+  // The folders that do not exist yet, deepest first: those are ours to remove again.
+  fs::path p = fs::absolute(path, ec).lexically_normal();
+  if (p.filename().empty()) p = p.parent_path();  // written with a trailing '/'
+  while (!p.empty() && !fs::exists(p, ec)) {
+    mCreated.push_back(p);
+    if (p == p.parent_path()) break;
+    p = p.parent_path();
+  }
+  fs::create_directories(path, ec);
+  if (ec || !fs::is_directory(path)) {
+    const std::string reason = ec ? ec.message()
+                                  : (fs::exists(path) ? std::string("a file of that name exists")
+                                                      : std::string("unknown"));
+    mCreated.clear();
+    inputError(what + " " + path.string() + ": cannot create folder: " + reason);
+  }
+}
+
+OutputFolder::~OutputFolder() {
+  std::error_code ec;
+  for (const fs::path& p : mCreated)
+    if (!fs::remove(p, ec)) break;  // not empty (or gone): leave it and what holds it
 }
 
 uint64_t hash64(std::string_view bytes, uint64_t seed) {

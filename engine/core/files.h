@@ -38,6 +38,24 @@ private:
   std::vector<std::pair<std::filesystem::path, std::filesystem::path>> mStaged;  // (tmp, final)
 };
 
+// An output folder created for a run: create() makes it and any missing parents; unless
+// keep() is called (something was written), the folders it made are removed again when it
+// goes away, if still empty, so a failed or interrupted run leaves nothing behind.
+class OutputFolder {
+public:
+  // BadInput "<what> <path>: cannot create folder: <reason>" when it cannot be made.
+  OutputFolder(const std::filesystem::path& path, const std::string& what);
+  ~OutputFolder();
+  OutputFolder(const OutputFolder&) = delete;
+  OutputFolder& operator=(const OutputFolder&) = delete;
+  const std::filesystem::path& path() const { return mPath; }
+  void keep() { mCreated.clear(); }
+
+private:
+  std::filesystem::path mPath;
+  std::vector<std::filesystem::path> mCreated;  // deepest first
+};
+
 // 64-bit FNV-1a, used for cache keys (not for security).
 uint64_t hash64(std::string_view bytes, uint64_t seed = 0xcbf29ce484222325ull);
 std::string hex64(uint64_t value);

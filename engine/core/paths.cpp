@@ -1,6 +1,11 @@
 #include "engine/core/paths.h"
 
+#include <unistd.h>
+
+#include <cerrno>
 #include <cstdlib>
+#include <cstring>
+#include <fstream>
 
 namespace sky {
 namespace fs = std::filesystem;
@@ -39,6 +44,34 @@ fs::path cacheDir() {
   std::error_code ec;
   fs::create_directories(dir, ec);  // a failure shows up later as a cache miss, not an error
   return dir;
+}
+
+const CacheStatus& cacheStatus() {
+  static const CacheStatus status = [] {
+    CacheStatus s;
+    s.folder = cacheDir();
+    std::error_code ec;
+    fs::create_directories(s.folder, ec);
+    if (!fs::is_directory(s.folder)) {
+      s.reason = "cannot create the folder" + (ec ? ": " + ec.message() : std::string());
+      return s;
+    }
+    const fs::path probe = s.folder / (".probe-" + std::to_string(::getpid()));
+    std::ofstream out(probe, std::ios::binary);
+    if (!out) {
+      s.reason = std::strerror(errno);
+      return s;
+    }
+    out.close();
+    fs::remove(probe, ec);
+    s.writable = true;
+    return s;
+  }();
+  return status;
+}
+
+const char* skylayersVersion() {
+  return SKY_VERSION;
 }
 
 }  // namespace sky

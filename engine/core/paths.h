@@ -2,6 +2,7 @@
 // Where run-time data lives. shaders/ and configs/ are read from the data root:
 // $SKY_DATA_DIR if set, else the source tree the binary was built from.
 #include <filesystem>
+#include <string>
 
 namespace sky {
 
@@ -11,5 +12,18 @@ std::filesystem::path configDir();  // dataRoot()/configs
 // Caches (SPIR-V, later baked textures): $SKY_CACHE_DIR, else $XDG_CACHE_HOME/skylayers,
 // else ~/.cache/skylayers. Created on first use.
 std::filesystem::path cacheDir();
+
+// Whether cacheDir() takes files, checked once per process by writing a probe file. A cache
+// that cannot be written only makes runs slower (bakes and shader compiles repeat), so
+// callers warn rather than fail.
+struct CacheStatus {
+  std::filesystem::path folder;
+  bool writable = false;
+  std::string reason;  // why not, when not writable
+};
+const CacheStatus& cacheStatus();
+
+// The project's version (CMake's PROJECT_VERSION), for --version and render reports.
+const char* skylayersVersion();
 
 }  // namespace sky

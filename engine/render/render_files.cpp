@@ -1,12 +1,17 @@
 #include "engine/render/render_files.h"
 
 #include <algorithm>
+#include <cstring>
+#include <fstream>
+#include <string>
+#include <utility>
 
 #include <nlohmann/json.hpp>
 
 #include "engine/color/ocio_output.h"
 #include "engine/core/error.h"
 #include "engine/core/files.h"
+#include "engine/core/paths.h"
 #include "engine/io/png.h"
 #include "engine/scene/scene_io.h"
 
@@ -21,6 +26,24 @@ std::vector<float> displayPixels(const RenderedFrame& frame, const Scene& scene,
   ocio.toDisplay(rgba, scene.output.display, scene.output.view, scene.output.exposureEv);
   return rgba;
 }
+
+namespace {
+
+// The process's resident memory now and at its peak (VmRSS, VmHWM of /proc/self/status), MiB:
+// a time-lapse's reports show whether memory stays flat over its frames.
+nlohmann::ordered_json processMemoryJson() {
+  nlohmann::ordered_json out = nlohmann::ordered_json::object();
+  std::ifstream status("/proc/self/status");
+  std::string line;
+  while (std::getline(status, line)) {
+    for (const auto& [key, name] :
+         {std::pair{"VmRSS:", "resident_mib"}, {"VmHWM:", "peak_resident_mib"}})
+      if (line.rfind(key, 0) == 0) out[name] = std::stod(line.substr(std::strlen(key))) / 1024.0;
+  }
+  return out;
+}
+
+}  // namespace
 
 std::string frameStem(const std::string& name, int64_t index, int64_t count) {
   if (count <= 1) return name;
@@ -43,7 +66,7 @@ RenderFiles writeRenderFiles(const std::filesystem::path& dir, const std::string
   std::vector<float> display = displayPixels(frame, scene, ocio);
 
   nlohmann::ordered_json report;
-  report["skylayers_version"] = "0.1.0";
+  report["skylayers_version"] = skylayersVersion();
   report["device"] = deviceName;
   report["size"] = {frame.image.width, frame.image.height};
   report["time"] = frame.lighting.time.format();
@@ -66,7 +89,9 @@ RenderFiles writeRenderFiles(const std::filesystem::path& dir, const std::string
   highClouds["baked"] = frame.highClouds.baked;
   highClouds["loaded_cache"] = frame.highClouds.loadedCache;
   highClouds["loaded_images"] = frame.highClouds.loadedImages;
-  if (!frame.highClouds.cacheFile.empty())
+  // Only a cache entry that was read or written: an unwritable cache keeps nothing.
+  if (!frame.highClouds.cacheFile.empty() &&
+      (frame.highClouds.loadedCache || frame.highClouds.wroteCache))
     highClouds["cache_file"] = frame.highClouds.cacheFile.string();
   nlohmann::ordered_json bake = nlohmann::ordered_json::array();
   for (const PassTiming& t : frame.highClouds.bakeTimings)
@@ -77,7 +102,8 @@ RenderFiles writeRenderFiles(const std::filesystem::path& dir, const std::string
   clouds["present"] = frame.clouds;
   clouds["noise_baked"] = frame.cloudNoise.baked;
   clouds["noise_loaded_cache"] = frame.cloudNoise.loadedCache;
-  if (!frame.cloudNoise.cacheFile.empty())
+  if (!frame.cloudNoise.cacheFile.empty() &&
+      (frame.cloudNoise.loadedCache || frame.cloudNoise.wroteCache))
     clouds["noise_cache_file"] = frame.cloudNoise.cacheFile.string();
   report["volumetric_clouds"] = clouds;
   const LocalWeather& local = frame.localWeather;
@@ -86,12 +112,23 @@ RenderFiles writeRenderFiles(const std::filesystem::path& dir, const std::string
                              {"cover_mid", local.mid},
                              {"cover_high", local.high},
                              {"overcast", local.overcast}};
+  const WeatherRegion& region = frame.weatherRegion;
+  report["weather_map"] = {
+      {"region",
+       {{"lat", {region.lat[0], region.lat[1]}}, {"lon", {region.lon[0], region.lon[1]}}}},
+      {"given", scene.weather.region.has_value()},
+      {"texels", {frame.weatherTexels.x, frame.weatherTexels.y}}};
   for (const DebugImage& d : frame.debug)
     files.debug.push_back(dir / (stem + "." + d.name + ".exr"));
   nlohmann::ordered_json debug = nlohmann::ordered_json::array();
   for (const std::filesystem::path& p : files.debug) debug.push_back(p.filename().string());
   report["debug_outputs"] = debug;
-  report["settings"] = sceneToJson(scene);
+  const CacheStatus& cache = cacheStatus();
+  report["cache"] = {{"folder", cache.folder.string()}, {"writable", cache.writable}};
+  if (!cache.writable) report["cache"]["not_written_because"] = cache.reason;
+  report["process"] = processMemoryJson();
+  // Paths resolved, so the report's settings render the same from any folder.
+  report["settings"] = sceneToJson(scene.withAbsolutePaths());
 
   LayeredImage exr = frame.image;
   exr.attributes["skylayers:device"] = deviceName;

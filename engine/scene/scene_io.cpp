@@ -45,9 +45,34 @@ Scene loadSceneText(std::string_view text, ConfigFormat format, const std::strin
   return scene;
 }
 
+namespace {
+
+// Nothing but blank lines and (YAML) comments: a file that says nothing, more likely a
+// truncated or wrong file than a wish for the format's defaults.
+bool saysNothing(std::string_view text, ConfigFormat format) {
+  size_t start = 0;
+  while (start < text.size()) {
+    size_t end = text.find('\n', start);
+    if (end == std::string_view::npos) end = text.size();
+    std::string_view line = text.substr(start, end - start);
+    const size_t first = line.find_first_not_of(" \t\r");
+    if (first != std::string_view::npos && !(format == ConfigFormat::Yaml && line[first] == '#'))
+      return false;
+    start = end + 1;
+  }
+  return true;
+}
+
+}  // namespace
+
 Scene loadSceneFile(const std::filesystem::path& path, const std::vector<std::string>& overrides) {
   ConfigFormat format = formatForPath(path);
-  Scene scene = loadSceneText(readTextFile(path), format, path.string(), overrides);
+  const std::string text = readTextFile(path);
+  if (saysNothing(text, format))
+    inputError(path.string() +
+               ": the scene file is empty; for the built-in default scene give no scene file, "
+               "for the format's defaults write {}");
+  Scene scene = loadSceneText(text, format, path.string(), overrides);
   scene.baseDir = path.parent_path();
   return scene;
 }

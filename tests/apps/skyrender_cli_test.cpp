@@ -17,6 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "engine/core/files.h"
+#include "tests/apps/cli_fixture.h"
 #include "engine/io/exr.h"
 #include "engine/io/png.h"
 
@@ -25,57 +26,6 @@ namespace {
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 using ::testing::Not;
-
-struct CliRun {
-  int rc;
-  std::string out, err;
-};
-
-class SkyrenderCli : public ::testing::Test {
-protected:
-  void SetUp() override {
-    mDir = fs::temp_directory_path() /
-           ("skyrender-cli-" + std::to_string(::getpid()) + "-" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(mDir);
-    fs::create_directories(mDir / "out");
-  }
-  void TearDown() override { fs::remove_all(mDir); }
-
-  // `env` is prepended to the command line ("NAME=value ..."), for tests that change the
-  // environment of skyrender alone.
-  CliRun run(const std::string& args, const std::string& env = "") {
-    const char* exe = std::getenv("SKY_SKYRENDER");
-    EXPECT_NE(exe, nullptr) << "tests/support sets SKY_SKYRENDER";
-    std::string cmd = env + " " + std::string(exe) + " " + args + " >" +
-                      (mDir / "stdout").string() + " 2>" + (mDir / "stderr").string();
-    int status = std::system(cmd.c_str());
-    CliRun r{WIFEXITED(status) ? WEXITSTATUS(status) : -1, readTextFile(mDir / "stdout"),
-             readTextFile(mDir / "stderr")};
-    EXPECT_THAT(r.err, Not(HasSubstr("validation"))) << "Vulkan validation messages on stderr";
-    return r;
-  }
-  fs::path write(const std::string& name, const std::string& text) {
-    fs::path p = mDir / name;
-    std::ofstream(p) << text;
-    return p;
-  }
-  std::string out() const { return (mDir / "out").string(); }
-  bool outEmpty() const { return fs::is_empty(mDir / "out"); }
-
-  // Runs a render that must fail with exit code 2, one error line containing every fragment,
-  // and no file in the output folder.
-  void expectBadInput(const std::string& args, std::vector<std::string> fragments) {
-    CliRun r = run("render " + args + " --out " + out());
-    EXPECT_EQ(r.rc, 2) << r.err;
-    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "one line: " << r.err;
-    EXPECT_THAT(r.err, HasSubstr("error: "));
-    for (const std::string& f : fragments) EXPECT_THAT(r.err, HasSubstr(f));
-    EXPECT_TRUE(outEmpty()) << "a failed render left files behind";
-  }
-
-  fs::path mDir;
-};
 
 TEST_F(SkyrenderCli, RendersTheDefaultSceneIntoExrPngAndReport) {
   CliRun r = run("render --out " + out() + " --width 64 --height 36 --dump-graph " +
@@ -422,8 +372,10 @@ TEST_F(SkyrenderCli, BadCloudAndWeatherInputExitsTwoWithFileLineAndKey) {
                  {"stacked.yaml:3:", "clouds.mid", "low.top_m"});
   expectBadInput(write("cover.yaml", "weather:\n  cover_low: 1.5\n").string() + tiny,
                  {"cover.yaml:2:", "weather.cover_low", "1.5", "out of range [0, 1]"});
-  expectBadInput(write("region.yaml", "weather:\n  region:\n    lat: [50, 45]\n").string() + tiny,
-                 {"region.yaml:3:", "weather.region.lat", "south"});
+  expectBadInput(
+      write("region.yaml", "weather:\n  region:\n    lat: [50, 45]\n    lon: [5, 12]\n").string() +
+          tiny,
+      {"region.yaml:3:", "weather.region.lat", "south"});
   expectBadInput(write("model.yaml", "clouds:\n  model: schneider2015\n").string() + tiny,
                  {"model.yaml:2:", "clouds.model", "schneider2015", "lu2023 or tang2019"});
   expectBadInput(write("flag.yaml", "clouds:\n  energy_conserving: yes\n").string() + tiny,
@@ -547,8 +499,12 @@ TEST_F(SkyrenderCli, HelpDocumentsEveryOption) {
   EXPECT_EQ(r.rc, 0);
   for (const char* opt :
        {"--out", "--name", "--width", "--height", "--time", "--set", "--dump-graph", "--gpu",
-        "--ocio", "ephemeris", "--lat", "--lon", "--height-m", "--pressure-hpa", "--temperature-c",
-        "START/END/STEP", "--debug-output", "high_clouds.R/G/B/A", "aerial_perspective"})
+        "--ocio", "START/END/STEP", "--debug-output", "high_clouds.R/G/B/A", "aerial_perspective"})
+    EXPECT_THAT(r.out, HasSubstr(opt));
+  r = run("ephemeris --help");
+  EXPECT_EQ(r.rc, 0);
+  for (const char* opt :
+       {"--lat", "--lon", "--time", "--height-m", "--pressure-hpa", "--temperature-c"})
     EXPECT_THAT(r.out, HasSubstr(opt));
 }
 
@@ -576,8 +532,8 @@ TEST_F(SkyrenderCli, WeatherCommandWritesTheForecastMapAndFigures) {
   ASSERT_EQ(r.rc, 0) << r.err;
   EXPECT_THAT(r.out, HasSubstr("256x241 map over lat [0, 55], lon [39, 105], cover from rh"));
   // The layers' altitudes per texel from gh: 1000 hPa near sea level, 800 hPa near 2 km.
-  EXPECT_THAT(r.out, HasSubstr("low  covered 0.343  mean cover 0.136  base 43-368 m  top "
-                               "1847-2058 m"));
+  EXPECT_THAT(r.out, HasSubstr("low  covered 0.343  mean cover 0.136  base 43 to 368 m  top "
+                               "1847 to 2058 m"));
   EXPECT_THAT(r.out, HasSubstr("dsc vs tcc 0.608"));
   EXPECT_THAT(r.out, HasSubstr("high covered 0.575"));
   const LayeredImage exr = readExr(mDir / "out" / "gfs_2p5deg_r_gh_t_tcc_uv500.weather.exr");

@@ -1,4 +1,4 @@
-// `skyrender dsc` as a user runs it (the pattern of tests/apps): the figures on stdout for a
+// `skyrender dsc` as a user runs it (the fixture of tests/apps): the figures on stdout for a
 // small EXR written here, the options, and one-line errors with exit code 2.
 #include <algorithm>
 #include <cstdlib>
@@ -13,37 +13,14 @@
 
 #include "engine/core/files.h"
 #include "engine/io/exr.h"
+#include "tests/apps/cli_fixture.h"
 
 namespace sky {
 namespace {
-namespace fs = std::filesystem;
-using ::testing::HasSubstr;
 
-struct CliRun {
-  int rc;
-  std::string out, err;
-};
-
-class DscCli : public ::testing::Test {
+// The CLI fixture of tests/apps (a private folder, exit code and both streams).
+class DscCli : public SkyrenderCli {
 protected:
-  void SetUp() override {
-    mDir = fs::temp_directory_path() /
-           ("skyrender-dsc-" + std::to_string(::getpid()) + "-" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(mDir);
-    fs::create_directories(mDir);
-  }
-  void TearDown() override { fs::remove_all(mDir); }
-
-  CliRun run(const std::string& args) {
-    const char* exe = std::getenv("SKY_SKYRENDER");
-    EXPECT_NE(exe, nullptr) << "tests/support sets SKY_SKYRENDER";
-    const std::string cmd = std::string(exe) + " " + args + " >" + (mDir / "stdout").string() +
-                            " 2>" + (mDir / "stderr").string();
-    const int status = std::system(cmd.c_str());
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, readTextFile(mDir / "stdout"),
-            readTextFile(mDir / "stderr")};
-  }
   void expectBadInput(const std::string& args, const std::string& fragment) {
     const CliRun r = run(args);
     EXPECT_EQ(r.rc, 2) << args << ": " << r.err;
@@ -73,7 +50,6 @@ protected:
     return mDir / "render.exr";
   }
 
-  fs::path mDir;
 };
 
 TEST_F(DscCli, PrintsTheFiguresOneLineEach) {
@@ -84,20 +60,21 @@ TEST_F(DscCli, PrintsTheFiguresOneLineEach) {
   ASSERT_EQ(r.rc, 0) << r.err;
   EXPECT_EQ(r.out, "dsc 0.800\nmae 0.250\ncorrelation 0.577\nblocks 8\n");
   EXPECT_EQ(r.err, "");
-  // Defaults (cell 8, threshold 0.1): 2 x 1 blocks.
+  // Defaults (cell 8, threshold 0.1): 2 x 1 blocks, too few for a correlation.
   r = run("dsc " + render.string());
-  ASSERT_EQ(r.rc, 0) << r.err;
-  EXPECT_THAT(r.out, HasSubstr("blocks 2\n"));
+  EXPECT_EQ(r.rc, 2);
+  EXPECT_THAT(r.err, HasSubstr("holds 2 x 1 blocks; the comparison needs at least 2 x 2 (use "
+                               "--cell 4 or less)"));
   // --cell=N form and the help text lists the command.
   r = run("dsc " + render.string() + " --cell=1");
   EXPECT_THAT(r.out, HasSubstr("blocks 128\n"));
-  r = run("--help");
+  r = run("dsc --help");
   EXPECT_THAT(r.out, HasSubstr("skyrender dsc RENDER.exr"));
 }
 
 TEST_F(DscCli, BadArgumentsAndFilesExitTwoWithOneLine) {
   const fs::path render = writeRender();
-  expectBadInput("dsc", "dsc needs the render's EXR");
+  expectBadInput("dsc", "dsc needs one render EXR");
   expectBadInput("dsc " + render.string() + " " + render.string(), "one render");
   expectBadInput("dsc " + render.string() + " --cell 0", "--cell 0");
   expectBadInput("dsc " + render.string() + " --cell 2.5", "--cell '2.5'");

@@ -1,0 +1,192 @@
+#include "help.h"
+
+#include "engine/core/paths.h"
+
+namespace sky {
+namespace {
+
+constexpr const char* kFooter = R"(
+exit codes: 0 success, 2 bad input (scene, arguments, files), 1 internal or device error,
+130 / 143 interrupted (SIGINT / SIGTERM). Every error is one line on stderr saying what
+and where. skyrender --help lists the commands and the environment variables.
+)";
+
+constexpr const char* kRender = R"(usage: skyrender render [SCENE] [options]
+
+Renders SCENE (YAML or JSON; without it the embedded default scene, configs/default.yaml)
+into DIR/NAME.exr, NAME.png and NAME.json. A scene whose time is a range START/END/STEP
+writes numbered frames NAME_0001.exr/.png/.json, ... An empty scene file is an error:
+give no SCENE for the default scene, or write {} for the format's defaults.
+
+options:
+  --out DIR            output folder, created if missing (default: out); a folder the
+                       run created is removed again when nothing was written into it
+  --name NAME          file stem, same as --set output.name=NAME
+  --width W            same as --set output.width=W
+  --height H           same as --set output.height=H
+  --time TIME          same as --set time=TIME: an instant (ISO 8601 with a zone, Z or
+                       +HH:MM) or a time-lapse START/END/STEP, e.g.
+                       2024-06-21T00:00Z/2024-06-22T00:00Z/15m
+  --set KEY.PATH=VALUE override any scene key; VALUE is read as a YAML scalar or flow
+                       sequence (e.g. --set camera.heading=250); repeatable;
+                       validated exactly like the file
+  --dump-graph FILE    also write the compiled frame graph as Graphviz (dot -Tsvg FILE)
+  --debug-output NAME  also write NAME.<name>.exr; repeatable or comma-separated:
+                       coefficients, normals (high clouds); transmittance_lut,
+                       multiscattering_lut, sky_view_sun_lut, sky_view_moon_lut,
+                       aerial_perspective (sky.model physical); cloud_steps,
+                       cloud_density_slice, weather_map (with low or mid clouds)
+  --gpu NAME|INDEX     Vulkan device by index or name substring (default: a GPU if
+                       present, else lavapipe)
+  --ocio FILE          OpenColorIO config (default: $OCIO, else configs/ocio/config.ocio)
+
+outputs:
+  NAME.exr   scene-linear Rec.709, multi-layer: R,G,B,A (beauty), sky.R/G/B (clear
+             sky) and high_clouds.R/G/B/A (premultiplied, A = coverage) in half float;
+             clouds.R/G/B/A/depth (volumetric clouds, premultiplied, A = opacity, depth
+             in m) in 32-bit float; camera.mode geographic_topdown adds
+             weather.cover_low/_mid (half)
+  NAME.png   8-bit display image through output.display / output.view, exposure applied
+  NAME.json  settings (paths resolved), time, sun, moon and light (as `ephemeris` prints
+             them), per-pass GPU milliseconds, total, device name, cache use
+
+A time-lapse stopped by SIGINT (Ctrl-C) or SIGTERM finishes the frame it is writing,
+keeps every finished frame, prints "interrupted after N of M frames" and exits 130 / 143.
+)";
+
+constexpr const char* kValidate =
+    R"(usage: skyrender validate SCENE [--set KEY.PATH=VALUE]... [--ocio FILE]
+
+Checks SCENE as `render` would (the display and view against the OCIO config included)
+and prints its effective settings, every default filled in, in the scene's own format
+(YAML or JSON). Relative paths are printed resolved, so the printed scene renders the
+same from any folder.
+
+options:
+  --set KEY.PATH=VALUE override a scene key, as for render; repeatable
+  --ocio FILE          OpenColorIO config (default: $OCIO, else configs/ocio/config.ocio)
+)";
+
+constexpr const char* kEphemeris =
+    R"(usage: skyrender ephemeris --lat D --lon D --time ISO8601 [options]
+
+Prints the sun's and the moon's positions (NREL SPA, Meeus), the moon's phase and the key
+light of the lighting model at a place and instant, as JSON.
+
+options:
+  --lat D              latitude, degrees north (-90..90), required
+  --lon D              longitude, degrees east (-180..180), required
+  --time ISO8601       the instant with a zone (2024-06-21T12:00Z), required
+  --height-m M         observer height above sea level (default 0)
+  --pressure-hpa P     air pressure for refraction (default 1010; 0 turns it off)
+  --temperature-c T    air temperature for refraction (default 10)
+)";
+
+constexpr const char* kSchema = R"(usage: skyrender schema
+
+Prints the JSON Schema (draft 2020-12) of scene files; configs/schema/scene.schema.json is
+a copy. Takes no arguments.
+)";
+
+constexpr const char* kDevices = R"(usage: skyrender devices [--gpu NAME|INDEX]
+
+Lists the Vulkan devices and marks the one render would pick. Takes no other arguments.
+
+options:
+  --gpu NAME|INDEX     show which device this choice picks
+)";
+
+constexpr const char* kDsc = R"(usage: skyrender dsc RENDER.exr [--cell PX] [--threshold T]
+
+Compares a camera.mode geographic_topdown render's cloud opacity with its weather map's
+cover over PX x PX blocks: Dice of the blocks above T (Lu (28)), mean absolute error,
+correlation and the block count. A correlation needs at least 2 blocks across each axis
+of the image.
+
+options:
+  --cell PX            block size in pixels, a whole number (default 8)
+  --threshold T        a block is cloudy above this mean (0..1, default 0.1)
+)";
+
+constexpr const char* kWeather =
+    R"(usage: skyrender weather FILE [--scene SCENE] [--out DIR] [--set KEY.PATH=VALUE]...
+
+The cloud map a GRIB2 or NetCDF forecast gives (Lu (1)(2) per layer, or the model's own
+cover): DIR/STEM.weather.exr (cover_low, cover_mid, cover_high, type and each layer's
+base and top altitude per texel, 32-bit float) and STEM.weather.png (low red, mid green,
+high blue). Prints each layer's covered fraction, mean cover, altitudes and Dice against
+the file's own cloud cover (tcc) when it has one. The map covers weather.region when the
+scene or --set gives one, else the file's whole grid.
+
+options:
+  --scene SCENE        take the weather settings (levels, time, evolution, region) from
+                       SCENE (default: the embedded default scene)
+  --out DIR            output folder, created if missing (default: out)
+  --set KEY.PATH=VALUE override a scene key, e.g. --set 'weather.region.lat=[0,55]'
+                       --set 'weather.region.lon=[39,105]'; repeatable
+)";
+
+}  // namespace
+
+const std::vector<CommandHelp>& commandHelp() {
+  static const std::vector<CommandHelp> commands = {
+      {"render", "render a scene (or the default scene) to EXR, PNG and a JSON report",
+       std::string(kRender) + kFooter},
+      {"validate", "check a scene and print its effective settings",
+       std::string(kValidate) + kFooter},
+      {"ephemeris", "sun and moon positions, moon phase and key light as JSON",
+       std::string(kEphemeris) + kFooter},
+      {"schema", "the JSON Schema of scene files", std::string(kSchema) + kFooter},
+      {"devices", "the Vulkan devices and which one is picked", std::string(kDevices) + kFooter},
+      {"dsc", "compare a top-down render's cloud opacity with its weather map",
+       std::string(kDsc) + kFooter},
+      {"weather", "the cloud map a GRIB2/NetCDF forecast gives, with per-layer figures",
+       std::string(kWeather) + kFooter},
+  };
+  return commands;
+}
+
+const CommandHelp* findCommandHelp(const std::string& name) {
+  for (const CommandHelp& c : commandHelp())
+    if (name == c.name) return &c;
+  return nullptr;
+}
+
+std::string commandList() {
+  std::string out;
+  for (const CommandHelp& c : commandHelp()) out += (out.empty() ? "" : ", ") + std::string(c.name);
+  return out;
+}
+
+std::string versionText() {
+  return std::string("skyrender ") + skylayersVersion() + "\n";
+}
+
+std::string overviewText() {
+  std::string out = R"(skyrender - render skies and clouds with skylayers
+
+usage: skyrender COMMAND [arguments] [options]
+       skyrender COMMAND --help    the command's arguments, options and outputs
+       skyrender --version
+
+commands:
+)";
+  for (const CommandHelp& c : commandHelp()) {
+    std::string name = std::string("  ") + c.name;
+    name.resize(14, ' ');
+    out += name + c.summary + "\n";
+  }
+  out += R"(
+environment:
+  SKY_VALIDATION=1   enable the Vulkan validation layers (messages go to stderr)
+  SKY_DATA_DIR       folder holding shaders/ and configs/ (default: the source tree)
+  SKY_CACHE_DIR      cache folder for SPIR-V, baked high-cloud textures and cloud noise
+                     (default: ~/.cache/skylayers); a render still works when it cannot
+                     be written, says so once on stderr and in the report
+  OCIO               OpenColorIO config used when --ocio is absent
+)";
+  out += kFooter;
+  return out;
+}
+
+}  // namespace sky
