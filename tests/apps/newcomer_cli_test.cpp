@@ -186,6 +186,7 @@ TEST_F(SkyrenderCli, ProceduralCloudsComeAlongWhereverTheCameraGoes) {
   ASSERT_EQ(r.rc, 0) << r.err;
   const nlohmann::json report = readJson(mDir / "out" / "sky.json");
   EXPECT_EQ(report["volumetric_clouds"]["present"], true);
+  ASSERT_TRUE(report.contains("weather_map"));
   const double south = report["weather_map"]["region"]["lat"][0];
   const double north = report["weather_map"]["region"]["lat"][1];
   EXPECT_LT(south, 30.0);
@@ -383,6 +384,7 @@ TEST_F(SkyrenderCli, AnUnwritableCacheWarnsOnceAndTheReportSaysSo) {
   EXPECT_EQ(count(r.err, "warning: the cache folder /proc/nope cannot be written"), 1u) << r.err;
   for (const char* frame : {"sky_0001.json", "sky_0003.json"}) {
     const nlohmann::json report = readJson(mDir / "out" / frame);
+    ASSERT_TRUE(report.contains("cache")) << frame;
     EXPECT_EQ(report["cache"]["writable"], false);
     EXPECT_TRUE(report["cache"].contains("not_written_because"));
     EXPECT_FALSE(report["high_cloud_textures"].contains("cache_file")) << frame;
