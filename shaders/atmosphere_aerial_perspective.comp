@@ -4,14 +4,16 @@
 // and the slice (sun and moon, their illuminance applied) and the mean transmittance. One
 // invocation marches one view ray through all the slices, storing as it passes each, so each
 // slice continues the integral of the one before. Made every frame.
+#include "common/params_block.glsl"
 #include "common/atmosphere.glsl"
 #include "common/view.glsl"
 
 layout(local_size_x = ATMOSPHERE_GROUP_X, local_size_y = ATMOSPHERE_GROUP_Y) in;
 
-layout(std140, binding = ATMOSPHERE_BINDING_PARAMS) readonly buffer Params {
-  AtmosphereParams params;
+layout(std140, binding = ATMOSPHERE_BINDING_PARAMS) uniform Params {
+  AtmosphereParams paramsBlock[1];
 };
+#define params paramsBlock[SKY_PARAMS_INDEX]
 layout(binding = ATMOSPHERE_AP_BINDING_TRANSMITTANCE) uniform sampler2D transmittanceLut;
 layout(binding = ATMOSPHERE_AP_BINDING_MULTISCATTERING) uniform sampler2D multiScatteringLut;
 layout(binding = ATMOSPHERE_AP_BINDING_OUT, rgba32f) uniform writeonly image3D apImage;

@@ -3,6 +3,7 @@
 // passes/sky_high_clouds), the star field and the sun and moon discs behind the clouds, and
 // the volumetric low and mid clouds (passes/volumetric_clouds) in front of them — or behind
 // the high clouds when the camera flies above those. Aerial perspective joins here later.
+#include "common/params_block.glsl"
 #include "common/atmosphere_composite_shared.h"
 #include "common/view.glsl"
 #define LIGHTING_BINDING ATMOSPHERE_COMPOSITE_BINDING_LIGHTING
@@ -12,9 +13,10 @@
 
 layout(local_size_x = ATMOSPHERE_COMPOSITE_GROUP_X, local_size_y = ATMOSPHERE_COMPOSITE_GROUP_Y) in;
 
-layout(std140, binding = ATMOSPHERE_COMPOSITE_BINDING_PARAMS) readonly buffer Params {
-  AtmosphereCompositeParams params;
+layout(std140, binding = ATMOSPHERE_COMPOSITE_BINDING_PARAMS) uniform Params {
+  AtmosphereCompositeParams paramsBlock[1];
 };
+#define params paramsBlock[SKY_PARAMS_INDEX]
 layout(binding = ATMOSPHERE_COMPOSITE_BINDING_BEAUTY, rgba16f) uniform writeonly image2D beautyImage;
 layout(binding = ATMOSPHERE_COMPOSITE_BINDING_SKY, rgba16f) uniform readonly image2D skyImage;
 layout(binding = ATMOSPHERE_COMPOSITE_BINDING_HIGH_CLOUDS, rgba16f) uniform readonly image2D

@@ -5,14 +5,16 @@
 // geometric series F_ms = 1 / (1 - f_ms) is Psi_ms, per unit illuminance. One workgroup per
 // texel, one invocation per direction of the sphere. Persistent; remade only when the
 // atmosphere changes.
+#include "common/params_block.glsl"
 #include "common/atmosphere.glsl"
 
 #define DIRECTIONS (ATMOSPHERE_MS_ZENITH_BANDS * ATMOSPHERE_MS_AZIMUTHS)
 layout(local_size_x = DIRECTIONS) in;
 
-layout(std140, binding = ATMOSPHERE_BINDING_PARAMS) readonly buffer Params {
-  AtmosphereParams params;
+layout(std140, binding = ATMOSPHERE_BINDING_PARAMS) uniform Params {
+  AtmosphereParams paramsBlock[1];
 };
+#define params paramsBlock[SKY_PARAMS_INDEX]
 layout(binding = ATMOSPHERE_MULTISCATTERING_BINDING_TRANSMITTANCE) uniform sampler2D transmittanceLut;
 layout(binding = ATMOSPHERE_MULTISCATTERING_BINDING_OUT, rgba32f) uniform writeonly image2D lutImage;
 

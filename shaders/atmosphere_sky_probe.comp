@@ -3,13 +3,15 @@
 // sky, through the same skyViewRadiance() (sun plus moon LUT). Column 0 starts at north and
 // azimuth grows eastward; row 0 is the zenith, the last row the nadir. A debug view, and the
 // "LUT path" the atmosphere tests compare with a direct reference.
+#include "common/params_block.glsl"
 #include "common/atmosphere.glsl"
 
 layout(local_size_x = ATMOSPHERE_GROUP_X, local_size_y = ATMOSPHERE_GROUP_Y) in;
 
-layout(std140, binding = ATMOSPHERE_BINDING_PARAMS) readonly buffer Params {
-  AtmosphereParams params;
+layout(std140, binding = ATMOSPHERE_BINDING_PARAMS) uniform Params {
+  AtmosphereParams paramsBlock[1];
 };
+#define params paramsBlock[SKY_PARAMS_INDEX]
 layout(binding = ATMOSPHERE_SKY_PROBE_BINDING_SUN) uniform sampler2D skyViewSun;
 layout(binding = ATMOSPHERE_SKY_PROBE_BINDING_MOON) uniform sampler2D skyViewMoon;
 layout(binding = ATMOSPHERE_SKY_PROBE_BINDING_OUT, rgba32f) uniform writeonly image2D probeImage;

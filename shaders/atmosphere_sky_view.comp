@@ -4,13 +4,15 @@
 // shaders/common/atmosphere.glsl, once lit by the sun (z = 0) and once by the moon (z = 1),
 // each light's illuminance applied. Below the horizon: the atmosphere in front of the lit
 // ground, and the ground. Made every frame.
+#include "common/params_block.glsl"
 #include "common/atmosphere.glsl"
 
 layout(local_size_x = ATMOSPHERE_GROUP_X, local_size_y = ATMOSPHERE_GROUP_Y) in;
 
-layout(std140, binding = ATMOSPHERE_BINDING_PARAMS) readonly buffer Params {
-  AtmosphereParams params;
+layout(std140, binding = ATMOSPHERE_BINDING_PARAMS) uniform Params {
+  AtmosphereParams paramsBlock[1];
 };
+#define params paramsBlock[SKY_PARAMS_INDEX]
 layout(binding = ATMOSPHERE_SKY_VIEW_BINDING_TRANSMITTANCE) uniform sampler2D transmittanceLut;
 layout(binding = ATMOSPHERE_SKY_VIEW_BINDING_MULTISCATTERING) uniform sampler2D multiScatteringLut;
 layout(binding = ATMOSPHERE_SKY_VIEW_BINDING_SUN, rgba32f) uniform writeonly image2D sunImage;

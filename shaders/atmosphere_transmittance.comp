@@ -2,13 +2,15 @@
 // Transmittance LUT (Hillaire 2020, section 5.1): transmittance from each (radius, cos zenith)
 // of the Bruneton parametrisation to the top of the atmosphere, by a raymarch of the optical
 // depth. Persistent; remade only when the atmosphere changes.
+#include "common/params_block.glsl"
 #include "common/atmosphere.glsl"
 
 layout(local_size_x = ATMOSPHERE_GROUP_X, local_size_y = ATMOSPHERE_GROUP_Y) in;
 
-layout(std140, binding = ATMOSPHERE_BINDING_PARAMS) readonly buffer Params {
-  AtmosphereParams params;
+layout(std140, binding = ATMOSPHERE_BINDING_PARAMS) uniform Params {
+  AtmosphereParams paramsBlock[1];
 };
+#define params paramsBlock[SKY_PARAMS_INDEX]
 layout(binding = ATMOSPHERE_TRANSMITTANCE_BINDING_OUT, rgba32f) uniform writeonly image2D lutImage;
 
 void main() {

@@ -6,15 +6,17 @@
 // rank/shape texture keeps both so the draw can apply any cover per pixel (regional cover from
 // the weather map). One dispatch fills one band of rows, so a large bake is split into several
 // submits with progress in between.
+#include "common/params_block.glsl"
 #include "common/high_cloud_bake_shared.h"
 #include "common/high_cloud_coverage.glsl"
 #include "common/noise.glsl"
 
 layout(local_size_x = HIGH_CLOUD_GROUP_X, local_size_y = HIGH_CLOUD_GROUP_Y) in;
 
-layout(std140, binding = HIGH_CLOUD_BAKE_BINDING_PARAMS) readonly buffer Params {
-  HighCloudBakeParams params;
+layout(std140, binding = HIGH_CLOUD_BAKE_BINDING_PARAMS) uniform Params {
+  HighCloudBakeParams paramsBlock[1];
 };
+#define params paramsBlock[SKY_PARAMS_INDEX]
 // Greyscale, sampled bilinearly with wrap over one tile; multiplies the cover when used.
 layout(binding = HIGH_CLOUD_BAKE_BINDING_COVER_MAP) uniform sampler2D coverMap;
 layout(rgba16f, binding = HIGH_CLOUD_BAKE_BINDING_COEFFICIENTS) writeonly uniform image2D

@@ -5,6 +5,7 @@
 // Writes the sky alone and the clouds premultiplied (rgb radiance, a coverage = 1 - clear).
 // With SKY_HIGH_CLOUDS_REGIONAL the cover comes per pixel from the weather map's high layer
 // where the ray meets the layer, applied to the baked rank/shape texture.
+#include "common/params_block.glsl"
 #include "common/sky_high_clouds_shared.h"
 #include "common/view.glsl"
 #define LIGHTING_BINDING SKY_HIGH_CLOUDS_BINDING_LIGHTING
@@ -20,9 +21,10 @@
 
 layout(local_size_x = SKY_HIGH_CLOUDS_GROUP_X, local_size_y = SKY_HIGH_CLOUDS_GROUP_Y) in;
 
-layout(std140, binding = SKY_HIGH_CLOUDS_BINDING_PARAMS) readonly buffer Params {
-  SkyHighCloudsParams params;
+layout(std140, binding = SKY_HIGH_CLOUDS_BINDING_PARAMS) uniform Params {
+  SkyHighCloudsParams paramsBlock[1];
 };
+#define params paramsBlock[SKY_PARAMS_INDEX]
 layout(binding = SKY_HIGH_CLOUDS_BINDING_SKY, rgba16f) uniform writeonly image2D skyImage;
 layout(binding = SKY_HIGH_CLOUDS_BINDING_CLOUDS, rgba16f) uniform writeonly image2D cloudImage;
 layout(binding = SKY_HIGH_CLOUDS_BINDING_NORMALS) uniform sampler2D normalTexture;
@@ -37,9 +39,10 @@ layout(binding = SKY_HIGH_CLOUDS_BINDING_COEFFICIENTS) uniform sampler2D coeffic
 layout(binding = SKY_HIGH_CLOUDS_BINDING_COARSE) uniform sampler2D coarseTexture;
 #endif
 #if SKY_PHYSICAL_SKY
-layout(std140, binding = SKY_HIGH_CLOUDS_BINDING_ATMOSPHERE) readonly buffer AtmosphereBlock {
-  AtmosphereParams atmosphere;
+layout(std140, binding = SKY_HIGH_CLOUDS_BINDING_ATMOSPHERE) uniform AtmosphereBlock {
+  AtmosphereParams atmosphereBlock[1];
 };
+#define atmosphere atmosphereBlock[SKY_PARAMS_INDEX]
 layout(binding = SKY_HIGH_CLOUDS_BINDING_TRANSMITTANCE) uniform sampler2D transmittanceLut;
 layout(binding = SKY_HIGH_CLOUDS_BINDING_SKY_VIEW_SUN) uniform sampler2D skyViewSunLut;
 layout(binding = SKY_HIGH_CLOUDS_BINDING_SKY_VIEW_MOON) uniform sampler2D skyViewMoonLut;

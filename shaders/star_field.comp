@@ -4,14 +4,16 @@
 // bilinear (tent) weights onto the four nearest pixel centres as fixed-point flux. The tent
 // conserves each star's flux and moves its centroid linearly with the star, so a star
 // drifting across the image in a time-lapse neither flickers nor jumps.
+#include "common/params_block.glsl"
 #include "common/star_field_shared.h"
 #include "common/view.glsl"
 
 layout(local_size_x = STAR_FIELD_GROUP_SIZE) in;
 
-layout(std140, binding = STAR_FIELD_BINDING_PARAMS) readonly buffer Params {
-  StarFieldParams params;
+layout(std140, binding = STAR_FIELD_BINDING_PARAMS) uniform Params {
+  StarFieldParams paramsBlock[1];
 };
+#define params paramsBlock[SKY_PARAMS_INDEX]
 layout(std430, binding = STAR_FIELD_BINDING_STARS) readonly buffer Stars {
   vec4 stars[];  // xyz: J2000 direction; w: flux relative to V = 0
 };

@@ -5,6 +5,13 @@
 
 namespace sky {
 
+CompiledShader compileForDevice(const Context& ctx, ShaderCompiler& compiler,
+                                const std::filesystem::path& file,
+                                std::vector<ShaderDefine> defines) {
+  for (const auto& [name, value] : ctx.shaderDefines()) defines.push_back({name, value});
+  return compiler.compile(file, defines);
+}
+
 ComputePipeline::ComputePipeline(const Context& ctx, const std::string& name,
                                  const std::vector<uint32_t>& spirv,
                                  const ShaderReflection& reflection)

@@ -6,11 +6,20 @@
 
 #include <vulkan/vulkan.h>
 
+#include <filesystem>
+
+#include "engine/shader/shader_compiler.h"
 #include "engine/shader/spirv_reflect.h"
 
 namespace sky {
 
 class Context;
+
+// Compiles `file` for `ctx`: `defines` and the device's own (Context::shaderDefines, driver
+// workarounds), so every pipeline a pass builds for a device sees them.
+CompiledShader compileForDevice(const Context& ctx, ShaderCompiler& compiler,
+                                const std::filesystem::path& file,
+                                std::vector<ShaderDefine> defines = {});
 
 class ComputePipeline {
 public:

@@ -267,6 +267,14 @@ void Context::pickDevice(const std::string& request) {
   }
   mPhysicalDevice = devices[static_cast<size_t>(chosen)];
   vkGetPhysicalDeviceProperties(mPhysicalDevice, &mProperties);
+  VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
+  VkPhysicalDeviceProperties2 properties{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
+  properties.pNext = &driver;
+  vkGetPhysicalDeviceProperties2(mPhysicalDevice, &properties);
+  mDriverId = driver.driverID;
+  mShaderDefines.clear();
+  if (mDriverId == VK_DRIVER_ID_MESA_LLVMPIPE)
+    mShaderDefines.emplace_back("SKY_UNFOLDABLE_PARAMS_INDEX", "1");
 }
 
 void Context::createDevice() {

@@ -5,6 +5,7 @@
 #include <functional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include <vulkan/vulkan.h>
@@ -51,6 +52,13 @@ public:
   // Nanoseconds per timestamp tick, and whether the compute queue has timestamps at all.
   double timestampPeriodNs() const { return mProperties.limits.timestampPeriod; }
   bool hasTimestamps() const { return mTimestampValidBits > 0; }
+  // The driver (VK_DRIVER_ID_MESA_LLVMPIPE for lavapipe).
+  VkDriverId driverId() const { return mDriverId; }
+  // Defines every shader built for this device gets (driver workarounds, name and value):
+  // SKY_UNFOLDABLE_PARAMS_INDEX=1 on lavapipe (shaders/common/params_block.glsl says why).
+  const std::vector<std::pair<std::string, std::string>>& shaderDefines() const {
+    return mShaderDefines;
+  }
 
   // A memory type index with all of `flags` among `typeBits`; Internal error if none.
   uint32_t memoryType(uint32_t typeBits, VkMemoryPropertyFlags flags) const;
@@ -76,6 +84,8 @@ private:
   VkQueue mQueue = VK_NULL_HANDLE;
   uint32_t mQueueFamily = 0;
   uint32_t mTimestampValidBits = 0;
+  VkDriverId mDriverId = VkDriverId(0);
+  std::vector<std::pair<std::string, std::string>> mShaderDefines;
   VkCommandPool mUploadPool = VK_NULL_HANDLE;
   bool mValidation = false;
   bool mDebugUtils = false;

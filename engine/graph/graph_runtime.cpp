@@ -68,13 +68,10 @@ void GraphRuntime::submitAndWait() {
   SKY_VK(vkWaitForFences(mCtx.device(), 1, &mFence, VK_TRUE, UINT64_MAX));
 }
 
-// The arena's ranges are bound as uniform buffers or as read-only storage buffers. Every
-// pass's parameter block is the latter (`layout(std140) readonly buffer`, same layout as a
-// uniform block): Mesa's lavapipe (22.3, Debian 12) re-inlines uniform-buffer values that
-// feed a branch or a loop bound into a freshly compiled shader at every dispatch and keeps
-// each copy until the pipeline is destroyed, so a time-lapse grew by ~2 MB per frame and paid
-// a JIT compile per pass per frame. Storage-buffer loads are never inlined; on GPUs a
-// uniformly indexed read-only storage buffer costs the same as a uniform buffer.
+// The arena's ranges bind as uniform or as storage buffers, so its chunks carry both usages
+// and the larger of the two offset alignments. The passes' parameter blocks are uniform
+// blocks read through shaders/common/params_block.glsl, which keeps lavapipe from recompiling
+// a shader at every dispatch.
 UniformRange GraphRuntime::uploadUniform(const void* data, VkDeviceSize size) {
   const VkDeviceSize align = std::max(mCtx.properties().limits.minUniformBufferOffsetAlignment,
                                       mCtx.properties().limits.minStorageBufferOffsetAlignment);

@@ -96,8 +96,7 @@ void PassContext::dispatch(const ComputePipeline& pipeline, std::span<const Bind
         w.pImageInfo = &imageInfos.back();
         break;
       }
-      // Either kind takes a graph buffer or a range of the uniform arena: a pass's per-frame
-      // parameters are read-only storage blocks (GraphRuntime::uploadUniform says why).
+      // Either kind takes a graph buffer or a range of the uniform arena.
       case VK_DESCRIPTOR_TYPE_STORAGE_BUFFER:
       case VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER: {
         if (b.kind == Binding::Kind::Uniform) {
@@ -105,8 +104,9 @@ void PassContext::dispatch(const ComputePipeline& pipeline, std::span<const Bind
         } else if (b.kind == Binding::Kind::Buffer) {
           bufferInfos.push_back({buffer(b.buffer).buffer(), 0, VK_WHOLE_SIZE});
         } else {
-          mismatch(d->type == VK_DESCRIPTOR_TYPE_STORAGE_BUFFER ? "is a storage buffer in the shader"
-                                                                : "is a uniform buffer in the shader");
+          mismatch(d->type == VK_DESCRIPTOR_TYPE_STORAGE_BUFFER
+                       ? "is a storage buffer in the shader"
+                       : "is a uniform buffer in the shader");
         }
         w.pBufferInfo = &bufferInfos.back();
         break;

@@ -46,8 +46,8 @@ public:
   const Context& gpu() const;
   const Image& image(ImageId handle) const;
   const Buffer& buffer(BufferId handle) const;
-  // Copies `data` into this frame's uniform arena; the range binds to a uniform block or to a
-  // read-only storage block (the passes' parameter blocks, see GraphRuntime::uploadUniform).
+  // Copies `data` into this frame's uniform arena; the range binds to a uniform block (the
+  // passes' parameter blocks, shaders/common/params_block.glsl) or a read-only storage block.
   UniformRange uniform(const void* data, VkDeviceSize size) const;
   template <class T>
   UniformRange uniform(const T& value) const {

@@ -6,7 +6,7 @@ namespace sky {
 namespace {
 
 ComputePipeline buildPipeline(const Context& ctx, ShaderCompiler& compiler) {
-  CompiledShader shader = compiler.compile("atmosphere_composite.comp");
+  CompiledShader shader = compileForDevice(ctx, compiler, "atmosphere_composite.comp");
   return ComputePipeline(ctx, AtmosphereCompositePass::kName, shader.spirv, shader.reflection);
 }
 

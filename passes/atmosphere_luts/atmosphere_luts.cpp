@@ -20,7 +20,7 @@ constexpr double kPerMmToPerKm = 1e-3;
 constexpr VkFormat kLutFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 
 ComputePipeline buildPipeline(const Context& ctx, ShaderCompiler& compiler, const char* name) {
-  CompiledShader shader = compiler.compile(std::string(name) + ".comp");
+  CompiledShader shader = compileForDevice(ctx, compiler, std::string(name) + ".comp");
   return ComputePipeline(ctx, name, shader.spirv, shader.reflection);
 }
 

@@ -10,7 +10,7 @@ namespace sky {
 
 CloudNoiseBakePass::CloudNoiseBakePass(const Context& ctx, ShaderCompiler& compiler,
                                        const std::string& name)
-    : CloudNoiseBakePass(ctx, compiler.compile(name + ".comp"), name) {}
+    : CloudNoiseBakePass(ctx, compileForDevice(ctx, compiler, name + ".comp"), name) {}
 
 CloudNoiseBakePass::CloudNoiseBakePass(const Context& ctx, const CompiledShader& shader,
                                        const std::string& name)

@@ -10,7 +10,8 @@ namespace sky {
 
 HighCloudBakePass::HighCloudBakePass(const Context& ctx, ShaderCompiler& compiler,
                                      const Sampler& sampler)
-    : HighCloudBakePass(ctx, compiler.compile(std::string(kName) + ".comp"), sampler) {}
+    : HighCloudBakePass(ctx, compileForDevice(ctx, compiler, std::string(kName) + ".comp"),
+                        sampler) {}
 
 HighCloudBakePass::HighCloudBakePass(const Context& ctx, const CompiledShader& shader,
                                      const Sampler& sampler)
@@ -44,7 +45,7 @@ void HighCloudBakePass::execute(PassContext& ctx) const {
 }
 
 HighCloudNormalsPass::HighCloudNormalsPass(const Context& ctx, ShaderCompiler& compiler)
-    : HighCloudNormalsPass(ctx, compiler.compile(std::string(kName) + ".comp")) {}
+    : HighCloudNormalsPass(ctx, compileForDevice(ctx, compiler, std::string(kName) + ".comp")) {}
 
 HighCloudNormalsPass::HighCloudNormalsPass(const Context& ctx, const CompiledShader& shader)
     : mPipeline(ctx, kName, shader.spirv, shader.reflection), mSourceHash(shader.sourceHash) {}
@@ -72,7 +73,7 @@ void HighCloudNormalsPass::execute(PassContext& ctx) const {
 
 HighCloudReducePass::HighCloudReducePass(const Context& ctx, ShaderCompiler& compiler)
     : mPipeline([&] {
-        CompiledShader shader = compiler.compile(std::string(kName) + ".comp");
+        CompiledShader shader = compileForDevice(ctx, compiler, std::string(kName) + ".comp");
         return ComputePipeline(ctx, kName, shader.spirv, shader.reflection);
       }()) {}
 
@@ -99,7 +100,7 @@ void HighCloudReducePass::execute(PassContext& ctx) const {
 
 HighCloudCoverReducePass::HighCloudCoverReducePass(const Context& ctx, ShaderCompiler& compiler)
     : mPipeline([&] {
-        CompiledShader shader = compiler.compile(std::string(kName) + ".comp");
+        CompiledShader shader = compileForDevice(ctx, compiler, std::string(kName) + ".comp");
         return ComputePipeline(ctx, kName, shader.spirv, shader.reflection);
       }()) {}
 

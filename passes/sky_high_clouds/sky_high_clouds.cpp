@@ -19,7 +19,7 @@ constexpr double kDeg = kPi / 180.0;
 
 ComputePipeline buildPipeline(const Context& ctx, ShaderCompiler& compiler, bool physical,
                               bool regional) {
-  CompiledShader shader = compiler.compile("sky_high_clouds.comp",
+  CompiledShader shader = compileForDevice(ctx, compiler, "sky_high_clouds.comp",
                                            {{"SKY_PHYSICAL_SKY", physical ? "1" : "0"},
                                             {"SKY_HIGH_CLOUDS_REGIONAL", regional ? "1" : "0"}});
   return ComputePipeline(ctx, SkyHighCloudsPass::kName, shader.spirv, shader.reflection);

@@ -16,7 +16,7 @@ namespace {
 constexpr uint32_t kMaxGroups = 65535;
 
 ComputePipeline buildPipeline(const Context& ctx, ShaderCompiler& compiler, const char* name) {
-  CompiledShader shader = compiler.compile(std::string(name) + ".comp");
+  CompiledShader shader = compileForDevice(ctx, compiler, std::string(name) + ".comp");
   return ComputePipeline(ctx, name, shader.spirv, shader.reflection);
 }
 

@@ -54,7 +54,7 @@ const ComputePipeline& CloudPipelines::get(const shared::CloudParams& p) {
                             "CLOUD_TANG"};
     std::vector<ShaderDefine> defines;
     for (size_t i = 0; i < key.size(); ++i) defines.push_back({names[i], std::to_string(key[i])});
-    CompiledShader shader = mCompiler.compile(mFile, defines);
+    CompiledShader shader = compileForDevice(mCtx, mCompiler, mFile, defines);
     pipeline = std::make_unique<ComputePipeline>(mCtx, mName, shader.spirv, shader.reflection);
   }
   return *pipeline;

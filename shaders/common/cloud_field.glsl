@@ -6,6 +6,7 @@
 // call on some compilers (lavapipe's LLVM spilled it, a thousand times slower).
 #ifndef SKY_CLOUD_FIELD_GLSL
 #define SKY_CLOUD_FIELD_GLSL
+#include "params_block.glsl"
 #include "volumetric_clouds_shared.h"
 #include "geo.glsl"
 #include "cloud_density.glsl"
@@ -39,9 +40,10 @@
 #define CLOUD_TANG 0
 #endif
 
-layout(std140, binding = VOLUMETRIC_CLOUDS_BINDING_PARAMS) readonly buffer CloudParamsBlock {
-  CloudParams params;
+layout(std140, binding = VOLUMETRIC_CLOUDS_BINDING_PARAMS) uniform CloudParamsBlock {
+  CloudParams paramsBlock[1];
 };
+#define params paramsBlock[SKY_PARAMS_INDEX]
 layout(binding = VOLUMETRIC_CLOUDS_BINDING_SHAPE) uniform sampler3D shapeNoise;
 layout(binding = VOLUMETRIC_CLOUDS_BINDING_DETAIL) uniform sampler3D detailNoise;
 layout(binding = VOLUMETRIC_CLOUDS_BINDING_CURL) uniform sampler2D curlNoise;

@@ -4,13 +4,15 @@
 // the ambient terms here, with their kernel tests.)
 #ifndef SKY_LIGHTING_GLSL
 #define SKY_LIGHTING_GLSL
+#include "params_block.glsl"
 #include "lighting_shared.h"
 #include "kozlov_sky.glsl"
 
 #ifdef LIGHTING_BINDING
-layout(std140, binding = LIGHTING_BINDING) readonly buffer LightingBlock {
-  LightingState lighting;
+layout(std140, binding = LIGHTING_BINDING) uniform LightingBlock {
+  LightingState lightingBlock[1];
 };
+#define lighting lightingBlock[SKY_PARAMS_INDEX]
 #endif
 
 // The clear sky in direction V: the daylit Kozlov sky around the sun plus the moonlit copy

@@ -1,4 +1,5 @@
 // engine/gpu: device choice, validation plumbing, resources, timestamps, texel conversion.
+#include <algorithm>
 #include <cstdlib>
 #include <string>
 
@@ -64,6 +65,17 @@ TEST(GpuContext, GpuByIndexAndUnknownNameListsDevices) {
 }
 
 class GpuResources : public test::GpuTest {};
+
+// lavapipe gets the define that hides parameter values from its per-dispatch inlining
+// (shaders/common/params_block.glsl); other drivers get none, so their shaders read plain
+// uniform blocks.
+TEST_F(GpuResources, OnlyLavapipeGetsTheParamsIndexWorkaround) {
+  const auto& defines = ctx().shaderDefines();
+  const bool has = std::any_of(defines.begin(), defines.end(), [](const auto& d) {
+    return d.first == "SKY_UNFOLDABLE_PARAMS_INDEX" && d.second == "1";
+  });
+  EXPECT_EQ(has, ctx().driverId() == VK_DRIVER_ID_MESA_LLVMPIPE) << ctx().deviceName();
+}
 
 TEST_F(GpuResources, ImagesBuffersAndImpossibleSizes) {
   ImageDesc d3;
