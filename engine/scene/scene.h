@@ -160,7 +160,8 @@ struct CloudSettings {
   CloudLayerSettings mid{3000.0, 6500.0};
 };
 
-// The weather region: latitudes [south, north] and longitudes [west, east] in degrees.
+// The weather region: latitudes [south, north] and longitudes [west, east] in degrees. It has
+// no meaningful default: a scene gives both bounds or none (WeatherSettings::region).
 struct WeatherRegion {
   glm::dvec2 lat{0.0, 1.0};
   glm::dvec2 lon{0.0, 1.0};

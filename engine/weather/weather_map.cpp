@@ -326,8 +326,9 @@ WeatherMap makeWeatherMap(const Scene& scene, const WeatherRegion& r) {
 WeatherMap makeWeatherMap(const Scene& scene) {
   if (scene.weather.source != "file") return makeWeatherMap(scene, mapRegion(scene));
   const WeatherFields fields = readWeatherFile(scene);
+  const WeatherRegion data = dataRegion(fields.grid);
   return weatherMapFromFields(fields, double(scene.time.start.unixSeconds), scene.weather,
-                              mapRegion(scene, &fields.grid));
+                              mapRegion(scene, &data));
 }
 
 }  // namespace sky

@@ -110,12 +110,12 @@ WeatherRegion dataRegion(const GridGeometry& grid) {
   return box;
 }
 
-WeatherRegion mapRegion(const Scene& scene, const GridGeometry* grid) {
+WeatherRegion mapRegion(const Scene& scene, const WeatherRegion* dataExtent) {
   const WeatherSettings& w = scene.weather;
   if (w.region) return *w.region;
   const WeatherRegion square = cameraRegion(scene.camera.latitude, scene.camera.longitude, w);
-  if (!grid) return square;
-  const WeatherRegion data = dataRegion(*grid);
+  if (!dataExtent) return square;
+  const WeatherRegion& data = *dataExtent;
   WeatherRegion out;
   out.lat = {std::max(square.lat[0], data.lat[0]), std::min(square.lat[1], data.lat[1])};
   // Longitudes: the square moved by whole turns to overlap the data most.

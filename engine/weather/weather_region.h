@@ -23,9 +23,9 @@ WeatherRegion cameraRegion(double latDeg, double lonDeg, const WeatherSettings& 
 WeatherRegion dataRegion(const GridGeometry& grid);
 
 // The region of the weather map for `scene`: weather.region when given; else cameraRegion()
-// around the camera, clipped to dataRegion(*grid) when a forecast grid is given. BadInput
-// naming weather.region when the data do not reach the camera's square at all.
-WeatherRegion mapRegion(const Scene& scene, const GridGeometry* grid = nullptr);
+// around the camera, clipped to `data` (a forecast's dataRegion, found once per file) when
+// given. BadInput naming weather.region when the data do not reach the camera's square.
+WeatherRegion mapRegion(const Scene& scene, const WeatherRegion* data = nullptr);
 
 // The region of a scene whose map has been made (the renderer sets it from the map):
 // weather.region, which must be set by then.

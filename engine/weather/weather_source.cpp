@@ -120,10 +120,10 @@ const WeatherMap& WeatherSource::map(const Scene& scene, const IsoTime& frame) {
       mFields.reset();  // a failed read leaves nothing stale behind
       mMap.reset();
       mFields = readWeatherFile(scene);
+      mDataRegion = dataRegion(mFields->grid);  // a pass over every grid point: once per file
       mFieldsStamp = stamp;
     }
-    mRegion =
-        w.region || !mWholeData ? mapRegion(scene, &mFields->grid) : dataRegion(mFields->grid);
+    mRegion = w.region || !mWholeData ? mapRegion(scene, &mDataRegion) : mDataRegion;
     signature = settingsSignature(scene, mRegion) + '|' + stamp;
   } else {
     mRegion = mapRegion(scene);

@@ -53,7 +53,8 @@ private:
   void evolve(const Scene& scene, const std::string& signature, double timeUnix, WeatherMap& map);
 
   bool mWholeData = false;
-  WeatherRegion mRegion;  // of the last map()
+  WeatherRegion mRegion;      // of the last map()
+  WeatherRegion mDataRegion;  // the extent of mFields' grid
   std::optional<WeatherFields> mFields;
   std::string mFieldsStamp;
   std::optional<WeatherMap> mStill;  // procedural/image map, before any advection

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <glm/common.hpp>
+
 #include "engine/core/error.h"
 #include "engine/gpu/sampler.h"
 #include "engine/shader/shader_compiler.h"
@@ -108,16 +110,12 @@ shared::CloudParams cloudParams(const Scene& scene, const LightingState& lightin
   const glm::dvec3 drift =
       c.windSpeedMs * elapsed * (std::sin(toward) * enu[0] + std::cos(toward) * enu[1]);
   const glm::dvec3 noise = camera - drift;
-  auto reduced = [](const glm::dvec3& v, double period) {
-    return glm::vec3(v - period * glm::floor(v / period));
-  };
-  p.shapeOrigin = glm::vec4(reduced(noise, shapeM), 0.0f);
-  p.detailOrigin = glm::vec4(reduced(noise, detailM), 0.0f);
+  p.shapeOrigin = glm::vec4(glm::vec3(glm::mod(noise, shapeM)), 0.0f);
+  p.detailOrigin = glm::vec4(glm::vec3(glm::mod(noise, detailM)), 0.0f);
   // The curl texture lies on the ground plane at the camera (east, north): its origin is the
   // noise position's east and north coordinates, reduced by whole repeats (shapeM) likewise.
   const glm::dvec2 ground(glm::dot(noise, enu[0]), glm::dot(noise, enu[1]));
-  const glm::dvec2 curl = ground - shapeM * glm::floor(ground / shapeM);
-  p.curlOrigin = glm::vec4(float(curl.x), float(curl.y), 0.0f, 0.0f);
+  p.curlOrigin = glm::vec4(glm::vec2(glm::mod(ground, shapeM)), 0.0f, 0.0f);
   p.noiseScale = glm::vec4(static_cast<float>(1.0 / shapeM), static_cast<float>(1.0 / detailM),
                            kCurlStrength, static_cast<float>(1.0 / shapeM));
   p.march = glm::vec4(static_cast<float>(c.stepM), static_cast<float>(c.stepGrowth),

@@ -129,7 +129,8 @@ TEST(MapRegion, TheScenesRegionWinsThenTheCameraClippedToTheData) {
   Scene scene;
   scene.camera.latitude = 58.0;
   scene.camera.longitude = 0.0;
-  const GridGeometry europe = regularGrid(21, 11, 30.0, -20.0, 3.0, 2.0);  // 30-60N, 20W-20E
+  const WeatherRegion europe =
+      dataRegion(regularGrid(21, 11, 30.0, -20.0, 3.0, 2.0));  // 30-60N, 20W-20E
   scene.weather.region = WeatherRegion{{40.0, 45.0}, {0.0, 5.0}};
   EXPECT_EQ(mapRegion(scene, &europe), *scene.weather.region);
   scene.weather.region.reset();
@@ -139,7 +140,7 @@ TEST(MapRegion, TheScenesRegionWinsThenTheCameraClippedToTheData) {
   EXPECT_EQ(clipped.lat, glm::dvec2(square.lat[0], 60.0));
   EXPECT_EQ(clipped.lon, square.lon);
   // A grid in 0-360 longitudes seen from west of 0E: the square is moved by a turn to meet it.
-  const GridGeometry east = regularGrid(21, 11, 30.0, 340.0, 3.0, 2.0);  // 340-380E
+  const WeatherRegion east = dataRegion(regularGrid(21, 11, 30.0, 340.0, 3.0, 2.0));  // 340-380E
   scene.camera.latitude = 45.0;
   scene.camera.longitude = -10.0;
   const WeatherRegion turned = mapRegion(scene, &east);
@@ -151,7 +152,7 @@ TEST(MapRegion, DataThatDoNotReachTheCameraAreOneLineSayingWhatToDo) {
   Scene scene;
   scene.camera.latitude = -30.0;
   scene.camera.longitude = 20.0;
-  const GridGeometry europe = regularGrid(21, 11, 30.0, -20.0, 3.0, 2.0);
+  const WeatherRegion europe = dataRegion(regularGrid(21, 11, 30.0, -20.0, 3.0, 2.0));
   const Error e = test::catchError([&] { mapRegion(scene, &europe); });
   EXPECT_EQ(e.kind(), ErrorKind::BadInput);
   EXPECT_EQ(std::string(e.what()),
