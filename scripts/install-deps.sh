@@ -1,5 +1,10 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages skylayers needs, only those that are missing.
+# Usage: scripts/install-deps.sh [--pathtracer]
+#   --pathtracer  also installs Blender (Cycles) and the Python modules of OpenVDB and
+#                 OpenImageIO, which only the path-traced cloud comparison
+#                 (scripts/pathtrace/compare.sh) needs; CI and the build never do, and
+#                 Blender pulls in some 500 MB.
 set -euo pipefail
 
 PACKAGES=(
@@ -13,7 +18,17 @@ PACKAGES=(
   # absent, but Debian does not make it depend on the package that ships them.
   libeccodes-tools
   libgtest-dev libgmock-dev libbenchmark-dev libstb-dev
+  # OpenVDB writes the cloud density grid of `skyrender export-volume` (engine/io/vdb.h).
+  # Its headers include Boost's (numeric conversion, ...), which Debian does not make the
+  # package depend on.
+  libopenvdb-dev libboost-dev
 )
+for arg in "$@"; do
+  case "$arg" in
+    --pathtracer) PACKAGES+=(blender python3-openvdb python3-openimageio) ;;
+    *) echo "error: install-deps.sh: unknown option '$arg' (expected --pathtracer)" >&2; exit 2 ;;
+  esac
+done
 
 missing=()
 for p in "${PACKAGES[@]}"; do

@@ -273,6 +273,81 @@ int renderCommand(const std::vector<std::string>& argv) {
   return 0;
 }
 
+namespace {
+
+// --box E0,N0,U0,E1,N1,U1: the minimum and maximum corners in metres east, north and up of
+// the camera.
+CloudVolumeBox boxOption(const std::string& text) {
+  const std::string expected =
+      "--box '" + text +
+      "': expected six numbers E0,N0,U0,E1,N1,U1 (metres east, north and up of the camera: "
+      "the minimum corner, then the maximum)";
+  double v[6];
+  size_t start = 0;
+  for (int i = 0; i < 6; ++i) {
+    size_t end = text.find(',', start);
+    if ((end == std::string::npos) != (i == 5)) inputError(expected);
+    if (end == std::string::npos) end = text.size();
+    const char* first = text.data() + start;
+    const char* last = text.data() + end;
+    auto [stop, ec] = std::from_chars(first, last, v[i]);
+    if (ec != std::errc() || stop != last || !std::isfinite(v[i])) inputError(expected);
+    start = end + 1;
+  }
+  const char* axes[3] = {"east", "north", "up"};
+  for (int a = 0; a < 3; ++a)
+    if (v[a + 3] <= v[a]) {
+      char why[160];
+      std::snprintf(why, sizeof why, "--box '%s': the maximum %s (%g) must lie above the minimum (%g)",
+                    text.c_str(), axes[a], v[a + 3], v[a]);
+      inputError(why);
+    }
+  return {glm::dvec3(v[0], v[1], v[2]), glm::dvec3(v[3], v[4], v[5])};
+}
+
+}  // namespace
+
+int exportVolumeCommand(const std::vector<std::string>& argv) {
+  CliArgs args("export-volume", argv,
+               {"--box", "--voxel-m", "--out", "--width", "--height", "--time", "--set", "--gpu"},
+               {"--set"}, {});
+  Scene scene = loadScene(args, false);
+  if (scene.time.frameCount() != 1)
+    inputError("export-volume: the scene's time is a time-lapse; give one instant (--time)");
+  std::optional<CloudVolumeBox> box;
+  if (auto v = args.value("--box")) box = boxOption(*v);
+  const double voxelM = numberOption(args, "--voxel-m", 0.1, 10000, 50.0);
+  std::optional<std::string> out = args.value("--out");
+  if (!out) inputError("--out FILE.vdb is required (see skyrender export-volume --help)");
+  const fs::path outPath = *out;
+  if (outPath.extension() != ".vdb") inputError("--out " + *out + ": expected a .vdb file");
+  const fs::path folder = outPath.parent_path().empty() ? fs::path(".") : outPath.parent_path();
+  if (!fs::is_directory(folder))
+    inputError("--out " + *out + ": the folder " + folder.string() + " does not exist");
+  // The grid's size is checked before any GPU work.
+  if (box) cloudVolumeGrid(*box, voxelM);
+  warnIfCacheUnwritable();
+
+  ContextOptions options = ContextOptions::fromEnvironment();
+  options.gpu = args.value("--gpu").value_or("");
+  Context ctx(options);
+  ShaderCompiler compiler;
+  Renderer renderer(ctx, compiler);
+  const CloudVolume volume = renderer.exportCloudVolume(scene, scene.time.start, box, voxelM);
+  writeCloudVolume(outPath, volume);
+  const VdbGrid& g = volume.extinction;
+  float maxExtinction = 0.0f;
+  size_t cloudy = 0;
+  for (float e : g.values) {
+    maxExtinction = std::max(maxExtinction, e);
+    cloudy += e > 0.0f;
+  }
+  std::printf("wrote %s (%ux%ux%u voxels of %g m, %zu cloudy, extinction up to %.4g /m)\n",
+              outPath.string().c_str(), g.size.x, g.size.y, g.size.z, g.voxelSize, cloudy,
+              maxExtinction);
+  return 0;
+}
+
 int validateCommand(const std::vector<std::string>& argv) {
   CliArgs args("validate", argv, {"--set", "--ocio"}, {"--set"}, {});
   Scene scene = loadScene(args, true);

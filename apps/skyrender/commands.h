@@ -12,5 +12,6 @@ int schemaCommand(const std::vector<std::string>& args);
 int devicesCommand(const std::vector<std::string>& args);
 int dscCommand(const std::vector<std::string>& args);
 int weatherCommand(const std::vector<std::string>& args);
+int exportVolumeCommand(const std::vector<std::string>& args);
 
 }  // namespace sky

@@ -126,6 +126,33 @@ options:
                        --set 'weather.region.lon=[39,105]'; repeatable
 )";
 
+constexpr const char* kExportVolume =
+    R"(usage: skyrender export-volume [SCENE] --out FILE.vdb [options]
+
+Writes the low and mid cloud density of SCENE (default: the embedded default scene) inside
+a box around the camera as an OpenVDB fog volume, for a path tracer (scripts/pathtrace): the
+float grid "density" holds the extinction per metre (the raymarch's density times
+clouds.extinction) at each voxel centre, in the camera's east-north-up frame (metres, the
+camera at the origin). The grid's metadata hold the camera (place, heading, pitch, field
+of view, image size and view axes), the sun's and the moon's direction and illuminance at
+the clouds, the sky's ambient radiance from above and below, and the phase function
+(docs/outputs.md). Needs low or mid cover and camera.mode observer.
+
+options:
+  --out FILE.vdb       the file to write (its folder must exist); written whole or not at all
+  --box E0,N0,U0,E1,N1,U1
+                       the box in metres east, north and up of the camera, minimum corner
+                       then maximum (default: a 6 km square centred 4 km ahead along the
+                       heading, from the lowest layer's base to the highest layer's top)
+  --voxel-m M          voxel edge in metres (default: 50); the grid has ceil(size / M)
+                       voxels along each axis, at most 2^26 in all
+  --width W, --height H
+                       the image size recorded for the camera (same as --set output.width)
+  --time TIME          one instant, same as --set time=TIME
+  --set KEY.PATH=VALUE override any scene key; repeatable
+  --gpu NAME|INDEX     Vulkan device by index or name substring
+)";
+
 }  // namespace
 
 const std::vector<CommandHelp>& commandHelp() {
@@ -142,6 +169,8 @@ const std::vector<CommandHelp>& commandHelp() {
        std::string(kDsc) + kFooter},
       {"weather", "the cloud map a GRIB2/NetCDF forecast gives, with per-layer figures",
        std::string(kWeather) + kFooter},
+      {"export-volume", "the cloud density in a box as an OpenVDB grid, for a path tracer",
+       std::string(kExportVolume) + kFooter},
   };
   return commands;
 }
@@ -173,7 +202,7 @@ commands:
 )";
   for (const CommandHelp& c : commandHelp()) {
     std::string name = std::string("  ") + c.name;
-    name.resize(14, ' ');
+    name.resize(17, ' ');
     out += name + c.summary + "\n";
   }
   out += R"(

@@ -69,6 +69,7 @@ int main(int argc, char** argv) {
     if (command == "devices") return sky::devicesCommand(args);
     if (command == "dsc") return sky::dscCommand(args);
     if (command == "weather") return sky::weatherCommand(args);
+    if (command == "export-volume") return sky::exportVolumeCommand(args);
     sky::internalError("command '" + command + "' has help but no implementation");
   } catch (const sky::Error& e) {
     std::cerr << "error: " << oneLine(e.what()) << "\n";

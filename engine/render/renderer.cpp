@@ -120,39 +120,50 @@ Renderer::Renderer(const Context& ctx, ShaderCompiler& compiler)
       mClouds(ctx, compiler, mRuntime),
       mVolumetric(ctx, compiler),
       mSlice(ctx, compiler),
+      mVolumeExport(ctx, compiler),
       mComposite(ctx, compiler) {}
 
 void Renderer::setBakeProgress(std::function<void(double)> progress) {
   mHighCloudTextures.setProgress(std::move(progress));
 }
 
+Renderer::CloudSetup Renderer::cloudSetup(const Scene& scene, const IsoTime& time) {
+  const WeatherMap& weather = mClouds.weatherMap(scene, time);
+  CloudSetup s{scene, {}, {}, {}, &weather};
+  // The map's region, resolved from the camera when the scene gives none.
+  s.cloudScene.weather.region = weather.region;
+  // A forecast file places the layers at the altitudes of its pressure levels (from gh); the
+  // scene's clouds.low/mid apply otherwise.
+  if (weather.layerAltitudesM) {
+    const glm::dvec4& a = *weather.layerAltitudesM;
+    s.cloudScene.clouds.low = {a.x, a.y};
+    s.cloudScene.clouds.mid = {a.z, a.w};
+  }
+  // A top-down view is lit as seen from the middle of the weather region.
+  s.geometry = cloudFrameGeometry(s.cloudScene);
+  Scene litScene = scene;
+  litScene.camera.latitude = s.geometry.latDeg;
+  litScene.camera.longitude = s.geometry.lonDeg;
+  s.lighting = computeLighting(litScene, time);
+  // The weather where the camera stands sets the ambient light and the haze.
+  s.localWeather =
+      localWeather(weather, s.geometry.latDeg, s.geometry.lonDeg, scene.weather.localRadiusKm);
+  applyOvercast(s.lighting, scene.sky, s.localWeather.overcast);
+  return s;
+}
+
 RenderedFrame Renderer::render(const Scene& scene, const IsoTime& time,
                                const RenderOptions& options) {
   checkDebugOutputs(scene, options.debugOutputs);
   RenderedFrame out;
-  const WeatherMap& weather = mClouds.weatherMap(scene, time);
-  // A forecast file places the layers at the altitudes of its pressure levels (from gh); the
-  // scene's clouds.low/mid apply otherwise.
-  Scene cloudScene = scene;
-  // The map's region, resolved from the camera when the scene gives none.
-  cloudScene.weather.region = weather.region;
-  if (weather.layerAltitudesM) {
-    const glm::dvec4& a = *weather.layerAltitudesM;
-    cloudScene.clouds.low = {a.x, a.y};
-    cloudScene.clouds.mid = {a.z, a.w};
-  }
-  // A top-down view is lit as seen from the middle of the weather region.
-  const CloudFrameGeometry geometry = cloudFrameGeometry(cloudScene);
-  Scene litScene = scene;
-  litScene.camera.latitude = geometry.latDeg;
-  litScene.camera.longitude = geometry.lonDeg;
-  out.lighting = computeLighting(litScene, time);
-  // The weather where the camera stands sets the ambient light and the haze.
-  out.localWeather =
-      localWeather(weather, geometry.latDeg, geometry.lonDeg, scene.weather.localRadiusKm);
+  const CloudSetup setup = cloudSetup(scene, time);
+  const WeatherMap& weather = *setup.weather;
+  const Scene& cloudScene = setup.cloudScene;
+  const CloudFrameGeometry& geometry = setup.geometry;
+  out.lighting = setup.lighting;
+  out.localWeather = setup.localWeather;
   out.weatherRegion = weather.region;
   out.weatherTexels = glm::uvec2(weather.width, weather.height);
-  applyOvercast(out.lighting, scene.sky, out.localWeather.overcast);
   const uint32_t width = static_cast<uint32_t>(scene.output.width);
   const uint32_t height = static_cast<uint32_t>(scene.output.height);
   const shared::ViewState view = makeViewState(scene.camera, width, height);
@@ -303,6 +314,36 @@ RenderedFrame Renderer::render(const Scene& scene, const IsoTime& time,
       }
   for (ReadbackImage& o : out.frame.outputs) o.pixels = {};  // the layers hold the data now
   return out;
+}
+
+CloudVolume Renderer::exportCloudVolume(const Scene& scene, const IsoTime& time,
+                                        const std::optional<CloudVolumeBox>& box,
+                                        double voxelM) {
+  const CloudSetup setup = cloudSetup(scene, time);
+  if (setup.geometry.topDown)
+    inputError("export-volume: camera.mode geographic_topdown has no camera to export the "
+               "clouds around (use camera.mode observer)");
+  const glm::vec2 maxCover = setup.weather->maxCover();
+  if (maxCover.x <= 0.0f && maxCover.y <= 0.0f)
+    inputError("export-volume: the scene has no low or mid clouds (weather cover is 0 everywhere)");
+  const CloudVolumeGrid grid = cloudVolumeGrid(
+      box.value_or(defaultCloudVolumeBox(setup.cloudScene, maxCover)), voxelM);
+
+  FrameGraph graph(mRuntime);
+  const CloudLayers::Frame cloudFrame = mClouds.addTo(graph, setup.cloudScene, time);
+  const shared::ViewState view =
+      makeViewState(scene.camera, static_cast<uint32_t>(scene.output.width),
+                    static_cast<uint32_t>(scene.output.height));
+  // The raymarch's own parameters, so the grid holds the very field it marches through.
+  CloudVolumeExportPass::Inputs in;
+  in.params = cloudParams(setup.cloudScene, setup.lighting, time, view, cloudFrame.maxCover,
+                          cloudFrame.weatherSize, cloudFrame.coverage);
+  in.box = grid.params;
+  in.textures = cloudFrame.textures;
+  graph.requestOutput(graph.add(mVolumeExport, in).grid, "cloud_volume");
+  FrameResult result = graph.execute();
+  return makeCloudVolume(setup.cloudScene, setup.lighting, time, view, grid,
+                         std::move(result.output("cloud_volume").pixels));
 }
 
 }  // namespace sky

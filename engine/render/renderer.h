@@ -5,6 +5,7 @@
 // the GPU, so create it once and render many frames: what does not depend on the time of day
 // (baked textures, transmittance and multiple-scattering LUTs) is made once and reused.
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -16,7 +17,9 @@
 #include "engine/scene/scene.h"
 #include "passes/atmosphere_composite/atmosphere_composite.h"
 #include "engine/render/cloud_layers.h"
+#include "engine/render/cloud_volume.h"
 #include "passes/atmosphere_luts/atmosphere_luts.h"
+#include "passes/cloud_volume_export/cloud_volume_export.h"
 #include "passes/high_cloud_textures/high_cloud_textures.h"
 #include "passes/high_cloud_textures/regional_cover_texture.h"
 #include "passes/sky_high_clouds/sky_high_clouds.h"
@@ -80,8 +83,25 @@ public:
   RenderedFrame render(const Scene& scene) { return render(scene, scene.time.start); }
   // Called with the share done (0..1) while a high-cloud texture bakes.
   void setBakeProgress(std::function<void(double)> progress);
+  // The cloud density field of `scene` at `time` inside `box` (default:
+  // defaultCloudVolumeBox) on voxels of `voxelM`, with the camera and the light the clouds
+  // are rendered with (skyrender export-volume). BadInput for a top-down camera, a scene
+  // without low or mid clouds, or a grid too large.
+  CloudVolume exportCloudVolume(const Scene& scene, const IsoTime& time,
+                                const std::optional<CloudVolumeBox>& box, double voxelM);
 
 private:
+  // What the clouds of a frame see: the scene with the weather map's region and layer
+  // altitudes filled in, where their rays start, and the lights after the local weather.
+  struct CloudSetup {
+    Scene cloudScene;
+    CloudFrameGeometry geometry;
+    LightingState lighting;
+    LocalWeather localWeather;
+    const WeatherMap* weather;  // owned by mClouds, valid until the next weatherMap()
+  };
+  CloudSetup cloudSetup(const Scene& scene, const IsoTime& time);
+
   GraphRuntime mRuntime;
   StarFieldPass mStars;
   HighCloudTextures mHighCloudTextures;
@@ -91,6 +111,7 @@ private:
   CloudLayers mClouds;
   VolumetricCloudsPass mVolumetric;
   CloudDensitySlicePass mSlice;
+  CloudVolumeExportPass mVolumeExport;
   AtmosphereCompositePass mComposite;
 };
 

@@ -1,0 +1,147 @@
+#include "engine/render/cloud_volume.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "engine/core/error.h"
+#include "engine/weather/geo.h"
+#include "passes/sky_high_clouds/sky_high_clouds.h"
+
+namespace sky {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kDeg = kPi / 180.0;
+constexpr double kDefaultSideM = 6000.0;
+constexpr double kDefaultCentreAheadM = 4000.0;
+
+glm::dvec3 dvec(const glm::vec4& v) {
+  return glm::dvec3(v.x, v.y, v.z);
+}
+
+std::string metres(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", v);
+  return text;
+}
+
+}  // namespace
+
+CloudVolumeBox defaultCloudVolumeBox(const Scene& cloudScene, const glm::vec2& maxCover) {
+  const CloudSettings& c = cloudScene.clouds;
+  const bool low = maxCover.x > 0.0f, mid = maxCover.y > 0.0f;
+  const double base = low || !mid ? c.low.baseM : c.mid.baseM;
+  const double top = mid ? c.mid.topM : c.low.topM;
+  const double heading = cloudScene.camera.heading * kDeg;
+  const glm::dvec2 centre = kDefaultCentreAheadM * glm::dvec2(std::sin(heading), std::cos(heading));
+  const double half = 0.5 * kDefaultSideM;
+  // The layer's base sinks below the camera's horizontal plane by d^2 / 2R at distance d.
+  const double far = glm::length(glm::abs(centre) + glm::dvec2(half));
+  const double drop = far * far / (2.0 * kEarthRadiusM);
+  const double camera = cloudScene.camera.altitudeM;
+  return {glm::dvec3(centre - half, base - camera - drop), glm::dvec3(centre + half, top - camera)};
+}
+
+CloudVolumeGrid cloudVolumeGrid(const CloudVolumeBox& box, double voxelM) {
+  if (!(voxelM > 0.0) || !std::isfinite(voxelM))
+    inputError("--voxel-m " + metres(voxelM) + ": must be above 0");
+  CloudVolumeGrid g{box, voxelM, {}};
+  uint64_t total = 1;
+  for (int a = 0; a < 3; ++a) {
+    const double n = std::ceil((box.maxM[a] - box.minM[a]) / voxelM - 1e-9);
+    g.params.voxels[a] = static_cast<uint32_t>(std::clamp(n, 1.0, 4.0e9));
+    total *= g.params.voxels[a];
+  }
+  if (total > kMaxCloudVolumeVoxels)
+    inputError("--voxel-m " + metres(voxelM) + ": the box needs " +
+               std::to_string(g.params.voxels.x) + " x " + std::to_string(g.params.voxels.y) +
+               " x " + std::to_string(g.params.voxels.z) + " voxels, more than the " +
+               std::to_string(kMaxCloudVolumeVoxels) + " allowed (use larger voxels or a smaller --box)");
+  g.params.firstVoxelCentreM = glm::vec4(glm::vec3(box.minM + 0.5 * voxelM), 0.0f);
+  g.params.voxelM = glm::vec4(glm::vec3(static_cast<float>(voxelM)), 0.0f);
+  return g;
+}
+
+CloudVolume makeCloudVolume(const Scene& cloudScene, const LightingState& lighting,
+                            const IsoTime& time, const shared::ViewState& view,
+                            const CloudVolumeGrid& grid, std::vector<float> density) {
+  const CloudSettings& c = cloudScene.clouds;
+  CloudVolume v;
+  v.extinction.name = "density";
+  v.extinction.size = glm::uvec3(grid.params.voxels);
+  v.extinction.voxelSize = grid.voxelM;
+  v.extinction.firstVoxelCentre = grid.box.minM + 0.5 * grid.voxelM;
+  // The GPU evaluates density; extinction per metre is density x clouds.extinction (the
+  // raymarch's sigma_t), so the path tracer reads physical units.
+  for (float& d : density) d *= static_cast<float>(c.extinction);
+  v.extinction.values = std::move(density);
+
+  VdbMetadata& m = v.metadata;
+  m["skylayers_frame"] = std::string(
+      "camera ENU: x east, y north, z up, metres, the camera at the origin");
+  m["skylayers_units"] = std::string(
+      "density: extinction per metre (scattering = extinction, no absorption); radiance 1 = "
+      "1e4 cd/m2; illuminance 1 = pi x radiance 1 (a white Lambertian surface under "
+      "illuminance E has radiance E)");
+  m["time"] = time.format();
+  m["box_min_m"] = grid.box.minM;
+  m["box_max_m"] = grid.box.maxM;
+  m["voxel_m"] = grid.voxelM;
+  m["extinction_per_density"] = c.extinction;
+
+  const CameraSettings& cam = cloudScene.camera;
+  m["camera_latitude_deg"] = cam.latitude;
+  m["camera_longitude_deg"] = cam.longitude;
+  m["camera_altitude_m"] = cam.altitudeM;
+  m["camera_heading_deg"] = cam.heading;
+  m["camera_pitch_deg"] = cam.pitch;
+  m["camera_vertical_fov_deg"] = cam.verticalFov;
+  m["camera_projection"] = cam.projection;
+  m["camera_width"] = int64_t(view.size.x);
+  m["camera_height"] = int64_t(view.size.y);
+  // The view's axes exactly as the raymarch builds its rays (engine/render/camera.h): pixel
+  // centre uv in [0, 1] looks along normalize(forward + (2u-1) tanH right - (2v-1) tanV up).
+  m["camera_forward"] = dvec(view.forward);
+  m["camera_right"] = dvec(view.right);
+  m["camera_up"] = dvec(view.up);
+
+  // Each light's illuminance where the raymarch takes it: the middle of the layer the box's
+  // centre lies in (the low layer unless the centre is above its top), as cloudParams() does.
+  const double centreAltitude = cam.altitudeM + 0.5 * (grid.box.minM.z + grid.box.maxM.z);
+  const bool inMid = centreAltitude > c.low.topM;
+  const double lightAltitude = inMid ? 0.5 * (c.mid.baseM + c.mid.topM)
+                                     : 0.5 * (c.low.baseM + c.low.topM);
+  m["light_altitude_m"] = lightAltitude;
+  const BodyLight* bodies[2] = {&lighting.sun, &lighting.moon};
+  const glm::vec4* space[2] = {&lighting.gpu.sunSpace, &lighting.gpu.moonSpace};
+  const char* names[2] = {"sun", "moon"};
+  for (int i = 0; i < 2; ++i) {
+    const glm::vec3 e = illuminanceAtAltitude(glm::vec3(*space[i]), bodies[i]->elevationDeg,
+                                              bodies[i]->angularRadiusDeg, lightAltitude,
+                                              cloudScene.lighting.turbidity);
+    const std::string n = names[i];
+    m[n + "_direction"] = bodies[i]->direction;
+    m[n + "_illuminance"] = glm::dvec3(e);
+    m[n + "_angular_radius_deg"] = bodies[i]->angularRadiusDeg;
+    m[n + "_elevation_deg"] = bodies[i]->elevationDeg;
+    m[n + "_azimuth_deg"] = bodies[i]->azimuthDeg;
+  }
+  // The sky light the raymarch's ambient term uses: radiance from the upper hemisphere and
+  // from the ground below, the sun's and the moon's palettes together.
+  m["ambient_top"] = dvec(lighting.gpu.palette.ambientTop + lighting.gpu.moonPalette.ambientTop);
+  m["ambient_bottom"] =
+      dvec(lighting.gpu.palette.ambientBottom + lighting.gpu.moonPalette.ambientBottom);
+  const bool dual = c.phase == "dual_lobe";
+  m["phase"] = c.phase;
+  m["phase_g"] = c.g;
+  m["phase_g_back"] = dual ? c.gBack : 0.0;
+  m["phase_back_weight"] = dual ? c.backWeight : 0.0;
+  return v;
+}
+
+void writeCloudVolume(const std::filesystem::path& path, const CloudVolume& volume) {
+  writeVdb(path, volume.extinction, volume.metadata);
+}
+
+}  // namespace sky

@@ -1,0 +1,189 @@
+// skyrender export-volume: the exported grid holds the raymarch's density field at its voxel
+// centres (checked against the density-slice view, which evaluates the same field along its
+// own geometry), survives the OpenVDB file with its metadata, and the command fails cleanly
+// on bad input.
+#include <cmath>
+#include <vector>
+
+#include <glm/geometric.hpp>
+
+#include "engine/io/vdb.h"
+#include "engine/weather/geo.h"
+#include "tests/apps/cli_fixture.h"
+#include "tests/volumetric_clouds/cloud_test_util.h"
+
+namespace sky::test {
+namespace {
+
+// The small cumulus golden scene, looking north so the density slice lies in the
+// north-up plane of the camera's ENU frame.
+Scene exportScene() {
+  return cloudScene("cumulus_noon", {"output.width=96", "output.height=54", "camera.heading=0"});
+}
+
+// The ENU point the density slice samples for texel (i, j) of its W x H image
+// (shaders/cloud_density_slice.comp): `distance` along the ground northward at `altitude`.
+glm::dvec3 slicePoint(const Scene& scene, int i, int j) {
+  const double R = kEarthRadiusM;
+  const double distance = (i + 0.5) / CloudDensitySlicePass::kWidth * 60000.0;
+  const double top = std::max(scene.clouds.low.topM, scene.clouds.mid.topM) + 500.0;
+  const double altitude = (1.0 - (j + 0.5) / CloudDensitySlicePass::kHeight) * top;
+  const double angle = distance / R;
+  return {0.0, (R + altitude) * std::sin(angle),
+          (R + altitude) * std::cos(angle) - (R + scene.camera.altitudeM)};
+}
+
+struct SliceTexel {
+  int i, j;
+  float density;
+};
+
+// Texels of the density slice inside cloud, spread along it.
+std::vector<SliceTexel> cloudyTexels(const RenderedFrame& frame, size_t count) {
+  const DebugImage& slice = frame.debug.at(0);
+  const ImageLayer& layer = slice.image.layers.at(0);
+  std::vector<SliceTexel> all;
+  for (int j = 0; j < slice.image.height; ++j)
+    for (int i = 0; i < slice.image.width; ++i) {
+      const float d = layer.pixels[(size_t(j) * slice.image.width + i) * 4];
+      if (d > 0.05f) all.push_back({i, j, d});
+    }
+  std::vector<SliceTexel> out;
+  for (size_t k = 0; k < count && !all.empty(); ++k) out.push_back(all[k * all.size() / count]);
+  return out;
+}
+
+class CloudVolumeExport : public CloudRenderTest {};
+
+TEST_F(CloudVolumeExport, VoxelsHoldTheRaymarchDensityAtTheirCentres) {
+  const Scene scene = exportScene();
+  RenderOptions options;
+  options.debugOutputs = {"cloud_density_slice"};
+  const RenderedFrame frame = render(scene, options);
+  const std::vector<SliceTexel> texels = cloudyTexels(frame, 6);
+  ASSERT_EQ(texels.size(), 6u) << "the slice crosses no cloud";
+  for (const SliceTexel& t : texels) {
+    // One voxel centred on the slice's sample point.
+    const glm::dvec3 p = slicePoint(scene, t.i, t.j);
+    const double v = 1.0;
+    const CloudVolume volume =
+        renderer().exportCloudVolume(scene, scene.time.start, CloudVolumeBox{p - 0.5 * v, p + 0.5 * v}, v);
+    ASSERT_EQ(volume.extinction.values.size(), 1u);
+    const double density = volume.extinction.values[0] / scene.clouds.extinction;
+    // The slice is half float (11 bits), its point computed in float at ~6400 km from the
+    // Earth's centre (0.5 m).
+    EXPECT_NEAR(density, t.density, 2e-3 + 4e-3 * t.density) << "slice texel " << t.i << ", " << t.j;
+  }
+}
+
+TEST_F(CloudVolumeExport, TinyGridRoundTripsThroughOpenVdb) {
+  const Scene scene = exportScene();
+  RenderOptions options;
+  options.debugOutputs = {"cloud_density_slice"};
+  const RenderedFrame frame = render(scene, options);
+  const std::vector<SliceTexel> texels = cloudyTexels(frame, 1);
+  ASSERT_EQ(texels.size(), 1u);
+  const glm::dvec3 centre = slicePoint(scene, texels[0].i, texels[0].j);
+  // 8 x 8 x 8 voxels of 100 m around a point inside a cloud.
+  const CloudVolumeBox box{centre - 400.0, centre + 400.0};
+  const CloudVolume volume = renderer().exportCloudVolume(scene, scene.time.start, box, 100.0);
+  ASSERT_EQ(volume.extinction.size, glm::uvec3(8));
+  float largest = 0.0f;
+  for (float e : volume.extinction.values) largest = std::max(largest, e);
+  EXPECT_GT(largest, 0.0f);
+  EXPECT_LE(largest, scene.clouds.extinction * 1.0001);
+
+  const fs::path dir = fs::temp_directory_path() / ("cloud-volume-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  writeCloudVolume(dir / "tiny.vdb", volume);
+  const VdbFile file = readVdb(dir / "tiny.vdb", "density");
+  fs::remove_all(dir);
+
+  EXPECT_EQ(file.grid.size, glm::uvec3(8));
+  EXPECT_NEAR(file.grid.voxelSize, 100.0, 1e-9);
+  EXPECT_LT(glm::length(file.grid.firstVoxelCentre - (box.minM + 50.0)), 1e-6);
+  ASSERT_EQ(file.grid.values.size(), volume.extinction.values.size());
+  for (size_t i = 0; i < file.grid.values.size(); ++i)
+    ASSERT_EQ(file.grid.values[i], volume.extinction.values[i]) << "voxel " << i;
+
+  auto number = [&](const std::string& key) { return std::get<double>(file.metadata.at(key)); };
+  auto vector = [&](const std::string& key) { return std::get<glm::dvec3>(file.metadata.at(key)); };
+  EXPECT_EQ(std::get<int64_t>(file.metadata.at("camera_width")), 96);
+  EXPECT_EQ(std::get<int64_t>(file.metadata.at("camera_height")), 54);
+  EXPECT_EQ(number("camera_heading_deg"), 0.0);
+  EXPECT_EQ(number("camera_vertical_fov_deg"), scene.camera.verticalFov);
+  EXPECT_EQ(number("extinction_per_density"), scene.clouds.extinction);
+  EXPECT_EQ(number("phase_g"), scene.clouds.g);
+  EXPECT_EQ(number("phase_g_back"), scene.clouds.gBack);
+  EXPECT_EQ(number("phase_back_weight"), scene.clouds.backWeight);
+  EXPECT_EQ(std::get<std::string>(file.metadata.at("phase")), "dual_lobe");
+  EXPECT_LT(glm::length(vector("sun_direction") - frame.lighting.sun.direction), 1e-9);
+  EXPECT_LT(glm::length(vector("camera_forward") -
+                        glm::dvec3(glm::vec3(makeViewState(scene.camera, 96, 54).forward))),
+            1e-6);
+  const glm::vec4 top = frame.lighting.gpu.palette.ambientTop + frame.lighting.gpu.moonPalette.ambientTop;
+  EXPECT_LT(glm::length(vector("ambient_top") - glm::dvec3(glm::vec3(top))), 1e-6);
+  // Noon in June at 47 N: the sun high, its light at the clouds a few units strong.
+  EXPECT_GT(number("sun_elevation_deg"), 60.0);
+  EXPECT_GT(vector("sun_illuminance").g, 1.0);
+  EXPECT_EQ(number("voxel_m"), 100.0);
+}
+
+class ExportVolumeCli : public SkyrenderCli {
+protected:
+  std::string scene() const {
+    return (configDir() / "tests" / "clouds" / "cumulus_noon.yaml").string();
+  }
+  // A failed export: exit 2, one error line holding `fragment`, no file written.
+  void expectBadInput(const std::string& args, const std::string& fragment) {
+    const fs::path vdb = mDir / "out" / "v.vdb";
+    CliRun r = run("export-volume " + scene() + " " + args + " --out " + vdb.string());
+    EXPECT_EQ(r.rc, 2) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "one line: " << r.err;
+    EXPECT_THAT(r.err, HasSubstr("error: "));
+    EXPECT_THAT(r.err, HasSubstr(fragment));
+    EXPECT_TRUE(outEmpty()) << "a failed export left files behind";
+  }
+};
+
+TEST_F(ExportVolumeCli, WritesAGridOpenVdbReads) {
+  const fs::path vdb = mDir / "out" / "v.vdb";
+  CliRun r = run("export-volume " + scene() +
+                 " --width 96 --height 54 --box -200,-200,500,200,200,900 --voxel-m 50 --out " +
+                 vdb.string());
+  ASSERT_EQ(r.rc, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("wrote " + vdb.string() + " (8x8x8 voxels of 50 m"));
+  const VdbFile file = readVdb(vdb, "density");
+  EXPECT_EQ(file.grid.size, glm::uvec3(8));
+  EXPECT_EQ(std::get<int64_t>(file.metadata.at("camera_width")), 96);
+  EXPECT_LT(glm::length(std::get<glm::dvec3>(file.metadata.at("box_min_m")) -
+                        glm::dvec3(-200, -200, 500)),
+            1e-9);
+  // Nothing but the file: the temporary it was written through is gone.
+  EXPECT_EQ(std::distance(fs::directory_iterator(mDir / "out"), fs::directory_iterator()), 1);
+}
+
+TEST_F(ExportVolumeCli, BadBoxIsOneLineAndWritesNothing) {
+  expectBadInput("--box 1,2,3", "--box '1,2,3': expected six numbers E0,N0,U0,E1,N1,U1");
+  expectBadInput("--box 0,0,0,1,1,x", "expected six numbers");
+  expectBadInput("--box 0,0,0,1,1,1,1", "expected six numbers");
+  expectBadInput("--box 0,0,0,-1,1,1", "the maximum east (-1) must lie above the minimum (0)");
+  expectBadInput("--box 0,0,0,1,1,1 --voxel-m 0", "--voxel-m 0: out of range");
+  expectBadInput("--box 0,0,0,100000,100000,5000 --voxel-m 1",
+                 "voxels, more than the 67108864 allowed");
+  expectBadInput("--set camera.mode=geographic_topdown", "geographic_topdown");
+  expectBadInput("--set weather.cover_low=0", "no low or mid clouds");
+}
+
+TEST_F(ExportVolumeCli, OutMustBeAVdbFileInAFolderThatExists) {
+  CliRun r = run("export-volume " + scene() + " --out " + (mDir / "nowhere" / "v.vdb").string());
+  EXPECT_EQ(r.rc, 2);
+  EXPECT_THAT(r.err, HasSubstr("does not exist"));
+  r = run("export-volume " + scene() + " --out " + (mDir / "out" / "v.exr").string());
+  EXPECT_EQ(r.rc, 2);
+  EXPECT_THAT(r.err, HasSubstr("expected a .vdb file"));
+  EXPECT_TRUE(outEmpty());
+}
+
+}  // namespace
+}  // namespace sky::test
