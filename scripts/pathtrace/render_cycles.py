@@ -1,0 +1,185 @@
+"""Renders a cloud volume written by `skyrender export-volume` with Blender's Cycles, as the
+path-traced reference for the raymarch (docs/cloud-model.md, "Path-traced reference").
+
+    blender -b --factory-startup --python scripts/pathtrace/render_cycles.py -- \
+        --vdb cloud.vdb --out cycles.exr [--samples 128] [--bounces 128] [--seed 1]
+
+Everything comes from the grid's metadata, so the scene is the one skyrender rendered:
+- the medium: the grid "density" is the extinction per metre; scattering = extinction (no
+  absorption, as the raymarch assumes), the phase function the raymarch's dual-lobe
+  Henyey-Greenstein as a mix of two Volume Scatter closures (g and g_back, weights 1 - w and
+  w), with as many volume bounces as --bounces (multiple scattering in full);
+- the sun: a sun lamp in the grid's sun direction with the sun's angular size and the
+  illuminance the raymarch uses at the clouds. skyrender's units have illuminance 1 = pi x
+  radiance 1 (shaders/common/lighting_shared.h); Cycles' sun strength is irradiance, and a
+  white diffuse surface under strength S has radiance S / pi, so strength = pi x illuminance;
+- the sky: a world of radiance ambient_top for every direction above the horizon and
+  ambient_bottom below it (the raymarch's ambient light from the sky and from the ground);
+- the camera: at the origin of the grid's frame (the camera's east-north-up, metres) with
+  skyrender's view axes, vertical field of view and image size.
+The film is transparent, so the EXR holds the cloud alone, premultiplied (RGB the light the
+cloud sends to the camera, A its opacity): what skyrender's `clouds` layer holds. No
+denoising, no clamping, fixed seed.
+"""
+import argparse
+import math
+import sys
+
+import bpy
+import mathutils
+import pyopenvdb
+
+
+def parse_args():
+    argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
+    p = argparse.ArgumentParser(prog="render_cycles.py")
+    p.add_argument("--vdb", required=True)
+    p.add_argument("--out", required=True)
+    p.add_argument("--samples", type=int, default=128)
+    p.add_argument("--bounces", type=int, default=128)
+    p.add_argument("--seed", type=int, default=1)
+    return p.parse_args(argv)
+
+
+def metadata(path):
+    meta = pyopenvdb.readAllGridMetadata(path)
+    for grid in meta:
+        if grid.name == "density":
+            return dict(grid.metadata)
+    raise SystemExit(f"error: {path}: no grid named 'density' (not written by skyrender export-volume?)")
+
+
+def volume_material(m):
+    mat = bpy.data.materials.new("cloud")
+    mat.use_nodes = True
+    nt = mat.node_tree
+    nt.nodes.clear()
+    density = nt.nodes.new("ShaderNodeAttribute")
+    density.attribute_name = "density"
+    forward = nt.nodes.new("ShaderNodeVolumeScatter")
+    back = nt.nodes.new("ShaderNodeVolumeScatter")
+    forward.inputs["Anisotropy"].default_value = m["phase_g"]
+    back.inputs["Anisotropy"].default_value = m["phase_g_back"]
+    for node in (forward, back):
+        node.inputs["Color"].default_value = (1.0, 1.0, 1.0, 1.0)
+        nt.links.new(density.outputs["Fac"], node.inputs["Density"])
+    mix = nt.nodes.new("ShaderNodeMixShader")
+    mix.inputs["Fac"].default_value = m["phase_back_weight"]
+    nt.links.new(forward.outputs[0], mix.inputs[1])
+    nt.links.new(back.outputs[0], mix.inputs[2])
+    out = nt.nodes.new("ShaderNodeOutputMaterial")
+    nt.links.new(mix.outputs[0], out.inputs["Volume"])
+    return mat
+
+
+def world(m):
+    w = bpy.data.worlds.new("sky")
+    w.use_nodes = True
+    nt = w.node_tree
+    nt.nodes.clear()
+    # In a world shader "Generated" is the view direction; its z says above or below.
+    coords = nt.nodes.new("ShaderNodeTexCoord")
+    xyz = nt.nodes.new("ShaderNodeSeparateXYZ")
+    above = nt.nodes.new("ShaderNodeMath")
+    above.operation = "GREATER_THAN"
+    above.inputs[1].default_value = 0.0
+    mix = nt.nodes.new("ShaderNodeMixRGB")
+    top, bottom = m["ambient_top"], m["ambient_bottom"]
+    mix.inputs["Color1"].default_value = (bottom[0], bottom[1], bottom[2], 1.0)
+    mix.inputs["Color2"].default_value = (top[0], top[1], top[2], 1.0)
+    background = nt.nodes.new("ShaderNodeBackground")
+    background.inputs["Strength"].default_value = 1.0
+    out = nt.nodes.new("ShaderNodeOutputWorld")
+    nt.links.new(coords.outputs["Generated"], xyz.inputs[0])
+    nt.links.new(xyz.outputs["Z"], above.inputs[0])
+    nt.links.new(above.outputs[0], mix.inputs["Fac"])
+    nt.links.new(mix.outputs["Color"], background.inputs["Color"])
+    nt.links.new(background.outputs[0], out.inputs["Surface"])
+    return w
+
+
+def main():
+    args = parse_args()
+    m = metadata(args.vdb)
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    scene = bpy.context.scene
+    scene.unit_settings.system = "METRIC"
+    scene.unit_settings.scale_length = 1.0
+
+    # The volume, in the grid's own transform (metres in the camera's east-north-up frame,
+    # which is Blender's x, y, z).
+    volume = bpy.data.volumes.new("cloud")
+    volume.filepath = args.vdb
+    volume.render.space = "WORLD"
+    volume.render.step_size = 0.0  # automatic: the grid's voxel size
+    volume.render.precision = "FULL"
+    volume.materials.append(volume_material(m))
+    obj = bpy.data.objects.new("cloud", volume)
+    scene.collection.objects.link(obj)
+
+    # The sun: its lamp shines along its local -z, so +z points at the sun.
+    e = m["sun_illuminance"]
+    peak = max(e)
+    light = bpy.data.lights.new("sun", "SUN")
+    light.energy = math.pi * peak
+    light.color = tuple(c / peak for c in e) if peak > 0 else (1.0, 1.0, 1.0)
+    light.angle = 2.0 * math.radians(m["sun_angular_radius_deg"])
+    sun = bpy.data.objects.new("sun", light)
+    sun.rotation_mode = "QUATERNION"
+    sun.rotation_quaternion = mathutils.Vector(m["sun_direction"]).to_track_quat("Z", "Y")
+    scene.collection.objects.link(sun)
+    scene.world = world(m)
+
+    # The camera: Blender's camera looks along its -z with +y up and +x right.
+    cam = bpy.data.cameras.new("camera")
+    width, height = int(m["camera_width"]), int(m["camera_height"])
+    cam.sensor_fit = "VERTICAL"
+    cam.sensor_height = 24.0
+    tan_v = math.tan(0.5 * math.radians(m["camera_vertical_fov_deg"]))
+    cam.lens = 0.5 * cam.sensor_height / tan_v
+    cam.clip_start = 0.1
+    cam.clip_end = 1.0e6
+    camera = bpy.data.objects.new("camera", cam)
+    right = mathutils.Vector(m["camera_right"]).normalized()
+    up = mathutils.Vector(m["camera_up"]).normalized()
+    forward = mathutils.Vector(m["camera_forward"]).normalized()
+    rotation = mathutils.Matrix((right, up, -forward)).transposed()  # columns: x, y, z
+    camera.matrix_world = rotation.to_4x4()
+    scene.collection.objects.link(camera)
+    scene.camera = camera
+
+    scene.render.engine = "CYCLES"
+    scene.render.resolution_x = width
+    scene.render.resolution_y = height
+    scene.render.resolution_percentage = 100
+    scene.render.film_transparent = True
+    scene.render.threads_mode = "AUTO"
+    c = scene.cycles
+    c.device = "CPU"
+    c.samples = args.samples
+    c.use_adaptive_sampling = False
+    c.use_denoising = False
+    c.seed = args.seed
+    c.max_bounces = args.bounces
+    c.volume_bounces = args.bounces
+    c.diffuse_bounces = 0
+    c.glossy_bounces = 0
+    c.transmission_bounces = 0
+    c.transparent_max_bounces = 8
+    c.sample_clamp_direct = 0.0
+    c.sample_clamp_indirect = 0.0
+    c.volume_step_rate = 1.0
+    c.volume_max_steps = 4096
+    c.caustics_reflective = True
+    c.caustics_refractive = True
+    scene.view_settings.view_transform = "Standard"
+    scene.render.image_settings.file_format = "OPEN_EXR"
+    scene.render.image_settings.color_depth = "32"
+    scene.render.image_settings.color_mode = "RGBA"
+    scene.render.image_settings.exr_codec = "ZIP"
+    scene.render.filepath = args.out
+    bpy.ops.render.render(write_still=True)
+    print(f"wrote {args.out} ({width}x{height}, {args.samples} samples, {args.bounces} bounces)")
+
+
+main()
