@@ -1,7 +1,7 @@
 #version 460
 // Debug view "cloud_density_slice": a vertical cut through the cloud density field along the
-// camera's heading, from the camera out to params.slice.x metres (across) and from sea level
-// up to params.slice.y metres (down the image, top row highest). Each texel: r density,
+// camera's heading, from the camera out to params.sliceLengthM metres (across) and from sea level
+// up to params.sliceTopM metres (down the image, top row highest). Each texel: r density,
 // g the layer's cover there, b the cloud type, a the layer (0 low, 1 mid, -1 none).
 #include "common/volumetric_clouds_shared.h"
 #include "common/geo.glsl"
@@ -20,8 +20,8 @@ void main() {
   // The camera's heading on the ground (the view's forward without its pitch).
   vec3 f = params.view.forward.xyz;
   vec2 heading = length(f.xy) > 1e-6 ? normalize(f.xy) : vec2(0.0, 1.0);
-  float distance = uv.x * params.slice.x;
-  float altitude = (1.0 - uv.y) * params.slice.y;
+  float distance = uv.x * params.sliceLengthM;
+  float altitude = (1.0 - uv.y) * params.sliceTopM;
   // The point `distance` along the ground at `altitude`, in the camera's ENU frame.
   float R = params.geo.origin.w;
   float angle = distance / R;
@@ -29,7 +29,7 @@ void main() {
   vec3 up = vec3(sin(angle) * heading, cos(angle));
   vec3 p = c + (R + altitude) * up;
   CloudSample s;
-  cloudSampleAt(p, s);
+  cloudSampleAt(p, 0.0, s);
   vec2 wuv;
   vec3 lla = latLonAltitude(params.geo, p);
   bool inside = regionUv(params.region, lla.x, lla.y, wuv);

@@ -24,6 +24,6 @@ void main() {
   if (any(greaterThanEqual(id, box.voxels.xyz))) return;
   vec3 p = box.firstVoxelCentreM.xyz + vec3(id) * box.voxelM.xyz;
   CloudSample s;
-  cloudSampleAt(p, s);
+  cloudSampleAt(p, 0.0, s);
   imageStore(grid, ivec3(id), vec4(s.density, 0.0, 0.0, 0.0));
 }

@@ -22,46 +22,83 @@ layout(binding = VOLUMETRIC_CLOUDS_BINDING_STEPS, rgba16f) uniform writeonly ima
 
 // Counts density evaluations inside the light march for the step heat map.
 int gLightSamples = 0;
+// The footprint of the view sample whose light is being marched.
+float gFootprintM = 0.0;
+// Where the light samples of this view sample sit inside their steps (lightMarchDensity's
+// offset): a new value for every view sample, so the texel grid of the noise does not show
+// through the shadows as a regular pattern.
+float gLightOffset = 0.5;
 
-float cloudDensityForLight(vec3 p) {
+// A light sample stands for a whole light step, tens to thousands of metres: it sees the
+// cloud filtered to a quarter of that (or to the view sample's footprint, the larger), so
+// the shadow of detail finer than the step does not alias into streaks across the cloud.
+float cloudDensityForLight(vec3 p, float lengthM) {
   ++gLightSamples;
   CloudSample s;
-  cloudSampleAt(p, s);
+  cloudSampleAt(p, max(gFootprintM, 0.25 * lengthM), s);
   return s.density;
 }
 #include "common/cloud_light_march.glsl"
 
 // Light scattered toward the eye per metre at p (before the view ray's own attenuation):
 // the sun and the moon through the cloud toward each (Lu (24) with the clamp (22), the phase
-// (23) and the multiple-scattering octaves), plus Tang's slab ambient from the sky above and
-// the ground below. Scattering equals extinction: cloud droplets barely absorb.
-vec3 cloudScattering(vec3 p, vec3 d, CloudSample s) {
-  float sigmaT = params.medium.x * s.density;
+// (23) and the multiple-scattering octaves, plus the diffusion term), and the sky above and
+// the ground below (Tang's slab ambient with diffusion). Scattering equals extinction: cloud
+// droplets barely absorb.
+// The phase function's mean cosine, the asymmetry the diffusion term sees.
+float meanCosine() {
+  return CLOUD_DUAL_LOBE != 0 ? mix(params.g, params.gBack, params.backWeight) : params.g;
+}
+
+// tauView: the optical depth along the view ray from where it entered this cloud.
+vec3 cloudScattering(vec3 p, vec3 d, CloudSample s, float tauView) {
+  float sigmaT = params.extinction * s.density;
   vec3 S = vec3(0.0);
   // Lu (22): the attenuation is at most that of ac times the densest path toward the light.
-  float tauClamp = params.medium.x * params.light.y * lightMarchReach(params.light.x);
+  float tauClamp = params.extinction * params.attenuationClamp * lightMarchReach(params.lightDistanceM);
   for (int i = 0; i < 2; ++i) {
-    if (params.lightDirection[i].w == 0.0) continue;  // too dim to matter next to the other
-    vec3 E = s.layer == 0 ? params.lightAtLow[i].rgb : params.lightAtMid[i].rgb;
+    float marched = i == 0 ? params.sunMarched : params.moonMarched;
+    if (marched == 0.0) continue;  // too dim to matter next to the other
+    vec3 E = i == 0 ? (s.layer == 0 ? params.sunAtLow.rgb : params.sunAtMid.rgb)
+                    : (s.layer == 0 ? params.moonAtLow.rgb : params.moonAtMid.rgb);
     if (max(E.r, max(E.g, E.b)) <= 0.0) continue;
-    vec3 L = params.lightDirection[i].xyz;
-    float tau = params.medium.x * lightMarchDensity(p, L, params.light.x, CLOUD_LIGHT_STEPS);
+    vec3 L = i == 0 ? params.sunDirection.xyz : params.moonDirection.xyz;
+    float tau = params.extinction *
+                lightMarchDensity(p, L, params.lightDistanceM, CLOUD_LIGHT_STEPS, gLightOffset);
     // The phase function is per steradian; in the renderer's units (illuminance 1 = pi x
     // radiance 1, lighting_shared.h) radiance = pi * E * phase.
     S += VIEW_PI * E *
-         cloudInScatter(tau, tauClamp, dot(d, L), params.medium.y, params.medium.z,
-                        params.medium.w, CLOUD_DUAL_LOBE, CLOUD_OCTAVES);
+         cloudInScatter(tau, tauClamp, dot(d, L), params.g, params.gBack, params.backWeight,
+                        CLOUD_DUAL_LOBE, CLOUD_OCTAVES);
+    S += E * cloudDiffuseInScatter(tau * cloudDiffusionLeak(s.type), meanCosine(),
+                                   params.multipleScattering);
   }
-  // Isotropic in-scattering of a hemisphere of ambient radiance is half of it.
-  S += 0.5 * cloudAmbient(params.ambientTop.rgb, params.ambientBottom.rgb, sigmaT, s.hTop, s.hBottom);
+  float viewDown = clamp(0.5 - 0.5 * d.z, 0.0, 1.0);
+  S += cloudAmbientDiffuse(params.ambientTop.rgb, params.ambientBottom.rgb, sigmaT, s.hTop,
+                           s.hBottom, tauView, viewDown, meanCosine(), params.multipleScattering);
   return sigmaT * S;
 }
 
-// Interleaved gradient noise (Jimenez 2014): a per-pixel start offset whose neighbours differ
-// as much as possible, so the banding of a fixed step turns into fine noise the eye ignores.
-float startJitter(vec2 pixel) {
-  return fract(52.9829189 * fract(dot(pixel, vec2(0.06711056, 0.00583715))));
+// The view ray's start offset, a fraction of a step: white noise from a hash of the pixel and
+// the frame (PCG, Jarzynski & Olano 2020), so banding turns into grain with no pattern the eye
+// can lock onto, and successive frames of a time-lapse average it out. An ordered pattern
+// (interleaved gradient noise) showed as a 2-pixel checkerboard in shadows and at edges.
+float startJitter(uvec2 pixel, uint frame) {
+  uvec3 v = uvec3(pixel, frame) * 1664525u + 1013904223u;
+  v.x += v.y * v.z;
+  v.y += v.z * v.x;
+  v.z += v.x * v.y;
+  v ^= v >> 16u;
+  v.x += v.y * v.z;
+  v.y += v.z * v.x;
+  v.z += v.x * v.y;
+  return float(v.x >> 8u) * (1.0 / 16777216.0);
 }
+
+// The view ray's steps inside a cloud are at most this many optical depths deep (and no
+// shorter than CLOUD_STEP_MIN_M metres).
+#define CLOUD_STEP_MAX_TAU 0.5
+#define CLOUD_STEP_MIN_M 2.0
 
 // Up to two intervals along the ray (origin o, unit d) where the point lies between the
 // spheres of radius rIn and rOut around c, before the ray meets the ground sphere rGround.
@@ -118,7 +155,7 @@ void main() {
     vec4 b = params.region.bounds;
     float lat = mix(b.y, b.x, uv.y);
     float lon = mix(b.z, b.w, uv.x);
-    o = geoPosition(params.geo, lat, lon, params.shell.z);
+    o = geoPosition(params.geo, lat, lon, params.topDownStartM);
     d = -geoUp(params.geo, o);
   }
 
@@ -126,25 +163,30 @@ void main() {
   float transmittance = 1.0;
   float depthSum = 0.0;
   int samples = 0;
-  if (params.shell.w > 0.0) {
+  if (params.anyCover > 0.0) {
     float R = params.geo.origin.w;
     vec2 iv[2];
-    int n = shellIntervals(o, d, geoCentre(params.geo), R + params.shell.x, R + params.shell.y, R,
-                           iv);
-    float jitter = startJitter(pixel) * params.march.w;
-    int maxSteps = int(params.frame.y);
+    int n = shellIntervals(o, d, geoCentre(params.geo), R + params.shellBaseM, R + params.shellTopM,
+                           R, iv);
+    float jitter = startJitter(id, params.frameIndex) * params.jitter;
+    int maxSteps = int(params.maxSteps);
     for (int k = 0; k < n && samples < maxSteps; ++k) {
       float t = iv[k].x;
-      float stepLen = params.march.x + params.march.y * t;
+      float stepLen = params.stepM + params.stepGrowth * t;
       t += jitter * stepLen;
       // Through clear air the step stretches (up to 4x) and shrinks back at the first cloud.
       float stretch = 1.0;
-      while (t < iv[k].y && samples < maxSteps && transmittance > params.march.z) {
-        stepLen = (params.march.x + params.march.y * t) * stretch;  // Lu: grows with distance
+      float tauView = 0.0;
+      while (t < iv[k].y && samples < maxSteps && transmittance > params.transmittanceCutoff) {
+        stepLen = (params.stepM + params.stepGrowth * t) * stretch;  // Lu: grows with distance
         float dt = min(stepLen, iv[k].y - t);
         vec3 p = o + d * (t + 0.5 * dt);
+        // What one sample resolves: a pixel's width at this distance, or a quarter of the step
+        // along the ray, the larger (top-down: full detail, the cover is measured there).
+        float footprint =
+            CLOUD_TOPDOWN != 0 ? 0.0 : max((t + 0.5 * dt) * params.view.forward.w, 0.25 * dt);
         CloudSample s;
-        if (!cloudSampleAt(p, s)) {
+        if (!cloudSampleAt(p, footprint, s)) {
           // Outside the region or far from any cover: nothing to sample; stride on (the coarse
           // map is dilated by a whole block, kilometres, so a double step cannot jump a cloud).
           t += 2.0 * dt;
@@ -158,14 +200,31 @@ void main() {
           continue;
         }
         stretch = s.density > 0.0 ? 1.0 : min(stretch * 1.5, 4.0);
+        if (s.density > 0.0 && params.extinction * s.density * dt > CLOUD_STEP_MAX_TAU &&
+            dt > CLOUD_STEP_MIN_M) {
+          // A step deeper than CLOUD_STEP_MAX_TAU optical depths would take the light of its
+          // middle, tens of metres inside, for a surface that is lit at its face: where that
+          // middle falls depends on the ray's altitude, and whole rows of pixels showed the
+          // same bands. Shorten it to that depth and sample its new middle.
+          dt = max(CLOUD_STEP_MAX_TAU / (params.extinction * s.density), CLOUD_STEP_MIN_M);
+          p = o + d * (t + 0.5 * dt);
+          footprint = CLOUD_TOPDOWN != 0 ? 0.0 : max((t + 0.5 * dt) * params.view.forward.w, 0.25 * dt);
+          cloudSampleAt(p, footprint, s);
+          ++samples;
+        }
         if (s.density > 0.0) {
-          float sigmaT = params.medium.x * s.density;
-          vec3 S = cloudScattering(p, d, s);
+          float sigmaT = params.extinction * s.density;
+          gFootprintM = footprint;
+          gLightOffset = fract(jitter + 0.6180339887 * float(samples));  // golden-ratio sequence
+          vec3 S = cloudScattering(p, d, s, tauView + 0.5 * sigmaT * dt);
           float stepT = exp(-sigmaT * dt);  // Lu (19)(20) over one step
           vec3 integrated = CLOUD_ENERGY_CONSERVING != 0 ? integrateStep(S, sigmaT, dt) : S * dt;
           radiance += transmittance * integrated;
           depthSum += transmittance * (1.0 - stepT) * (t + 0.5 * dt);
           transmittance *= stepT;
+          tauView += sigmaT * dt;
+        } else {
+          tauView = 0.0;  // out of this cloud: the next one is entered afresh
         }
         t += dt;
       }

@@ -76,6 +76,36 @@ float cloudInScatter(float tauToLight, float tauClamp, float cosTheta, float g, 
   return sum;
 }
 
+float diffuseTransmittance(float tau, float g) {
+  return 1.0f / (1.0f + 0.75f * (1.0f - g) * std::max(tau, 0.0f));
+}
+
+float cloudDiffuseInScatter(float tau, float g, float strength) {
+  return strength * diffuseTransmittance(tau, g);
+}
+
+float cloudDiffusionLeak(float type) {
+  return 1.0f + 2.0f * std::clamp(2.0f * type - 1.0f, 0.0f, 1.0f);
+}
+
+glm::vec3 cloudAmbientDiffuse(glm::vec3 top, glm::vec3 bottom, float sigmaT, float hTopM,
+                              float hBottomM, float tauView, float viewDown, float g,
+                              float strength) {
+  const float k = std::clamp(strength, 0.0f, 1.0f);
+  const float throughView = diffuseTransmittance(tauView, g);
+  const float dTop = std::max(diffuseTransmittance(sigmaT * hTopM, g), viewDown * throughView);
+  const float dBottom =
+      std::max(diffuseTransmittance(sigmaT * hBottomM, g), (1.0f - viewDown) * throughView);
+  const float sTop = slabAmbient(-sigmaT * hTopM), sBottom = slabAmbient(-sigmaT * hBottomM);
+  const float aTop = sTop + (dTop - sTop) * k, aBottom = sBottom + (dBottom - sBottom) * k;
+  return 0.5f * (top * aTop + bottom * aBottom);
+}
+
+float cloudEdgeDensity(float d, float k) {
+  if (d >= 1.0f) return d;
+  return 1.0f - std::pow(1.0f - std::max(d, 0.0f), k);
+}
+
 glm::vec3 integrateStep(glm::vec3 S, float sigmaT, float dt) {
   const float x = sigmaT * dt;
   if (x < 0.01f) return S * (dt * (1.0f - x * (0.5f - x * (1.0f / 6.0f - x * (1.0f / 24.0f)))));

@@ -145,6 +145,13 @@ glm::vec3 cloudAmbient(glm::vec3 top, glm::vec3 bottom, float sigmaT, float hTop
 // Wrenninge 2013 octaves of Lu (22) * (23); phaseKind 0 HG, 1 dual lobe.
 float cloudInScatter(float tauToLight, float tauClamp, float cosTheta, float g, float gBack,
                      float backWeight, int phaseKind, int octaves);
+float diffuseTransmittance(float tau, float g);                   // two-stream, conservative slab
+float cloudDiffuseInScatter(float tau, float g, float strength);  // the diffusion term
+float cloudDiffusionLeak(float type);      // faster fall-off through finite convective cells
+float cloudEdgeDensity(float d, float k);  // sharp boundaries
+glm::vec3 cloudAmbientDiffuse(glm::vec3 top, glm::vec3 bottom, float sigmaT, float hTopM,
+                              float hBottomM, float tauView, float viewDown, float g,
+                              float strength);                 // Tang (6)(7) + diffusion
 glm::vec3 integrateStep(glm::vec3 S, float sigmaT, float dt);  // Hillaire 2016
 glm::vec3 integrateStepRiemann(glm::vec3 S, float dt);
 
@@ -155,16 +162,19 @@ float lightLongStepDistance(float distance);
 float lightLongStepLength(float distance);
 float lightMarchReach(float distance);  // the march's whole length
 
-// Lu (24)'s ds toward the light: `density(glm::vec3)` plays cloudDensityForLight.
+// Lu (24)'s ds toward the light: `density(glm::vec3 p, float lengthM)` plays
+// cloudDensityForLight.
 template <class DensityFn>
-float lightMarchDensity(glm::vec3 p, glm::vec3 L, float distance, int n, DensityFn&& density) {
+float lightMarchDensity(glm::vec3 p, glm::vec3 L, float distance, int n, float offset,
+                        DensityFn&& density) {
   float ds = 0.0f;
   for (int i = 0; i < n; ++i) {
     const float start = lightStepStart(i, n, distance);
     const float len = lightStepLength(i, n, distance);
-    ds += density(p + L * (start + 0.5f * len)) * len;
+    ds += density(p + L * (start + offset * len), len) * len;
   }
-  ds += density(p + L * lightLongStepDistance(distance)) * lightLongStepLength(distance);
+  ds += density(p + L * lightLongStepDistance(distance), lightLongStepLength(distance)) *
+        lightLongStepLength(distance);
   return ds;
 }
 

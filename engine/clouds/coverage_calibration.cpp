@@ -118,7 +118,8 @@ public:
   CoverOpacity(const GridSamples& s, const CoverageColumn& column, Model model, float cover)
       : mColumns(s.columns),
         mHeights(s.heights),
-        mOpticalDepthPerDensity(column.extinction * s.dzM) {
+        mOpticalDepthPerDensity(column.extinction * s.dzM),
+        mEdgeSharpness(column.edgeSharpness) {
     const float cmc = profileCover(column, cover);
     // Per height: the height functions, and the erosion at fbm 0 and 1 (Lu (15) and Tang's
     // erosion are affine in the fbm, so the two ends give every value without an exp a sample).
@@ -162,7 +163,8 @@ public:
       float depth = 0;
       for (size_t i = first; i < last; ++i) {
         const float shaped = std::clamp((mX[i] - threshold) * invT, 0.0f, 1.0f);
-        depth += std::clamp((shaped - mE[i]) * mInvE[i], 0.0f, 1.0f) * mScale[i];
+        const float density = std::clamp((shaped - mE[i]) * mInvE[i], 0.0f, 1.0f) * mScale[i];
+        depth += cloudEdgeDensity(density, mEdgeSharpness);
       }
       sum += 1.0 - std::exp(-mOpticalDepthPerDensity * depth);
     }
@@ -172,6 +174,7 @@ public:
 private:
   int mColumns, mHeights;
   double mOpticalDepthPerDensity;
+  float mEdgeSharpness;
   std::vector<float> mX, mE, mInvE, mScale;  // per sample
 };
 
@@ -252,8 +255,10 @@ double meanColumnOpacity(const NoiseVolume& shape, const NoiseVolume& detail,
       const glm::dvec3 p(ground, (column.typeRange.x + ph * range) * column.thicknessM);
       const glm::vec4 s = sampleNoise(shape, glm::vec3(p / column.shapeScaleM));
       const glm::vec3 d = glm::vec3(sampleNoise(detail, glm::vec3(p / column.detailScaleM)));
-      depth += model == Model::Lu2023 ? luCloudDensity(s, d, ph, cmc, threshold)
-                                      : tangCloudDensity(s, d, ph, cover, column.type, threshold);
+      depth += cloudEdgeDensity(model == Model::Lu2023
+                                    ? luCloudDensity(s, d, ph, cmc, threshold)
+                                    : tangCloudDensity(s, d, ph, cover, column.type, threshold),
+                                column.edgeSharpness);
     }
     sum += 1.0 - std::exp(-column.extinction * dz * depth);
   }

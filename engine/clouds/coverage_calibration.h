@@ -33,6 +33,8 @@ struct CoverageColumn {
   // whose area the threshold sets (docs/cloud-model.md compares the two). The raymarch must
   // pass the same value to luCloudDensity.
   float profileCover = -1.0f;
+  // The raymarch's cloudEdgeDensity gain applied to each density (1: the density as is).
+  float edgeSharpness = 1.0f;
 };
 
 // Thresholds for cover i / (kCoverageLutSize - 1).

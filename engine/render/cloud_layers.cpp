@@ -52,11 +52,12 @@ CoverageTables CloudLayers::coverageTables(const Scene& scene, const WeatherMap&
       // As the shader does in calibrated mode (shaders/common/cloud_field.glsl): Lu's height
       // profile and erosion at full cover, the cover carried by the threshold alone.
       column.profileCover = 1.0f;
+      column.edgeSharpness = static_cast<float>(c.edgeSharpness);
       std::ostringstream key;
       key.precision(17);
       key << column.model << '|' << layer << '|' << column.type << '|' << column.thicknessM << '|'
           << column.shapeScaleM << '|' << column.detailScaleM << '|' << column.extinction << '|'
-          << column.profileCover;
+          << column.profileCover << '|' << column.edgeSharpness;
       auto it = mLuts.find(key.str());
       if (it == mLuts.end()) {
         it = mLuts
@@ -81,6 +82,7 @@ CloudLayers::Frame CloudLayers::addTo(FrameGraph& graph, const Scene& scene, con
   f.textures = {noise.shape, noise.detail,   noise.curl,         &mNoise.sampler(),
                 weather.map, weather.coarse, &mWeather.sampler()};
   f.coverage = coverageTables(scene, map);
+  f.noiseMeans = {channelMeans(mNoise.shapeVolume()), channelMeans(mNoise.detailVolume())};
   f.maxCover = map.maxCover();
   f.weatherSize = glm::uvec2(map.width, map.height);
   return f;

@@ -32,6 +32,7 @@ public:
   struct Frame {
     CloudTextures textures;
     CoverageTables coverage{};
+    NoiseMeans noiseMeans;
     glm::vec2 maxCover{0.0f};
     glm::uvec2 weatherSize{0};
   };

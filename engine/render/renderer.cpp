@@ -235,7 +235,7 @@ RenderedFrame Renderer::render(const Scene& scene, const IsoTime& time,
     out.cloudNoise = mClouds.noiseActivity();
     VolumetricCloudsPass::Inputs in;
     in.params = cloudParams(cloudScene, out.lighting, time, view, cloudFrame.maxCover,
-                            cloudFrame.weatherSize, cloudFrame.coverage);
+                            cloudFrame.weatherSize, cloudFrame.coverage, cloudFrame.noiseMeans);
     in.lighting = out.lighting.gpu;
     in.textures = cloudFrame.textures;
     clouds = graph.add(mVolumetric, in);
@@ -337,7 +337,7 @@ CloudVolume Renderer::exportCloudVolume(const Scene& scene, const IsoTime& time,
   // The raymarch's own parameters, so the grid holds the very field it marches through.
   CloudVolumeExportPass::Inputs in;
   in.params = cloudParams(setup.cloudScene, setup.lighting, time, view, cloudFrame.maxCover,
-                          cloudFrame.weatherSize, cloudFrame.coverage);
+                          cloudFrame.weatherSize, cloudFrame.coverage, cloudFrame.noiseMeans);
   in.box = grid.params;
   in.textures = cloudFrame.textures;
   graph.requestOutput(graph.add(mVolumeExport, in).grid, "cloud_volume");

@@ -40,10 +40,13 @@ std::vector<PaletteKey> defaultPalette() {
        v{0.15f, 0.12f, 0.15f}, v{0.08f, 0.1f, 0.18f}, v{0.04f, 0.03f, 0.03f}},
       {10, v{0.06f, 0.15f, 0.45f}, v{0.55f, 0.5f, 0.45f}, v{1.0f, 0.6f, 0.3f}, v{1.0f, 0.75f, 0.5f},
        v{0.35f, 0.35f, 0.45f}, v{0.2f, 0.25f, 0.4f}, v{0.1f, 0.08f, 0.07f}},
+      // By day the light from below, as a cloud base a kilometre up sees it, is the sunlit
+      // ground (albedo 0.15-0.2) behind a kilometre of blue airlight: about a third of the sky's
+      // luminance, and bluish. Grey-brown ground light alone made cloud bases brown.
       {30, v{0.07f, 0.2f, 0.65f}, v{0.5f, 0.62f, 0.8f}, v{1.0f, 0.85f, 0.65f}, v{0.9f, 0.9f, 0.92f},
-       v{0.45f, 0.5f, 0.6f}, v{0.3f, 0.4f, 0.6f}, v{0.15f, 0.15f, 0.14f}},
+       v{0.45f, 0.5f, 0.6f}, v{0.3f, 0.4f, 0.6f}, v{0.2f, 0.23f, 0.28f}},
       {90, v{0.07f, 0.2f, 0.65f}, v{0.5f, 0.62f, 0.8f}, v{1.0f, 0.85f, 0.65f}, v{0.9f, 0.9f, 0.92f},
-       v{0.45f, 0.5f, 0.6f}, v{0.3f, 0.4f, 0.6f}, v{0.15f, 0.15f, 0.14f}},
+       v{0.45f, 0.5f, 0.6f}, v{0.3f, 0.4f, 0.6f}, v{0.2f, 0.23f, 0.28f}},
   };
 }
 

@@ -138,22 +138,24 @@ struct CloudLayerSettings {
 struct CloudSettings {
   std::string model = "lu2023";         // "lu2023" | "tang2019": density and noise model
   std::string coverage = "calibrated";  // "calibrated" | "paper": how cover sets the remap
-  double extinction = 0.04;             // sigma_t per metre at density 1, 1e-5..1
+  double extinction = 0.1;              // sigma_t per metre at density 1, 1e-5..1
   double g = 0.6;                       // Henyey-Greenstein asymmetry, Lu (23), -0.99..0.99
   std::string phase = "dual_lobe";      // "hg" | "dual_lobe" (adds a back-scattering lobe)
   double gBack = -0.3;                  // the back lobe's asymmetry, -0.99..0
   double backWeight = 0.2;              // the back lobe's share, 0..1
   double attenuationClamp = 0.02;       // Lu's ac, 0..1, Lu (22)
-  double stepM = 60.0;                  // view-ray step near the camera, metres
-  double stepGrowth = 0.004;            // extra step length per metre of distance
-  int maxSteps = 256;                   // per view ray
+  double stepM = 20.0;                  // view-ray step near the camera, metres
+  double stepGrowth = 0.002;            // extra step length per metre of distance
+  int maxSteps = 512;                   // per view ray
   int lightSteps = 5;                   // short steps toward the light (plus one long one), 1..16
   double lightDistanceM = 1200.0;       // length covered by the short light steps, metres
   double transmittanceCutoff = 0.01;    // stop marching below this transmittance
   bool energyConserving = true;         // Hillaire 2016's integration of each step
   int scatteringOctaves = 3;            // multiple-scattering octaves (Wrenninge); 1 = single
-  double shapeScaleKm = 8.0;            // ground size of one repeat of the shape noise
-  double detailScaleKm = 1.5;           // ground size of one repeat of the detail noise
+  double multipleScattering = 1.8;      // strength of the diffusion term, 0..4 (0: octaves only)
+  double edgeSharpness = 4.0;           // density gain at cloud boundaries, 1..32 (1: the noise's)
+  double shapeScaleKm = 5.0;            // ground size of one repeat of the shape noise
+  double detailScaleKm = 0.4;           // ground size of one repeat of the detail noise
   double windSpeedMs = 10.0;            // moves the noise with time, 0..200
   double windFrom = 270.0;              // degrees clockwise from north
   CloudLayerSettings low{500.0, 2500.0};

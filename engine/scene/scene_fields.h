@@ -209,6 +209,12 @@ void describe(V& v, CloudSettings& s) {
           "integrate each step's scattering analytically (Hillaire 2016)");
   v.field("scattering_octaves", s.scatteringOctaves, NumberRange{1, 8},
           "multiple-scattering octaves (Wrenninge); 1 is single scattering");
+  v.field("multiple_scattering", s.multipleScattering, NumberRange{0, 4},
+          "strength of the diffusion term for light scattered many times (sun, sky and "
+          "ground; docs/cloud-model.md); 0 leaves the octaves and Tang's ambient alone");
+  v.field("edge_sharpness", s.edgeSharpness, NumberRange{1, 32},
+          "how much faster the density rises at a cloud's boundary than the noise does, "
+          "1 - (1 - d)^k (1: the noise's own ramp)");
   v.field("shape_scale_km", s.shapeScaleKm, NumberRange{0.1, 1000},
           "ground size of one repeat of the shape noise, km");
   v.field("detail_scale_km", s.detailScaleKm, NumberRange{0.01, 100},

@@ -42,13 +42,13 @@ CloudPipelines::CloudPipelines(const Context& ctx, ShaderCompiler& compiler, con
     : mCtx(ctx), mCompiler(compiler), mFile(file), mName(name) {}
 
 const ComputePipeline& CloudPipelines::get(const shared::CloudParams& p) {
-  const std::array<uint32_t, 7> key = {p.frame.x == CLOUD_FRAME_TOPDOWN ? 1u : 0u,
-                                       p.frame.z,
-                                       p.frame.w,
-                                       p.options.x,
-                                       p.options.y,
-                                       p.options.z,
-                                       p.options.w};
+  const std::array<uint32_t, 7> key = {p.frameKind == CLOUD_FRAME_TOPDOWN ? 1u : 0u,
+                                       p.lightSteps,
+                                       p.octaves,
+                                       p.phaseKind,
+                                       p.energyConserving,
+                                       p.calibratedCoverage,
+                                       p.model};
   std::unique_ptr<ComputePipeline>& pipeline = mPipelines[key];
   if (!pipeline) {
     const char* names[7] = {"CLOUD_TOPDOWN",   "CLOUD_LIGHT_STEPS",       "CLOUD_OCTAVES",
@@ -74,7 +74,7 @@ CloudFrameGeometry cloudFrameGeometry(const Scene& scene) {
 shared::CloudParams cloudParams(const Scene& scene, const LightingState& lighting,
                                 const IsoTime& time, const shared::ViewState& view,
                                 const glm::vec2& maxCover, const glm::uvec2& weatherSize,
-                                const CoverageTables& coverage) {
+                                const CoverageTables& coverage, const NoiseMeans& noiseMeans) {
   const CloudSettings& c = scene.clouds;
   const WeatherRegion& region = resolvedRegion(scene.weather);
   const CloudFrameGeometry g = cloudFrameGeometry(scene);
@@ -82,20 +82,24 @@ shared::CloudParams cloudParams(const Scene& scene, const LightingState& lightin
   p.view = view;
   p.geo = geoFrame({g.latDeg, g.lonDeg, g.altitudeM});
   p.region = geoRegion(region);
-  p.frame = glm::uvec4(g.topDown ? CLOUD_FRAME_TOPDOWN : CLOUD_FRAME_OBSERVER,
-                       static_cast<uint32_t>(c.maxSteps), static_cast<uint32_t>(c.lightSteps),
-                       static_cast<uint32_t>(c.scatteringOctaves));
-  p.options = glm::uvec4(c.phase == "dual_lobe" ? 1u : 0u, c.energyConserving ? 1u : 0u,
-                         c.coverage == "calibrated" ? 1u : 0u, c.model == "tang2019" ? 1u : 0u);
-  p.layers = glm::vec4(static_cast<float>(c.low.baseM), static_cast<float>(c.low.topM),
-                       static_cast<float>(c.mid.baseM), static_cast<float>(c.mid.topM));
+  p.frameKind = g.topDown ? CLOUD_FRAME_TOPDOWN : CLOUD_FRAME_OBSERVER;
+  p.lightSteps = static_cast<uint32_t>(c.lightSteps);
+  p.octaves = static_cast<uint32_t>(c.scatteringOctaves);
+  p.phaseKind = c.phase == "dual_lobe" ? CLOUD_PHASE_DUAL_LOBE : CLOUD_PHASE_HG;
+  p.energyConserving = c.energyConserving ? 1u : 0u;
+  p.calibratedCoverage = c.coverage == "calibrated" ? 1u : 0u;
+  p.model = c.model == "tang2019" ? CLOUD_MODEL_TANG2019 : CLOUD_MODEL_LU2023;
+  p.maxSteps = static_cast<uint32_t>(c.maxSteps);
+  p.lowBaseM = static_cast<float>(c.low.baseM);
+  p.lowTopM = static_cast<float>(c.low.topM);
+  p.midBaseM = static_cast<float>(c.mid.baseM);
+  p.midTopM = static_cast<float>(c.mid.topM);
   // March only through the layers that have cover somewhere on the map.
   const bool low = maxCover.x > 0.0f, mid = maxCover.y > 0.0f;
-  const double shellBase = low ? c.low.baseM : c.mid.baseM;
-  const double shellTop = mid ? c.mid.topM : c.low.topM;
-  p.shell = glm::vec4(static_cast<float>(shellBase), static_cast<float>(shellTop),
-                      static_cast<float>(std::max(c.low.topM, c.mid.topM) + kTopDownMarginM),
-                      low || mid ? 1.0f : 0.0f);
+  p.shellBaseM = static_cast<float>(low ? c.low.baseM : c.mid.baseM);
+  p.shellTopM = static_cast<float>(mid ? c.mid.topM : c.low.topM);
+  p.topDownStartM = static_cast<float>(std::max(c.low.topM, c.mid.topM) + kTopDownMarginM);
+  p.anyCover = low || mid ? 1.0f : 0.0f;
 
   // The noise is tied to the ground: it tiles Earth-fixed (ECEF) space, whatever the region or
   // the camera, and drifts with the wind from the start of the scene's time (a cloud at x now
@@ -116,14 +120,28 @@ shared::CloudParams cloudParams(const Scene& scene, const LightingState& lightin
   // noise position's east and north coordinates, reduced by whole repeats (shapeM) likewise.
   const glm::dvec2 ground(glm::dot(noise, enu[0]), glm::dot(noise, enu[1]));
   p.curlOrigin = glm::vec4(glm::vec2(glm::mod(ground, shapeM)), 0.0f, 0.0f);
-  p.noiseScale = glm::vec4(static_cast<float>(1.0 / shapeM), static_cast<float>(1.0 / detailM),
-                           kCurlStrength, static_cast<float>(1.0 / shapeM));
-  p.march = glm::vec4(static_cast<float>(c.stepM), static_cast<float>(c.stepGrowth),
-                      static_cast<float>(c.transmittanceCutoff), 1.0f);
-  p.light = glm::vec4(static_cast<float>(c.lightDistanceM), static_cast<float>(c.attenuationClamp),
-                      static_cast<float>(weatherSize.x), static_cast<float>(weatherSize.y));
-  p.medium = glm::vec4(static_cast<float>(c.extinction), static_cast<float>(c.g),
-                       static_cast<float>(c.gBack), static_cast<float>(c.backWeight));
+  p.shapeRepeatsPerM = static_cast<float>(1.0 / shapeM);
+  p.detailRepeatsPerM = static_cast<float>(1.0 / detailM);
+  p.curlRepeatsPerM = static_cast<float>(1.0 / shapeM);
+  p.curlStrength = kCurlStrength;
+  // Each frame of a time-lapse jitters its rays differently (whole seconds since the start).
+  p.frameIndex = static_cast<uint32_t>(static_cast<int64_t>(std::floor(elapsed)) & 0x7fffffff);
+  p.jitter = 1.0f;
+  p.stepM = static_cast<float>(c.stepM);
+  p.stepGrowth = static_cast<float>(c.stepGrowth);
+  p.transmittanceCutoff = static_cast<float>(c.transmittanceCutoff);
+  p.lightDistanceM = static_cast<float>(c.lightDistanceM);
+  p.attenuationClamp = static_cast<float>(c.attenuationClamp);
+  p.weatherTexelsU = static_cast<float>(weatherSize.x);
+  p.weatherTexelsV = static_cast<float>(weatherSize.y);
+  p.extinction = static_cast<float>(c.extinction);
+  p.g = static_cast<float>(c.g);
+  p.gBack = static_cast<float>(c.gBack);
+  p.backWeight = static_cast<float>(c.backWeight);
+  p.edgeSharpness = static_cast<float>(c.edgeSharpness);
+  p.multipleScattering = static_cast<float>(c.multipleScattering);
+  p.shapeMean = noiseMeans.shape;
+  p.detailMean = noiseMeans.detail;
 
   // Both lights are marched toward where each gives a visible share of the light at the
   // clouds (the moon by day does not), so the change from sun to moon at dusk is a blend, not
@@ -138,25 +156,28 @@ shared::CloudParams cloudParams(const Scene& scene, const LightingState& lightin
   const double midMid = 0.5 * (c.mid.baseM + c.mid.topM);
   const BodyLight* bodies[2] = {&lighting.sun, &lighting.moon};
   const glm::vec4* space[2] = {&lighting.gpu.sunSpace, &lighting.gpu.moonSpace};
+  glm::vec4* atLow[2] = {&p.sunAtLow, &p.moonAtLow};
+  glm::vec4* atMid[2] = {&p.sunAtMid, &p.moonAtMid};
   float share[2];
   for (int i = 0; i < 2; ++i) {
-    p.lightAtLow[i] = glm::vec4(at(*bodies[i], *space[i], lowMid), 0.0f);
-    p.lightAtMid[i] = glm::vec4(at(*bodies[i], *space[i], midMid), 0.0f);
-    share[i] =
-        std::max(luminance(glm::vec3(p.lightAtLow[i])), luminance(glm::vec3(p.lightAtMid[i])));
+    *atLow[i] = glm::vec4(at(*bodies[i], *space[i], lowMid), 0.0f);
+    *atMid[i] = glm::vec4(at(*bodies[i], *space[i], midMid), 0.0f);
+    share[i] = std::max(luminance(glm::vec3(*atLow[i])), luminance(glm::vec3(*atMid[i])));
   }
   const float total = share[0] + share[1];
-  for (int i = 0; i < 2; ++i) {
-    const bool marched = total > 0.0f && share[i] > kLightShare * total;
-    p.lightDirection[i] = glm::vec4(glm::vec3(bodies[i]->direction), marched ? 1.0f : 0.0f);
-  }
+  float* marched[2] = {&p.sunMarched, &p.moonMarched};
+  for (int i = 0; i < 2; ++i)
+    *marched[i] = total > 0.0f && share[i] > kLightShare * total ? 1.0f : 0.0f;
+  p.sunDirection = glm::vec4(glm::vec3(lighting.sun.direction), 0.0f);
+  p.moonDirection = glm::vec4(glm::vec3(lighting.moon.direction), 0.0f);
   const int key = share[0] >= share[1] ? 0 : 1;
-  p.keyDirection = glm::vec4(glm::vec3(bodies[key]->direction), key == 0 ? 1.0f : 0.0f);
+  p.keyDirection = glm::vec4(glm::vec3(bodies[key]->direction), 0.0f);
+  p.keyIsSun = key == 0 ? 1.0f : 0.0f;
   p.ambientTop = lighting.gpu.palette.ambientTop + lighting.gpu.moonPalette.ambientTop;
   p.ambientBottom = lighting.gpu.palette.ambientBottom + lighting.gpu.moonPalette.ambientBottom;
   p.ambientTop.w = p.ambientBottom.w = 0.0f;
-  p.slice =
-      glm::vec4(60000.0f, static_cast<float>(std::max(c.low.topM, c.mid.topM) + 500.0), 0.0f, 0.0f);
+  p.sliceLengthM = 60000.0f;
+  p.sliceTopM = static_cast<float>(std::max(c.low.topM, c.mid.topM) + 500.0);
 
   int i = 0;
   for (const auto& layer : coverage)

@@ -107,13 +107,20 @@ struct CloudFrameGeometry {
 };
 CloudFrameGeometry cloudFrameGeometry(const Scene& scene);
 
+// The mean of each channel of the baked noise textures (CloudParams.shapeMean, .detailMean):
+// what the octaves finer than a pixel's footprint fade to at a distance.
+struct NoiseMeans {
+  glm::vec4 shape{0.5f};
+  glm::vec4 detail{0.5f};
+};
+
 // The pass's uniforms for one frame: the layers and shells, the frame, the wind's drift of
 // the noise since the start of the scene's time, the key light and its illuminance at each
-// layer's altitude, the ambient light and the coverage tables. `maxCover` is the map's
-// largest (low, mid) cover; `weatherSize` its texel counts.
+// layer's altitude, the ambient light, the coverage tables and the noise means. `maxCover` is
+// the map's largest (low, mid) cover; `weatherSize` its texel counts.
 shared::CloudParams cloudParams(const Scene& scene, const LightingState& lighting,
                                 const IsoTime& time, const shared::ViewState& view,
                                 const glm::vec2& maxCover, const glm::uvec2& weatherSize,
-                                const CoverageTables& coverage);
+                                const CoverageTables& coverage, const NoiseMeans& noiseMeans);
 
 }  // namespace sky

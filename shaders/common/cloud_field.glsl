@@ -10,6 +10,7 @@
 #include "volumetric_clouds_shared.h"
 #include "geo.glsl"
 #include "cloud_density.glsl"
+#include "cloud_lighting.glsl"
 
 // The scene's fixed choices are compile-time constants, one pipeline per combination
 // (passes/volumetric_clouds, CloudPipelines): CLOUD_TOPDOWN, CLOUD_LIGHT_STEPS, CLOUD_OCTAVES,
@@ -56,6 +57,7 @@ struct CloudSample {
   float ph;       // height fraction inside the cloud's vertical range (Lu's ph)
   float hTop;     // distance up to the top of the cloud's range (m)
   float hBottom;  // distance down to its bottom (m)
+  float type;     // the weather map's cloud type (0 stratiform, 0.5 cellular, 1 convective)
 };
 
 float coverageLutEntry(int index) {
@@ -87,18 +89,33 @@ vec3 ecefOffset(vec3 p) {
   return p.x * params.geo.east.xyz + p.y * params.geo.north.xyz + p.z * params.geo.up.xyz;
 }
 
-// The cloud at point p. Returns false where no cloud can be (outside both layers, outside the
-// weather region, or where the coarse map has no cover nearby): the caller may step faster
-// there. `s.density` is 0 then.
-bool cloudSampleAt(vec3 p, out CloudSample s) {
+// Level of detail by footprint: how much of a noise channel whose cells are `cellM` wide a
+// sample `footprintM` wide (a pixel's width at its distance) can resolve. 1 (keep) up to an
+// eighth of a cell, 0 (replace by the channel's mean) from half a cell, two samples a cell,
+// where the channel would alias into speckle (docs/clouds.md, the horizon).
+float noiseKeep(float footprintM, float cellM) {
+  return 1.0 - smoothstep(0.125, 0.5, footprintM / cellM);
+}
+
+// The mean density of the far field per unit of cover and height profile: about the share of
+// a cloud's core density its volume averages to (docs/clouds.md, the horizon).
+#define CLOUD_FAR_DENSITY 0.5
+
+// The cloud at point p, seen by a sample `footprintM` wide (0: full detail). Returns false
+// where no cloud can be (outside both layers, outside the weather region, or where the coarse
+// map has no cover nearby): the caller may step faster there. `s.density` is 0 then.
+bool cloudSampleAt(vec3 p, float footprintM, out CloudSample s) {
   s.density = 0.0;
   s.layer = -1;
   s.ph = 0.0;
   s.hTop = 0.0;
   s.hBottom = 0.0;
+  s.type = 0.0;
   vec3 lla = latLonAltitude(params.geo, p);
   float h = lla.z;
-  int layer = (h >= params.layers.x && h <= params.layers.y) ? 0 : (h >= params.layers.z && h <= params.layers.w) ? 1 : -1;
+  int layer = (h >= params.lowBaseM && h <= params.lowTopM)   ? 0
+              : (h >= params.midBaseM && h <= params.midTopM) ? 1
+                                                              : -1;
   if (layer < 0) return false;
   vec2 uv;
   if (!regionUv(params.region, lla.x, lla.y, uv)) return false;  // Lu: only inside the region
@@ -110,8 +127,9 @@ bool cloudSampleAt(vec3 p, out CloudSample s) {
   vec4 w = textureLod(weatherMap, uv, 0.0);
   float cover = layer == 0 ? w.r : w.g;
   float type = w.b;
-  float base = layer == 0 ? params.layers.x : params.layers.z;
-  float top = layer == 0 ? params.layers.y : params.layers.w;
+  s.type = type;
+  float base = layer == 0 ? params.lowBaseM : params.midBaseM;
+  float top = layer == 0 ? params.lowTopM : params.midTopM;
   float f = (h - base) / (top - base);
   vec2 range = cloudTypeRange(layer, type);
   s.ph = cloudHeightFraction(f, range);
@@ -120,8 +138,20 @@ bool cloudSampleAt(vec3 p, out CloudSample s) {
   if (cover <= 0.0 || s.ph < 0.0 || s.ph > 1.0) return true;
 
   vec3 offset = ecefOffset(p);
-  vec4 shape = textureLod(shapeNoise, (params.shapeOrigin.xyz + offset) * params.noiseScale.x, 0.0);
-  vec3 dq = (params.detailOrigin.xyz + offset) * params.noiseScale.y;
+  vec4 shape = textureLod(shapeNoise, (params.shapeOrigin.xyz + offset) * params.shapeRepeatsPerM, 0.0);
+  // Shape channels G, B, A are Worley fbm at 8, 16 and 32 cells a repeat (docs/cloud-noise.md);
+  // R (4 cells) stays: it is the cloud's outline, and a metre-wide pixel at 100 km still
+  // resolves it.
+  float shapeCellM = 1.0 / params.shapeRepeatsPerM;
+  vec3 keepShape = vec3(noiseKeep(footprintM, shapeCellM / 8.0),
+                        noiseKeep(footprintM, shapeCellM / 16.0),
+                        noiseKeep(footprintM, shapeCellM / 32.0));
+  shape.gba = mix(params.shapeMean.gba, shape.gba, keepShape);
+  vec3 dq = (params.detailOrigin.xyz + offset) * params.detailRepeatsPerM;
+  // Detail R, G, B: Worley fbm at 2, 4, 8 cells (lu2023) or 4, 8, 16 (tang2019).
+  float detailCellM = 1.0 / params.detailRepeatsPerM / (CLOUD_TANG != 0 ? 4.0 : 2.0);
+  vec3 keepDetail = vec3(noiseKeep(footprintM, detailCellM), noiseKeep(footprintM, detailCellM / 2.0),
+                         noiseKeep(footprintM, detailCellM / 4.0));
   float threshold = coverageThreshold(layer, type, cover);
   // The detail noise only erodes (Lu (18), Tang's erosion): where the shape alone leaves no
   // cloud there is none, and the costly detail lookup is skipped.
@@ -132,22 +162,34 @@ bool cloudSampleAt(vec3 p, out CloudSample s) {
   // a well-developed cloud) and leaves the cover to the calibrated threshold alone; the paper's
   // mode keeps CMc everywhere. engine/clouds/coverage_calibration.h calibrates the same way.
   float profileCover = CLOUD_CALIBRATED != 0 ? 1.0 : cover;
+  // Far away a sample spans whole clouds (the shape's R has 4 cells a repeat), and the field
+  // there is drawn as its mean: the cover times the height profile times CLOUD_FAR_DENSITY, a
+  // smooth band at the horizon instead of the speckle of clouds hit and missed at random.
+  float keepOutline = noiseKeep(footprintM, shapeCellM / 4.0);
+  float profile = tang ? tangTypeGradient(s.ph, type) : luGD(s.ph, profileCover);
+  float farDensity = cover * profile * CLOUD_FAR_DENSITY;
+  s.density = farDensity * w.a;
+  if (keepOutline <= 0.0) return true;
   float shapeOnly = tang ? tangDensity(tangBaseShape(shape, s.ph, type), 0.0, cover, threshold)
                          : luNSfinal(luNStex(shape), luGS(s.ph, profileCover), threshold);
+  s.density = mix(farDensity, 0.0, keepOutline) * w.a;
   if (shapeOnly <= 0.0) return true;
   float density;
   if (tang) {
     // Tang: curl noise bends the detail lookup, more at the bottom where the billows are.
     vec2 ground = params.curlOrigin.xy + p.xy;  // east, north on the camera's ground plane
-    vec3 curl = textureLod(curlNoise, ground * params.noiseScale.w, 0.0).xyz * 2.0 - 1.0;
-    dq += curl * params.noiseScale.z * (1.0 - s.ph);
-    vec3 detail = textureLod(detailNoise, dq, 0.0).rgb;
+    vec3 curl = textureLod(curlNoise, ground * params.curlRepeatsPerM, 0.0).xyz * 2.0 - 1.0;
+    dq += curl * params.curlStrength * (1.0 - s.ph);
+    vec3 detail = mix(params.detailMean.rgb, textureLod(detailNoise, dq, 0.0).rgb, keepDetail);
     density = tangCloudDensity(shape, detail, s.ph, cover, type, threshold);
   } else {
-    vec3 detail = textureLod(detailNoise, dq, 0.0).rgb;
+    vec3 detail = mix(params.detailMean.rgb, textureLod(detailNoise, dq, 0.0).rgb, keepDetail);
     density = luCloudDensity(shape, detail, s.ph, profileCover, threshold);
   }
-  s.density = max(density, 0.0) * w.a;
+  // The boundary can be no sharper than the sample resolves: the gain falls to 1 as the
+  // shape's medium octave (G) fades.
+  float sharpness = mix(1.0, params.edgeSharpness, keepShape.x);
+  s.density = mix(farDensity, cloudEdgeDensity(density, sharpness), keepOutline) * w.a;
   return true;
 }
 

@@ -1,26 +1,29 @@
 // The light march of the volumetric clouds, generic over the density: the includer defines
-//   float cloudDensityForLight(vec3 p);
-// (density at a world position, 0 outside the cloud) before including this file.
+//   float cloudDensityForLight(vec3 p, float lengthM);
+// (density at a world position, 0 outside the cloud, as seen by a sample standing for
+// `lengthM` of the march: it may filter away detail finer than that) before including this file.
 // Its C++ twin, lightMarchDensity in engine/clouds/cloud_math.h, takes the density as a callable.
 #ifndef SKY_CLOUD_LIGHT_MARCH_GLSL
 #define SKY_CLOUD_LIGHT_MARCH_GLSL
 #include "cloud_lighting.glsl"
 
 // Defined by the includer (declared here so this file stands on its own).
-float cloudDensityForLight(vec3 p);
+float cloudDensityForLight(vec3 p, float lengthM);
 
 // Lu (24)'s ds: the density accumulated from p toward the light L (unit) in density x metres,
 // by the midpoint rule over the n short steps covering [0, distance] (lightStepLength) and the
 // one long step over [distance, 5 distance] (lightLongStepDistance). Exact for densities linear
 // along the ray; a density edge costs at most the length of the step it falls in.
-float lightMarchDensity(vec3 p, vec3 L, float distance, int n) {
+// `offset` in [0, 1) places each sample inside its step (0.5: the midpoint); a caller that
+// varies it from sample to sample turns the pattern of a fixed placement into fine noise.
+float lightMarchDensity(vec3 p, vec3 L, float distance, int n, float offset) {
   float ds = 0.0;
   for (int i = 0; i < n; ++i) {
     float start = lightStepStart(i, n, distance);
     float len = lightStepLength(i, n, distance);
-    ds += cloudDensityForLight(p + L * (start + 0.5 * len)) * len;
+    ds += cloudDensityForLight(p + L * (start + offset * len), len) * len;
   }
-  ds += cloudDensityForLight(p + L * lightLongStepDistance(distance)) *
+  ds += cloudDensityForLight(p + L * lightLongStepDistance(distance), lightLongStepLength(distance)) *
         lightLongStepLength(distance);
   return ds;
 }

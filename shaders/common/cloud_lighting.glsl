@@ -96,6 +96,63 @@ float cloudInScatter(float tauToLight, float tauClamp, float cosTheta, float g, 
   return sum;
 }
 
+// Multiple scattering in the diffusion limit. Light that has scattered many times inside a
+// cloud of conservative scatterers (droplets barely absorb) is nearly isotropic, and the share
+// of a beam's flux that reaches optical depth tau as such light falls off only as
+// 1 / (1 + 3/4 (1 - g) tau): the two-stream (Eddington) diffuse transmittance of a
+// non-absorbing slab (Bohren & Clothiaux 2006, "Fundamentals of Atmospheric Radiation" 6.3;
+// Meador & Weaver 1980), g the phase function's mean cosine. The octaves above fall off as
+// exp(-a^i tau) and leave a cumulus's shadowed base, 50 optical depths from the sunlit top,
+// black; the path tracer (docs/cloud-model.md) puts a tenth of the top's light there.
+float diffuseTransmittance(float tau, float g) {
+  return 1.0 / (1.0 + 0.75 * (1.0 - g) * max(tau, 0.0));
+}
+
+// The diffuse light scattered toward the eye per unit of extinction and of illuminance, at
+// optical depth tau toward the light: `strength` (clouds.multiple_scattering, calibrated
+// against the path tracer, docs/cloud-model.md) times the diffuse transmittance. In the
+// renderer's units (illuminance 1 = pi x radiance 1) it is added to pi x the octaves.
+float cloudDiffuseInScatter(float tau, float g, float strength) {
+  return strength * diffuseTransmittance(tau, g);
+}
+
+// The slab keeps the diffuse light it does not let through; a cumulus cell, about as wide as
+// it is tall, loses it through its sides as well, so light toward its far side falls off
+// faster. cloudDiffuseInScatter's depth is scaled by this: 1 for stratiform and cellular
+// cloud (type up to 0.5), rising to 2 for convective cells (type 1). Calibrated against the
+// path tracer: the deck's base and the cumulus's lit/shadowed ratio (docs/cloud-model.md).
+float cloudDiffusionLeak(float type) {
+  return 1.0 + 2.0 * clamp(2.0 * type - 1.0, 0.0, 1.0);
+}
+
+// Tang (6)(7)'s ambient with the diffusion limit. Tang's slab share slabAmbient is the light
+// that reaches a point without scattering, E2(tau), gone ten optical depths in; sky light that
+// scatters on keeps diffuseTransmittance. And a cloud is no infinite slab: the surface the
+// view ray came in through is at most tauView away, and it faces the sky (looking down,
+// viewDown = 1), the ground (looking up, 0) or both (looking across, 0.5). Each hemisphere's
+// share is the better of the two paths. `strength` (clamped to [0, 1]) blends from Tang's
+// (0) to this (1). Isotropic in-scattering of a hemisphere of radiance is half of it, so the
+// result is radiance per unit of extinction.
+vec3 cloudAmbientDiffuse(vec3 top, vec3 bottom, float sigmaT, float hTopM, float hBottomM,
+                         float tauView, float viewDown, float g, float strength) {
+  float k = clamp(strength, 0.0, 1.0);
+  float throughView = diffuseTransmittance(tauView, g);
+  float dTop = max(diffuseTransmittance(sigmaT * hTopM, g), viewDown * throughView);
+  float dBottom = max(diffuseTransmittance(sigmaT * hBottomM, g), (1.0 - viewDown) * throughView);
+  float aTop = mix(slabAmbient(-sigmaT * hTopM), dTop, k);
+  float aBottom = mix(slabAmbient(-sigmaT * hBottomM), dBottom, k);
+  return 0.5 * (top * aTop + bottom * aBottom);
+}
+
+// Sharp cloud boundaries: real cumulus reach an optical depth of one within tens of metres of
+// their edge, but the noise rises over hundreds. 1 - (1 - d)^k rises k times faster at the
+// boundary (slope k at d = 0) and keeps 1 at 1, so cores keep their relief. Densities at or
+// above 1 (Lu (10)'s GD reaches 2) pass unchanged, and k = 1 is the identity.
+float cloudEdgeDensity(float d, float k) {
+  if (d >= 1.0) return d;
+  return 1.0 - pow(1.0 - max(d, 0.0), k);
+}
+
 // Hillaire 2016 ("Physically based sky, atmosphere and cloud rendering in Frostbite"): the
 // in-scattered light S integrated over a step of length dt with the step's own extinction,
 // (S - S exp(-sigmaT dt)) / sigmaT. Summed over steps with the transmittance before each, a

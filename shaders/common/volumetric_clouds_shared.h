@@ -22,9 +22,15 @@
 // Density slice (the debug output "cloud_density_slice"): same params, its own image.
 #define CLOUD_SLICE_BINDING_IMAGE 2
 
-// CloudParams.frame.x: how rays start.
+// CloudParams.frameKind: how rays start.
 #define CLOUD_FRAME_OBSERVER 0u  // from the camera along the view's rays
 #define CLOUD_FRAME_TOPDOWN 1u   // straight down from above the clouds over each pixel's lat/lon
+// CloudParams.phaseKind
+#define CLOUD_PHASE_HG 0u
+#define CLOUD_PHASE_DUAL_LOBE 1u
+// CloudParams.model
+#define CLOUD_MODEL_LU2023 0u
+#define CLOUD_MODEL_TANG2019 1u
 
 // Calibrated coverage: thresholds for cover i / (CLOUD_COVERAGE_LUT_SIZE - 1), for each layer
 // (low, mid) and each type key (0 stratiform, 0.5 cellular, 1 convective).
@@ -34,39 +40,79 @@
 
 SKY_SHARED_BEGIN
 
+// std140: scalars pack four to a 16-byte row, so they come in groups of four; a vec4 starts a
+// row. Directions and colours are vec4s whose w is unused (a bare vec3 differs in C++).
 struct CloudParams {
   ViewState view;
   GeoFrame geo;         // the camera's frame (top-down: the region's centre, above the clouds)
   GeoRegion region;     // the weather map's bounds
-  // frame.xzw and options pick the shader variant (compile-time constants, cloud_field.glsl);
-  // the shader reads only frame.y.
-  uvec4 frame;          // x: CLOUD_FRAME_*; y: max view steps; z: light steps; w: octaves
-  uvec4 options;        // x: phase (0 hg, 1 dual lobe); y: energy-conserving steps (1) or not;
-                        // z: calibrated coverage (1) or paper (0); w: model (0 lu2023, 1 tang2019)
-  vec4 layers;          // low base, low top, mid base, mid top (m above sea level)
-  vec4 shell;           // x, y: march between these altitudes (the layers with cover);
-                        // z: top-down rays start at this altitude; w: 1 if any cover, else 0
+
+  // The shader variant (compile-time constants in the shader, CloudPipelines picks the
+  // pipeline from these; the shader never reads them).
+  uint frameKind;           // CLOUD_FRAME_*
+  uint lightSteps;          // short steps toward each light
+  uint octaves;             // multiple-scattering octaves
+  uint phaseKind;           // CLOUD_PHASE_*
+  uint energyConserving;    // 1: integrate each step exactly (Hillaire 2016)
+  uint calibratedCoverage;  // 1: the calibrated threshold; 0: the paper's 1 - CMc
+  uint model;               // CLOUD_MODEL_*
+  uint maxSteps;            // density samples per view ray
+
+  uint frameIndex;           // the frame's number, to vary the jitter from frame to frame
+  float jitter;              // start offset along the view ray, 0..1 of a step
+  float transmittanceCutoff; // a ray stops below this transmittance
+  float anyCover;            // 1 if the map has cover in either layer, else 0
+
+  float lowBaseM, lowTopM, midBaseM, midTopM;  // the layers (m above sea level)
+
+  float shellBaseM;     // the march runs between these altitudes (the layers with cover)
+  float shellTopM;
+  float topDownStartM;  // top-down rays start at this altitude
+  float stepM;          // view-ray step at the camera (m)
+
+  float stepGrowth;        // extra step length per metre of distance
+  float lightDistanceM;    // length of the short light steps together (m)
+  float attenuationClamp;  // Lu (22)'s ac
+  float extinction;        // 1/m at density 1
+
+  float g;           // Henyey-Greenstein asymmetry (the forward lobe)
+  float gBack;       // the back lobe's asymmetry
+  float backWeight;  // the back lobe's share
+  float edgeSharpness;  // density gain at the cloud's boundary (cloudEdgeDensity)
+
+  float shapeRepeatsPerM;   // shape noise repeats per metre
+  float detailRepeatsPerM;  // detail noise repeats per metre
+  float curlRepeatsPerM;    // curl noise repeats per metre
+  float curlStrength;       // how far the curl bends the detail lookup (detail repeats)
+
+  float sunMarched;   // 1 when the sun is marched toward (it gives a visible share), else 0
+  float moonMarched;  // the same for the moon
+  float keyIsSun;     // 1: the key light is the sun, 0: the moon (reports and tests)
+  float sliceLengthM; // density slice: how far ahead it reaches (m)
+
+  float sliceTopM;       // density slice: its top altitude (m)
+  float weatherTexelsU;  // the weather map's texel counts
+  float weatherTexelsV;
+  float multipleScattering;  // strength of the diffusion term (cloudDiffuseInScatter), 0: off
+
   // The camera in each noise texture's Earth-fixed frame (ECEF axes, m, wind drift taken
   // off), reduced by whole repeats of that texture so floats keep their precision.
-  vec4 shapeOrigin;     // xyz: for the shape noise (repeat 1 / noiseScale.x)
-  vec4 detailOrigin;    // xyz: for the detail noise (repeat 1 / noiseScale.y)
-  vec4 curlOrigin;      // xy: east and north on the ground plane at the camera, for the curl
-                        // noise (repeat 1 / noiseScale.w)
-  vec4 noiseScale;      // x: shape repeats per metre; y: detail repeats per metre;
-                        // z: curl strength (tang2019, detail repeats); w: curl repeats per metre
-  vec4 march;           // x: step at the camera (m); y: growth per metre; z: transmittance
-                        // cutoff; w: jitter (0..1, 1 = a whole step)
-  vec4 light;           // x: distance of the short light steps (m); y: attenuation clamp ac;
-                        // z: weather texels across (u); w: texels down (v)
-  vec4 medium;          // x: extinction (1/m at density 1); y: g; z: g back; w: back weight
-  vec4 keyDirection;    // xyz: unit direction to the brighter light at the clouds (ENU);
-                        // w: 1 sun, 0 moon (for reports and tests)
-  vec4 lightDirection[2];  // [0] sun, [1] moon: xyz unit direction (ENU); w: 1 when marched
-  vec4 lightAtLow[2];      // rgb: each light's illuminance at the low layer
-  vec4 lightAtMid[2];      // rgb: at the mid layer
-  vec4 ambientTop;      // rgb: sky light from above (radiance)
-  vec4 ambientBottom;   // rgb: ground light from below (radiance)
-  vec4 slice;           // density slice: x: length (m); y: top altitude (m); zw: unused
+  vec4 shapeOrigin;   // xyz: for the shape noise (repeat 1 / shapeRepeatsPerM)
+  vec4 detailOrigin;  // xyz: for the detail noise (repeat 1 / detailRepeatsPerM)
+  vec4 curlOrigin;    // xy: east and north on the ground plane at the camera (curl noise)
+  vec4 keyDirection;  // xyz: unit direction to the brighter light at the clouds (ENU)
+  vec4 sunDirection;  // xyz: unit direction to the sun (ENU)
+  vec4 moonDirection; // xyz: to the moon
+  vec4 sunAtLow;      // rgb: the sun's illuminance at the low layer's middle altitude
+  vec4 sunAtMid;      // rgb: at the mid layer's
+  vec4 moonAtLow;     // rgb: the moon's, likewise
+  vec4 moonAtMid;
+  vec4 ambientTop;    // rgb: sky light from above (radiance)
+  vec4 ambientBottom; // rgb: ground light from below (radiance)
+  // The mean of each noise channel over its texture: what octaves finer than a pixel's
+  // footprint average to, so distant clouds fade to it instead of aliasing (cloudSampleAt).
+  vec4 shapeMean;     // rgba: of the shape texture
+  vec4 detailMean;    // rgb: of the detail texture
   vec4 coverageLut[CLOUD_COVERAGE_LUT_VEC4S];
 };
 
@@ -74,7 +120,7 @@ SKY_SHARED_END
 
 #ifdef __cplusplus
 static_assert(sizeof(sky::shared::CloudParams) ==
-                  64 + 64 + 16 + 2 * 16 + 19 * 16 + CLOUD_COVERAGE_LUT_VEC4S * 16,
+                  64 + 64 + 16 + 10 * 16 + 14 * 16 + CLOUD_COVERAGE_LUT_VEC4S * 16,
               "std140 layout of CloudParams");
 #endif
 #endif

@@ -11,7 +11,7 @@
 // gSlabTop and 0 above.
 int gDensityKind = 0;
 float gSlabTop = 0.0;
-float cloudDensityForLight(vec3 p) {
+float cloudDensityForLight(vec3 p, float lengthM) {
   if (gDensityKind == 0) return 0.7;
   if (gDensityKind == 1) return 0.3 + 0.0005 * p.z;
   return p.z < gSlabTop ? 1.0 : 0.0;
@@ -104,7 +104,7 @@ void main() {
   float march[3];
   for (int k = 0; k < 3; ++k) {
     gDensityKind = k;
-    march[k] = lightMarchDensity(p, L, distance, n);
+    march[k] = lightMarchDensity(p, L, distance, n, 0.5);
   }
   put(17, vec4(march[0], march[1], march[2], gSlabTop));
   put(18, vec4(L, distance));
@@ -122,4 +122,13 @@ void main() {
     T *= beerLambert(mediumSigma, h);
   }
   put(20, vec4(Le + T, Lr + T, T, mediumSigma * h));
+
+  // --- Diffusion and boundaries: tau 0..100, g -0.5..0.9, strength 0..3, densities
+  // -0.1..1.2, k 1..9, types -0.1..1.1 ---
+  float tauD = 100.0 * r2.x * r2.x, gD = -0.5 + 1.4 * r1.y, strength = 3.0 * r1.z;
+  float dEdge = -0.1 + 1.3 * r2.y, kEdge = 1.0 + 8.0 * r0.z, typeD = -0.1 + 1.2 * r0.y;
+  put(21, vec4(diffuseTransmittance(tauD, gD), cloudDiffuseInScatter(tauD, gD, strength),
+               cloudEdgeDensity(dEdge, kEdge), cloudDiffusionLeak(typeD)));
+  put(22, vec4(cloudAmbientDiffuse(r0.xyz, r1.xyz, sigmaT, 2000.0 * r2.w, 2000.0 * r0.w,
+                                   10.0 * r2.x, r1.w, gD, 1.5 * r2.z), 0.0));
 }

@@ -29,7 +29,7 @@ using namespace sky::clouds;
 
 constexpr int kQueries = 256;  // KERNEL_QUERIES in cloud_kernel.comp
 constexpr int kGroup = 64;     // KERNEL_GROUP
-constexpr int kRows = 21;
+constexpr int kRows = 23;
 
 // What each row of the results image holds (cloud_kernel.comp writes them in this order).
 enum KernelRow {
@@ -54,6 +54,8 @@ enum KernelRow {
   kMarchLight,
   kMarchPoint,
   kEnergy,
+  kDiffusion,       // diffuseTransmittance, cloudDiffuseInScatter, cloudEdgeDensity, leak
+  kAmbientDiffuse,  // cloudAmbientDiffuse
 };
 
 // Float maths on lavapipe against float maths in C++: exp, log, pow and division differ in the
@@ -241,6 +243,25 @@ TEST_F(CloudKernelTest, LightingMatchesItsTwin) {
                  cloudInScatter(tau, tauClamp, cosTheta, g, gBack, backWeight, 1, 3)},
                 names, 2e-4);
     }
+    {
+      const float tauD = 100.0f * r2.x * r2.x, gD = -0.5f + 1.4f * r1.y, strength = 3.0f * r1.z;
+      const float dEdge = -0.1f + 1.3f * r2.y, kEdge = 1.0f + 8.0f * r0.z;
+      const float typeD = -0.1f + 1.2f * r0.y;
+      const char* names[4] = {"diffuseTransmittance", "cloudDiffuseInScatter", "cloudEdgeDensity",
+                              "cloudDiffusionLeak"};
+      expectRow(kDiffusion, i,
+                {diffuseTransmittance(tauD, gD), cloudDiffuseInScatter(tauD, gD, strength),
+                 cloudEdgeDensity(dEdge, kEdge), cloudDiffusionLeak(typeD)},
+                names);
+      const float ambientSigma = at(kAmbient, i, 3);
+      const char* ambientNames[4] = {"cloudAmbientDiffuse r", "cloudAmbientDiffuse g",
+                                     "cloudAmbientDiffuse b", "unused"};
+      expectRow(kAmbientDiffuse, i,
+                {cloudAmbientDiffuse(glm::vec3(r0), glm::vec3(r1), ambientSigma, 2000.0f * r2.w,
+                                     2000.0f * r0.w, 10.0f * r2.x, r1.w, gD, 1.5f * r2.z),
+                 0.0f},
+                ambientNames, 2e-4);
+    }
     const float stepSigma = at(kIntegrateInputs, i, 0), dt = at(kIntegrateInputs, i, 1);
     {
       const glm::vec3 S(r0.w, r1.w, r2.w);
@@ -329,7 +350,8 @@ TEST_F(CloudKernelTest, LightMarchMatchesAnalyticIntegrals) {
     worstSlab = std::max(worstSlab, std::abs(slab - edge) / reach);
     // And the twin, on the same densities.
     const auto twin = [&](std::function<float(glm::vec3)> density) {
-      return lightMarchDensity(p, L, distance, n, density);
+      return lightMarchDensity(p, L, distance, n, 0.5f,
+                               [&](glm::vec3 q, float) { return density(q); });
     };
     EXPECT_NEAR(at(kMarch, i, 0), twin([](glm::vec3) { return 0.7f; }), 1e-5 * constant);
     EXPECT_NEAR(at(kMarch, i, 1), twin([](glm::vec3 q) { return 0.3f + 0.0005f * q.z; }),

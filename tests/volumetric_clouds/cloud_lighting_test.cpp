@@ -98,19 +98,19 @@ TEST_F(CloudLightingTest, AtNightTheMoonIsTheKeyLight) {
   const LightingState lighting = computeLighting(scene, scene.time.start);
   const shared::ViewState view = makeViewState(scene.camera, 64, 36);
   const shared::CloudParams night = cloudParams(scene, lighting, scene.time.start, view,
-                                                glm::vec2(0.0f, 0.5f), glm::uvec2(256), {});
-  EXPECT_EQ(night.keyDirection.w, 0.0f) << "the moon";
+                                                glm::vec2(0.0f, 0.5f), glm::uvec2(256), {}, {});
+  EXPECT_EQ(night.keyIsSun, 0.0f) << "the moon";
   EXPECT_NEAR(glm::dot(glm::vec3(night.keyDirection), glm::vec3(lighting.moon.direction)), 1.0f,
               1e-6f);
-  EXPECT_EQ(night.lightDirection[0].w, 0.0f) << "the sun, 64 degrees down, is not marched";
-  EXPECT_EQ(night.lightDirection[1].w, 1.0f) << "the moon is";
-  EXPECT_GT(night.lightAtMid[1].g, 0.0f);
+  EXPECT_EQ(night.sunMarched, 0.0f) << "the sun, 64 degrees down, is not marched";
+  EXPECT_EQ(night.moonMarched, 1.0f) << "the moon is";
+  EXPECT_GT(night.moonAtMid.g, 0.0f);
 
   const Scene noon = cloudScene("cumulus_noon");
   const LightingState day = computeLighting(noon, noon.time.start);
   const shared::CloudParams p =
-      cloudParams(noon, day, noon.time.start, view, glm::vec2(0.5f, 0.0f), glm::uvec2(256), {});
-  EXPECT_EQ(p.keyDirection.w, 1.0f) << "by day the sun";
+      cloudParams(noon, day, noon.time.start, view, glm::vec2(0.5f, 0.0f), glm::uvec2(256), {}, {});
+  EXPECT_EQ(p.keyIsSun, 1.0f) << "by day the sun";
 
   const RenderedFrame frame = render(scene);
   EXPECT_EQ(frame.lighting.key, "moon");
@@ -143,11 +143,14 @@ TEST_F(CloudLightingTest, MoonlitCloudsScaleWithTheMoonsIlluminance) {
 }
 
 TEST_F(CloudLightingTest, DualLobeBackScattersMoreThanHenyeyGreenstein) {
-  // The sun behind the camera: the clouds in view scatter it back toward us.
+  // The sun behind the camera: the clouds in view scatter it back toward us. The phase
+  // function alone, without the diffusion term (whose fall-off reads the phase's mean cosine,
+  // lower for the dual lobe, so it is not the phase's direct effect).
   auto withPhase = [&](const char* phase) {
     return render(
-        cloudScene("cumulus_noon", {"camera.heading=200", "camera.pitch=25", "sun.azimuth=20",
-                                    "sun.elevation=30", std::string("clouds.phase=") + phase}));
+        cloudScene("cumulus_noon",
+                   {"camera.heading=200", "camera.pitch=25", "sun.azimuth=20", "sun.elevation=30",
+                    "clouds.multiple_scattering=0", std::string("clouds.phase=") + phase}));
   };
   const RenderedFrame hg = withPhase("hg");
   const RenderedFrame dual = withPhase("dual_lobe");
@@ -157,8 +160,9 @@ TEST_F(CloudLightingTest, DualLobeBackScattersMoreThanHenyeyGreenstein) {
   // brighter.
   auto towardSun = [&](const char* phase) {
     return render(
-        cloudScene("cumulus_noon", {"camera.heading=20", "camera.pitch=25", "sun.azimuth=20",
-                                    "sun.elevation=30", std::string("clouds.phase=") + phase}));
+        cloudScene("cumulus_noon",
+                   {"camera.heading=20", "camera.pitch=25", "sun.azimuth=20", "sun.elevation=30",
+                    "clouds.multiple_scattering=0", std::string("clouds.phase=") + phase}));
   };
   EXPECT_GT(totalLuminance(towardSun("hg")), totalLuminance(towardSun("dual_lobe")));
 }
