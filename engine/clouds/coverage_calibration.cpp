@@ -26,8 +26,6 @@ constexpr double kOpacityTolerance = 2e-4;
 constexpr double kThresholdTolerance = 1e-4;
 constexpr int kMaxSolverSteps = 40;
 
-enum class Model { Lu2023, Tang2019 };
-
 // Runs fn(i) for i in [0, count) on up to 8 threads, thread t taking every n-th index: each
 // index's work is independent, so the result does not depend on the thread count.
 template <class Fn>
@@ -40,12 +38,6 @@ void parallelFor(int count, Fn fn) {
   for (int t = 1; t < threads; ++t) pool.emplace_back(work, t);
   work(0);
   for (std::thread& t : pool) t.join();
-}
-
-Model modelOf(const std::string& name) {
-  if (name == "lu2023") return Model::Lu2023;
-  if (name == "tang2019") return Model::Tang2019;
-  inputError("clouds.model: '" + name + "' is not one of lu2023, tang2019");
 }
 
 void checkVolume(const NoiseVolume& v, const char* what) {
@@ -115,7 +107,7 @@ float heightFraction(int j, int heights) {
 // meanColumnOpacity, which calls the functions themselves).
 class CoverOpacity {
 public:
-  CoverOpacity(const GridSamples& s, const CoverageColumn& column, Model model, float cover)
+  CoverOpacity(const GridSamples& s, const CoverageColumn& column, float cover)
       : mColumns(s.columns),
         mHeights(s.heights),
         mOpticalDepthPerDensity(column.extinction * s.dzM),
@@ -128,7 +120,7 @@ public:
     for (int j = 0; j < s.heights; ++j) {
       const float ph = heightFraction(j, s.heights);
       const size_t h = size_t(j);
-      if (model == Model::Lu2023) {
+      if (column.model == CloudModel::Lu2023) {
         shapeFactor[h] = luGS(ph, cmc);  // Lu (7)
         e0[h] = luNDmod(0.0f, cmc, ph);  // Lu (15)
         e1[h] = luNDmod(1.0f, cmc, ph);
@@ -239,7 +231,6 @@ float coverageThreshold(const CoverageLut& lut, float cover) {
 double meanColumnOpacity(const NoiseVolume& shape, const NoiseVolume& detail,
                          const CoverageColumn& column, float cover, float threshold,
                          const OpacityGrid& grid) {
-  const Model model = modelOf(column.model);
   checkVolume(shape, "shape");
   checkVolume(detail, "detail");
   const float cmc = profileCover(column, cover);
@@ -255,7 +246,7 @@ double meanColumnOpacity(const NoiseVolume& shape, const NoiseVolume& detail,
       const glm::dvec3 p(ground, (column.typeRange.x + ph * range) * column.thicknessM);
       const glm::vec4 s = sampleNoise(shape, glm::vec3(p / column.shapeScaleM));
       const glm::vec3 d = glm::vec3(sampleNoise(detail, glm::vec3(p / column.detailScaleM)));
-      depth += cloudEdgeDensity(model == Model::Lu2023
+      depth += cloudEdgeDensity(column.model == CloudModel::Lu2023
                                     ? luCloudDensity(s, d, ph, cmc, threshold)
                                     : tangCloudDensity(s, d, ph, cover, column.type, threshold),
                                 column.edgeSharpness);
@@ -267,14 +258,13 @@ double meanColumnOpacity(const NoiseVolume& shape, const NoiseVolume& detail,
 
 CoverageLut calibrateCoverage(const NoiseVolume& shape, const NoiseVolume& detail,
                               const CoverageColumn& column) {
-  const Model model = modelOf(column.model);
   checkVolume(shape, "shape");
   checkVolume(detail, "detail");
   const GridSamples samples = sampleGrid(shape, detail, column, {kColumnsPerSide, kHeights, {}});
   CoverageLut lut{};
   parallelFor(kCoverageLutSize, [&](int i) {
     const float cover = float(i) / float(kCoverageLutSize - 1);
-    lut[size_t(i)] = solveThreshold(CoverOpacity(samples, column, model, cover), cover);
+    lut[size_t(i)] = solveThreshold(CoverOpacity(samples, column, cover), cover);
   });
   return lut;
 }

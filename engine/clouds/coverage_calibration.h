@@ -7,13 +7,13 @@
 // moves (and, where the caller asks, the CMc Lu's profile sees: profileCover).
 // docs/cloud-model.md shows the tables and the figures.
 #include <array>
-#include <string>
 
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
 #include "engine/clouds/noise_volume.h"
+#include "engine/scene/scene.h"
 
 namespace sky::clouds {
 
@@ -25,7 +25,7 @@ struct CoverageColumn {
   double shapeScaleM = 16000.0, detailScaleM = 2000.0;  // size of one texture repeat
   double extinction = 0.04;                             // per metre at density 1
   glm::vec2 typeRange{0.0f, 1.0f};                      // cloudTypeRange(layer, type)
-  std::string model = "lu2023";                         // "lu2023" | "tang2019"
+  CloudModel model = CloudModel::Lu2023;
   float type = 1.0f;  // the map's type channel, for tang2019's type gradient
   // lu2023: the CMc that GS (6), GD (10) and NDmod (15) get. Below 0 (default): the cell's
   // cover, as Lu writes it; then low cover means low, faint clouds, and the calibrated
@@ -45,7 +45,7 @@ using CoverageLut = std::array<float, kCoverageLutSize>;
 // 48 x 48 columns spread over the shape tile (24 heights each, trilinear noise) equals each
 // cover: 1 (no cloud) at cover 0; where even the lowest threshold (-1) stays below the cover,
 // -1. Deterministic (threads split the covers). Budget 0.3 s on 2 cores: the caller caches by
-// column. Throws inputError for an unknown model, internalError for an empty volume.
+// column. Throws internalError for an empty volume.
 CoverageLut calibrateCoverage(const NoiseVolume& shape, const NoiseVolume& detail,
                               const CoverageColumn& column);
 

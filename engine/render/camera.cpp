@@ -16,7 +16,7 @@ glm::vec3 directionFromAzEl(double az, double el) {
 }
 
 shared::ViewState makeViewState(const CameraSettings& cam, uint32_t width, uint32_t height) {
-  if (cam.mode == "geographic_topdown") {
+  if (cam.mode == CameraMode::GeographicTopdown) {
     // Straight down everywhere; the cloud pass maps pixels onto the weather region.
     shared::ViewState v{};
     v.forward = glm::vec4(0.0f, 0.0f, -1.0f, static_cast<float>(1e-3));
@@ -25,7 +25,7 @@ shared::ViewState makeViewState(const CameraSettings& cam, uint32_t width, uint3
     v.size = glm::uvec4(width, height, VIEW_PROJECTION_TOPDOWN, 0);
     return v;
   }
-  if (cam.projection == "equirectangular") {
+  if (cam.projection == CameraProjection::Equirectangular) {
     shared::ViewState v{};
     v.forward =
         glm::vec4(directionFromAzEl(cam.heading, 0.0), static_cast<float>(180.0 * kDeg / height));

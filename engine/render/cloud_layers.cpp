@@ -26,7 +26,7 @@ CoverageTables CloudLayers::coverageTables(const Scene& scene, const WeatherMap&
       for (int i = 0; i < CLOUD_COVERAGE_LUT_SIZE; ++i)
         type[static_cast<size_t>(i)] = 1.0f - static_cast<float>(i) / (CLOUD_COVERAGE_LUT_SIZE - 1);
   mLastCalibrations = 0;
-  if (c.coverage != "calibrated") return tables;
+  if (c.coverage != CloudCoverageMode::Calibrated) return tables;
 
   // Only the layers with cover, and only the type keys the map comes near.
   const glm::vec2 maxCover = map.maxCover();
@@ -55,9 +55,9 @@ CoverageTables CloudLayers::coverageTables(const Scene& scene, const WeatherMap&
       column.edgeSharpness = static_cast<float>(c.edgeSharpness);
       std::ostringstream key;
       key.precision(17);
-      key << column.model << '|' << layer << '|' << column.type << '|' << column.thicknessM << '|'
-          << column.shapeScaleM << '|' << column.detailScaleM << '|' << column.extinction << '|'
-          << column.profileCover << '|' << column.edgeSharpness;
+      key << enumName(column.model) << '|' << layer << '|' << column.type << '|'
+          << column.thicknessM << '|' << column.shapeScaleM << '|' << column.detailScaleM << '|'
+          << column.extinction << '|' << column.profileCover << '|' << column.edgeSharpness;
       auto it = mLuts.find(key.str());
       if (it == mLuts.end()) {
         it = mLuts

@@ -57,7 +57,8 @@ CloudVolumeGrid cloudVolumeGrid(const CloudVolumeBox& box, double voxelM) {
     inputError("--voxel-m " + metres(voxelM) + ": the box needs " +
                std::to_string(g.params.voxels.x) + " x " + std::to_string(g.params.voxels.y) +
                " x " + std::to_string(g.params.voxels.z) + " voxels, more than the " +
-               std::to_string(kMaxCloudVolumeVoxels) + " allowed (use larger voxels or a smaller --box)");
+               std::to_string(kMaxCloudVolumeVoxels) +
+               " allowed (use larger voxels or a smaller --box)");
   g.params.firstVoxelCentreM = glm::vec4(glm::vec3(box.minM + 0.5 * voxelM), 0.0f);
   g.params.voxelM = glm::vec4(glm::vec3(static_cast<float>(voxelM)), 0.0f);
   return g;
@@ -78,8 +79,8 @@ CloudVolume makeCloudVolume(const Scene& cloudScene, const LightingState& lighti
   v.extinction.values = std::move(density);
 
   VdbMetadata& m = v.metadata;
-  m["skylayers_frame"] = std::string(
-      "camera ENU: x east, y north, z up, metres, the camera at the origin");
+  m["skylayers_frame"] =
+      std::string("camera ENU: x east, y north, z up, metres, the camera at the origin");
   m["skylayers_units"] = std::string(
       "density: extinction per metre (scattering = extinction, no absorption); radiance 1 = "
       "1e4 cd/m2; illuminance 1 = pi x radiance 1 (a white Lambertian surface under "
@@ -97,7 +98,7 @@ CloudVolume makeCloudVolume(const Scene& cloudScene, const LightingState& lighti
   m["camera_heading_deg"] = cam.heading;
   m["camera_pitch_deg"] = cam.pitch;
   m["camera_vertical_fov_deg"] = cam.verticalFov;
-  m["camera_projection"] = cam.projection;
+  m["camera_projection"] = std::string(enumName(cam.projection));
   m["camera_width"] = int64_t(view.size.x);
   m["camera_height"] = int64_t(view.size.y);
   // The view's axes exactly as the raymarch builds its rays (engine/render/camera.h): pixel
@@ -110,8 +111,8 @@ CloudVolume makeCloudVolume(const Scene& cloudScene, const LightingState& lighti
   // centre lies in (the low layer unless the centre is above its top), as cloudParams() does.
   const double centreAltitude = cam.altitudeM + 0.5 * (grid.box.minM.z + grid.box.maxM.z);
   const bool inMid = centreAltitude > c.low.topM;
-  const double lightAltitude = inMid ? 0.5 * (c.mid.baseM + c.mid.topM)
-                                     : 0.5 * (c.low.baseM + c.low.topM);
+  const double lightAltitude =
+      inMid ? 0.5 * (c.mid.baseM + c.mid.topM) : 0.5 * (c.low.baseM + c.low.topM);
   m["light_altitude_m"] = lightAltitude;
   const BodyLight* bodies[2] = {&lighting.sun, &lighting.moon};
   const glm::vec4* space[2] = {&lighting.gpu.sunSpace, &lighting.gpu.moonSpace};
@@ -132,8 +133,8 @@ CloudVolume makeCloudVolume(const Scene& cloudScene, const LightingState& lighti
   m["ambient_top"] = dvec(lighting.gpu.palette.ambientTop + lighting.gpu.moonPalette.ambientTop);
   m["ambient_bottom"] =
       dvec(lighting.gpu.palette.ambientBottom + lighting.gpu.moonPalette.ambientBottom);
-  const bool dual = c.phase == "dual_lobe";
-  m["phase"] = c.phase;
+  const bool dual = c.phase == CloudPhase::DualLobe;
+  m["phase"] = std::string(enumName(c.phase));
   m["phase_g"] = c.g;
   m["phase_g_back"] = dual ? c.gBack : 0.0;
   m["phase_back_weight"] = dual ? c.backWeight : 0.0;

@@ -104,9 +104,9 @@ void checkDebugOutputs(const Scene& scene, const std::vector<std::string>& names
         known += (known.empty() ? "" : ", ") + std::string(o.name);
       inputError("--debug-output " + name + ": unknown (known: " + known + ")");
     }
-    if (it->physicalOnly && scene.sky.model != "physical")
+    if (it->physicalOnly && scene.sky.model != SkyModel::Physical)
       inputError("--debug-output " + name + ": needs sky.model physical (the scene uses " +
-                 scene.sky.model + ")");
+                 enumName(scene.sky.model) + ")");
   }
 }
 
@@ -167,7 +167,7 @@ RenderedFrame Renderer::render(const Scene& scene, const IsoTime& time,
   const uint32_t width = static_cast<uint32_t>(scene.output.width);
   const uint32_t height = static_cast<uint32_t>(scene.output.height);
   const shared::ViewState view = makeViewState(scene.camera, width, height);
-  const bool physical = scene.sky.model == "physical";
+  const bool physical = scene.sky.model == SkyModel::Physical;
   const bool topDown = geometry.topDown;
   const glm::vec2 maxCover = weather.maxCover();
   out.clouds = maxCover.x > 0.0f || maxCover.y > 0.0f;
@@ -317,17 +317,17 @@ RenderedFrame Renderer::render(const Scene& scene, const IsoTime& time,
 }
 
 CloudVolume Renderer::exportCloudVolume(const Scene& scene, const IsoTime& time,
-                                        const std::optional<CloudVolumeBox>& box,
-                                        double voxelM) {
+                                        const std::optional<CloudVolumeBox>& box, double voxelM) {
   const CloudSetup setup = cloudSetup(scene, time);
   if (setup.geometry.topDown)
-    inputError("export-volume: camera.mode geographic_topdown has no camera to export the "
-               "clouds around (use camera.mode observer)");
+    inputError(
+        "export-volume: camera.mode geographic_topdown has no camera to export the "
+        "clouds around (use camera.mode observer)");
   const glm::vec2 maxCover = setup.weather->maxCover();
   if (maxCover.x <= 0.0f && maxCover.y <= 0.0f)
     inputError("export-volume: the scene has no low or mid clouds (weather cover is 0 everywhere)");
-  const CloudVolumeGrid grid = cloudVolumeGrid(
-      box.value_or(defaultCloudVolumeBox(setup.cloudScene, maxCover)), voxelM);
+  const CloudVolumeGrid grid =
+      cloudVolumeGrid(box.value_or(defaultCloudVolumeBox(setup.cloudScene, maxCover)), voxelM);
 
   FrameGraph graph(mRuntime);
   const CloudLayers::Frame cloudFrame = mClouds.addTo(graph, setup.cloudScene, time);

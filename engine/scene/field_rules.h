@@ -2,6 +2,9 @@
 // Value rules attached to scene fields in scene_fields.h. Each rule is checked by the
 // reader and written into the JSON Schema by the same description, so they cannot drift.
 #include <cstddef>
+#include <optional>
+#include <string_view>
+#include <type_traits>
 
 namespace sky {
 
@@ -27,5 +30,37 @@ struct ListRule {
   size_t maxItems = 0;                  // 0: no limit
   const char* increasingKey = nullptr;  // e.g. "sun_elevation"
 };
+
+// One value of a scene choice and its name in the file. Each choice is an enum class with
+// one table of these, enumNames(E{}) next to the enum (scene.h), in the order messages and the
+// JSON Schema list them: the reader accepts exactly these names (any other is "'x' is not
+// allowed: use a, b or c"), the writer prints them, and the code past the scene layer switches
+// on the enum.
+template <class E>
+struct EnumName {
+  E value;
+  const char* name;
+};
+
+template <class E>
+concept SceneEnum = std::is_enum_v<E> && requires {
+  enumNames(E{});
+};
+
+// The file name of `value`.
+template <SceneEnum E>
+constexpr const char* enumName(E value) {
+  for (const EnumName<E>& n : enumNames(E{}))
+    if (n.value == value) return n.name;
+  return "";
+}
+
+// The value whose file name is `name`, if any.
+template <SceneEnum E>
+constexpr std::optional<E> enumValue(std::string_view name) {
+  for (const EnumName<E>& n : enumNames(E{}))
+    if (name == n.name) return n.value;
+  return std::nullopt;
+}
 
 }  // namespace sky

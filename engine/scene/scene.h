@@ -3,7 +3,11 @@
 // Defaults here are the defaults of the file format; `skyrender validate` prints them back.
 // File keys are snake_case versions of the member names (exposureEv -> exposure_ev).
 // Keys, ranges and descriptions are written once, in engine/scene/scene_fields.h: a new
-// member here needs one line there to be read, printed and put in the JSON Schema.
+// member here needs one line there to be read, printed and put in the JSON Schema. A choice
+// (a model, a mode) is an enum class with its table of file names, enumNames(), beside it
+// (engine/scene/field_rules.h): the scene layer reads and prints the names, the rest of the
+// code switches on the enum.
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <optional>
@@ -13,6 +17,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include "engine/scene/field_rules.h"
 #include "engine/scene/iso_time.h"
 
 namespace sky {
@@ -26,6 +31,23 @@ struct OutputSettings {
   std::string view = "ACES 1.0 - SDR Video";  // OCIO view
 };
 
+// camera.projection: a pinhole, or the whole sphere (360 x 180 degrees centred on `heading`;
+// pitch and vertical_fov are ignored).
+enum class CameraProjection { Perspective, Equirectangular };
+constexpr auto enumNames(CameraProjection) {
+  return std::to_array<EnumName<CameraProjection>>(
+      {{CameraProjection::Perspective, "perspective"},
+       {CameraProjection::Equirectangular, "equirectangular"}});
+}
+
+// camera.mode: a camera at latitude/longitude/altitude_m looking along heading/pitch, or the
+// weather region seen from straight above (CameraSettings::mode).
+enum class CameraMode { Observer, GeographicTopdown };
+constexpr auto enumNames(CameraMode) {
+  return std::to_array<EnumName<CameraMode>>(
+      {{CameraMode::Observer, "observer"}, {CameraMode::GeographicTopdown, "geographic_topdown"}});
+}
+
 struct CameraSettings {
   double latitude = 47.37;    // degrees, -90..90
   double longitude = 8.54;    // degrees, -180..180
@@ -33,14 +55,12 @@ struct CameraSettings {
   double heading = 180.0;     // degrees clockwise from north, -360..360
   double pitch = 15.0;        // degrees above the horizon, -90..90
   double verticalFov = 60.0;  // degrees, 1..179 (perspective)
-  // "perspective" (a pinhole) or "equirectangular" (the whole sky, 360 x 180 degrees,
-  // centred on `heading`; pitch and vertical_fov are ignored).
-  std::string projection = "perspective";
-  // "observer": a camera at latitude/longitude/altitude_m looking along heading/pitch.
-  // "geographic_topdown": the weather region mapped exactly onto the image (row 0 = north
+  CameraProjection projection = CameraProjection::Perspective;
+  // Observer: a camera at latitude/longitude/altitude_m looking along heading/pitch.
+  // GeographicTopdown: the weather region mapped exactly onto the image (row 0 = north
   // edge, column 0 = west edge, equal lat/lon spacing), rays straight down from above the
   // top cloud layer; the other camera keys are ignored.
-  std::string mode = "observer";
+  CameraMode mode = CameraMode::Observer;
 };
 
 // `time` is one instant or a time-lapse range. In a file: a single ISO 8601 string, the
@@ -75,12 +95,20 @@ struct MoonSettings {
   double earthshine = 1.0;  // multiplies the modelled earthshine on the dark limb, 0..100
 };
 
+// sky.model: Kozlov 3.1 (colours from the lighting palette) or Hillaire 2020's physically
+// based atmosphere (AtmosphereSettings).
+enum class SkyModel { Kozlov, Physical };
+constexpr auto enumNames(SkyModel) {
+  return std::to_array<EnumName<SkyModel>>(
+      {{SkyModel::Kozlov, "kozlov"}, {SkyModel::Physical, "physical"}});
+}
+
 // The clear sky: Kozlov 3.1 (colours from the lighting palette, geometry here) or the
 // physically based Hillaire 2020 atmosphere (AtmosphereSettings).
 struct SkySettings {
-  std::string model = "kozlov";  // "kozlov" | "physical"
-  double glowSize = 0.30;        // s, 0..1 (kozlov)
-  double hazeHeight = 0.20;      // hmax as a fraction of the dome height, 0.001..1 (kozlov)
+  SkyModel model = SkyModel::Kozlov;
+  double glowSize = 0.30;    // s, 0..1 (kozlov)
+  double hazeHeight = 0.20;  // hmax as a fraction of the dome height, 0.001..1 (kozlov)
 };
 
 // The planet's atmosphere for sky.model "physical" (Hillaire 2020, Earth defaults from his
@@ -133,31 +161,53 @@ struct CloudLayerSettings {
   bool operator==(const CloudLayerSettings&) const = default;
 };
 
+// clouds.model: the density and noise model, Lu et al. 2023 or Tang et al. 2019.
+enum class CloudModel { Lu2023, Tang2019 };
+constexpr auto enumNames(CloudModel) {
+  return std::to_array<EnumName<CloudModel>>(
+      {{CloudModel::Lu2023, "lu2023"}, {CloudModel::Tang2019, "tang2019"}});
+}
+
+// clouds.coverage: how cover sets the noise threshold, calibrated (the covered area equals the
+// cover, engine/clouds/coverage_calibration.h) or as the paper writes it (Lu's 1 - CMc).
+enum class CloudCoverageMode { Calibrated, Paper };
+constexpr auto enumNames(CloudCoverageMode) {
+  return std::to_array<EnumName<CloudCoverageMode>>(
+      {{CloudCoverageMode::Calibrated, "calibrated"}, {CloudCoverageMode::Paper, "paper"}});
+}
+
+// clouds.phase: Henyey-Greenstein, Lu (23), or a dual lobe that adds a back-scattering lobe.
+enum class CloudPhase { Hg, DualLobe };
+constexpr auto enumNames(CloudPhase) {
+  return std::to_array<EnumName<CloudPhase>>(
+      {{CloudPhase::Hg, "hg"}, {CloudPhase::DualLobe, "dual_lobe"}});
+}
+
 // The volumetric low and mid clouds (Lu et al. 2023, Tang et al. 2019), raymarched through
 // the shells of `low` and `mid`, with cover and type from the weather map. See docs/clouds.md.
 struct CloudSettings {
-  std::string model = "lu2023";         // "lu2023" | "tang2019": density and noise model
-  std::string coverage = "calibrated";  // "calibrated" | "paper": how cover sets the remap
-  double extinction = 0.1;              // sigma_t per metre at density 1, 1e-5..1
-  double g = 0.6;                       // Henyey-Greenstein asymmetry, Lu (23), -0.99..0.99
-  std::string phase = "dual_lobe";      // "hg" | "dual_lobe" (adds a back-scattering lobe)
-  double gBack = -0.3;                  // the back lobe's asymmetry, -0.99..0
-  double backWeight = 0.2;              // the back lobe's share, 0..1
-  double attenuationClamp = 0.02;       // Lu's ac, 0..1, Lu (22)
-  double stepM = 20.0;                  // view-ray step near the camera, metres
-  double stepGrowth = 0.002;            // extra step length per metre of distance
-  int maxSteps = 512;                   // per view ray
-  int lightSteps = 5;                   // short steps toward the light (plus one long one), 1..16
-  double lightDistanceM = 1200.0;       // length covered by the short light steps, metres
-  double transmittanceCutoff = 0.01;    // stop marching below this transmittance
-  bool energyConserving = true;         // Hillaire 2016's integration of each step
-  int scatteringOctaves = 3;            // multiple-scattering octaves (Wrenninge); 1 = single
-  double multipleScattering = 1.8;      // strength of the diffusion term, 0..4 (0: octaves only)
-  double edgeSharpness = 4.0;           // density gain at cloud boundaries, 1..32 (1: the noise's)
-  double shapeScaleKm = 5.0;            // ground size of one repeat of the shape noise
-  double detailScaleKm = 0.4;           // ground size of one repeat of the detail noise
-  double windSpeedMs = 10.0;            // moves the noise with time, 0..200
-  double windFrom = 270.0;              // degrees clockwise from north
+  CloudModel model = CloudModel::Lu2023;                       // density and noise model
+  CloudCoverageMode coverage = CloudCoverageMode::Calibrated;  // how cover sets the remap
+  double extinction = 0.1;                  // sigma_t per metre at density 1, 1e-5..1
+  double g = 0.6;                           // Henyey-Greenstein asymmetry, Lu (23), -0.99..0.99
+  CloudPhase phase = CloudPhase::DualLobe;  // DualLobe adds a back-scattering lobe
+  double gBack = -0.3;                      // the back lobe's asymmetry, -0.99..0
+  double backWeight = 0.2;                  // the back lobe's share, 0..1
+  double attenuationClamp = 0.02;           // Lu's ac, 0..1, Lu (22)
+  double stepM = 20.0;                      // view-ray step near the camera, metres
+  double stepGrowth = 0.002;                // extra step length per metre of distance
+  int maxSteps = 512;                       // per view ray
+  int lightSteps = 5;                 // short steps toward the light (plus one long one), 1..16
+  double lightDistanceM = 1200.0;     // length covered by the short light steps, metres
+  double transmittanceCutoff = 0.01;  // stop marching below this transmittance
+  bool energyConserving = true;       // Hillaire 2016's integration of each step
+  int scatteringOctaves = 3;          // multiple-scattering octaves (Wrenninge); 1 = single
+  double multipleScattering = 1.8;    // strength of the diffusion term, 0..4 (0: octaves only)
+  double edgeSharpness = 4.0;         // density gain at cloud boundaries, 1..32 (1: the noise's)
+  double shapeScaleKm = 5.0;          // ground size of one repeat of the shape noise
+  double detailScaleKm = 0.4;         // ground size of one repeat of the detail noise
+  double windSpeedMs = 10.0;          // moves the noise with time, 0..200
+  double windFrom = 270.0;            // degrees clockwise from north
   CloudLayerSettings low{500.0, 2500.0};
   CloudLayerSettings mid{3000.0, 6500.0};
 };

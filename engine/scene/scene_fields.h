@@ -10,6 +10,7 @@
 //   field(key, glm::dvec2&, NumberRange, description)  a pair [from, to] (e.g. a lat range)
 //   field(key, bool&, description)                     true or false
 //   field(key, std::string&, TextRule, description)
+//   field(key, E&, description)                        a choice: an enum with enumNames() (scene.h)
 //   field(key, TimeSettings&, description)             an instant or a range (scene.h)
 //   list(key, std::vector<T>&, ListRule, description)  a list of maps, T described by describe()
 //   bothOrNeither(keyA, keyB)                          two optional keys given together
@@ -48,11 +49,9 @@ void describe(V& v, CameraSettings& s) {
   v.field("vertical_fov", s.verticalFov, NumberRange{1, 179},
           "vertical field of view in degrees (perspective)");
   v.field("projection", s.projection,
-          TextRule{1, 0, "^(perspective|equirectangular)$", "perspective or equirectangular"},
           "perspective (a pinhole camera) or equirectangular (the whole sphere, 360 x 180 "
           "degrees centred on heading; pitch and vertical_fov are ignored)");
   v.field("mode", s.mode,
-          TextRule{1, 0, "^(observer|geographic_topdown)$", "observer or geographic_topdown"},
           "observer (a camera at latitude, longitude and altitude_m) or geographic_topdown (the "
           "weather region mapped exactly onto the image, row 0 north, column 0 west, looking "
           "straight down from above the clouds)");
@@ -87,7 +86,7 @@ void describe(V& v, MoonSettings& s) {
 
 template <class V>
 void describe(V& v, SkySettings& s) {
-  v.field("model", s.model, TextRule{1, 0, "^(kozlov|physical)$", "kozlov or physical"},
+  v.field("model", s.model,
           "clear-sky model: kozlov (palette colours, Kozlov 3.1) or physical (Hillaire 2020 "
           "atmosphere)");
   v.field("glow_size", s.glowSize, NumberRange{0, 1}, "size s of the glow around the sun and moon");
@@ -178,15 +177,15 @@ void describe(V& v, CloudLayerSettings& s) {
 
 template <class V>
 void describe(V& v, CloudSettings& s) {
-  v.field("model", s.model, TextRule{1, 0, "^(lu2023|tang2019)$", "lu2023 or tang2019"},
+  v.field("model", s.model,
           "density and noise model: lu2023 (Lu et al. 2023) or tang2019 (Tang et al. 2019)");
-  v.field("coverage", s.coverage, TextRule{1, 0, "^(calibrated|paper)$", "calibrated or paper"},
+  v.field("coverage", s.coverage,
           "how cover sets the noise threshold: calibrated (the covered area equals the cover) "
           "or paper (Lu's remap with 1 - CMc)");
   v.field("extinction", s.extinction, NumberRange{1e-5, 1},
           "extinction coefficient per metre at density 1 (Lu's beta)");
   v.field("g", s.g, NumberRange{-0.99, 0.99}, "Henyey-Greenstein asymmetry (Lu (23))");
-  v.field("phase", s.phase, TextRule{1, 0, "^(hg|dual_lobe)$", "hg or dual_lobe"},
+  v.field("phase", s.phase,
           "phase function: hg (Lu (23)) or dual_lobe (adds a back-scattering lobe)");
   v.field("g_back", s.gBack, NumberRange{-0.99, 0}, "asymmetry of the back-scattering lobe");
   v.field("back_weight", s.backWeight, NumberRange{0, 1}, "share of the back-scattering lobe");

@@ -24,10 +24,14 @@ constexpr VkFormat kFormat = VK_FORMAT_R8G8B8A8_UNORM;
 // Bumped when the meaning of a cache entry changes without its shaders changing.
 constexpr std::string_view kCacheFormat = "cloud_noise cache v1";
 
-uint32_t modelIdOf(const std::string& model) {
-  if (model == "lu2023") return CLOUD_NOISE_MODEL_LU2023;
-  if (model == "tang2019") return CLOUD_NOISE_MODEL_TANG2019;
-  inputError("clouds.model: '" + model + "' is not lu2023 or tang2019");
+uint32_t modelIdOf(CloudModel model) {
+  switch (model) {
+    case CloudModel::Lu2023:
+      return CLOUD_NOISE_MODEL_LU2023;
+    case CloudModel::Tang2019:
+      return CLOUD_NOISE_MODEL_TANG2019;
+  }
+  internalError("cloud noise: no model " + std::to_string(static_cast<int>(model)));
 }
 
 uint32_t detailSizeOf(uint32_t modelId) {
@@ -69,9 +73,8 @@ CloudNoise::CloudNoise(const Context& ctx, ShaderCompiler& compiler, GraphRuntim
       mVolumePass(ctx, compiler, "cloud_noise_volume"),
       mCurlPass(ctx, compiler, "cloud_noise_curl") {}
 
-CloudNoise::Outputs CloudNoise::addTo(FrameGraph& graph, const std::string& model) {
+CloudNoise::Outputs CloudNoise::addTo(FrameGraph& graph, CloudModel model) {
   mActivity = {};
-  modelIdOf(model);  // a bad model is an error even when the textures would not change
   if (!mModel || *mModel != model) {
     // Forget what the images held until the new contents are complete: an error on the way
     // makes the next call load again.
@@ -89,10 +92,10 @@ CloudNoise::Outputs CloudNoise::addTo(FrameGraph& graph, const std::string& mode
   return out;
 }
 
-std::string CloudNoise::cacheKey(const std::string& model) const {
+std::string CloudNoise::cacheKey(CloudModel model) const {
   const uint32_t id = modelIdOf(model);
   std::string text(kCacheFormat);
-  text += "|" + model + "|" + std::to_string(CLOUD_NOISE_SHAPE_SIZE) + "|" +
+  text += "|" + std::string(enumName(model)) + "|" + std::to_string(CLOUD_NOISE_SHAPE_SIZE) + "|" +
           std::to_string(detailSizeOf(id)) + "|" + std::to_string(CLOUD_NOISE_CURL_SIZE) + "|" +
           hex64(mVolumePass.sourceHash()) + "|" + hex64(mCurlPass.sourceHash());
   return hex64(hash64(text));
@@ -107,7 +110,7 @@ void CloudNoise::allocate(uint32_t detailSize) {
     mDetail = makeImage(mCtx, "cloud_noise_detail", ImageDim::Tex3D, detailSize);
 }
 
-void CloudNoise::load(const std::string& model) {
+void CloudNoise::load(CloudModel model) {
   const uint32_t id = modelIdOf(model);
   const uint32_t detailSize = detailSizeOf(id);
   const std::string key = cacheKey(model);

@@ -12,6 +12,7 @@
 #include "engine/clouds/noise_volume.h"
 #include "engine/gpu/sampler.h"
 #include "engine/graph/frame_graph.h"
+#include "engine/scene/scene.h"
 #include "passes/cloud_noise/cloud_noise_passes.h"
 
 namespace sky {
@@ -41,19 +42,18 @@ public:
   // bake graph; all three must outlive this object.
   CloudNoise(const Context& ctx, ShaderCompiler& compiler, GraphRuntime& runtime);
 
-  // Makes the textures of `model` ("lu2023" | "tang2019") current and imports them into
-  // `graph` (call before adding the passes that read them; this object must outlive
-  // graph.execute()). Same model as last time: only imports. Otherwise the disk cache entry
-  // cacheDir()/cloud_noise/<cacheKey>.bin or, when it is absent or damaged, a bake in a
-  // separate graph on the runtime, stored to the cache atomically. Any other model is an input
-  // error naming clouds.model.
-  Outputs addTo(FrameGraph& graph, const std::string& model);
+  // Makes the textures of `model` current and imports them into `graph` (call before adding
+  // the passes that read them; this object must outlive graph.execute()). Same model as last
+  // time: only imports. Otherwise the disk cache entry cacheDir()/cloud_noise/<cacheKey>.bin
+  // or, when it is absent or damaged, a bake in a separate graph on the runtime, stored to
+  // the cache atomically.
+  Outputs addTo(FrameGraph& graph, CloudModel model);
   const Activity& lastActivity() const { return mActivity; }
   const Sampler& sampler() const { return mSampler; }  // linear, repeat in u, v, w
 
   // The cache key of `model` (hex): the format version, the model, the sizes and the bake
   // shaders' preprocessed sources.
-  std::string cacheKey(const std::string& model) const;
+  std::string cacheKey(CloudModel model) const;
 
   // CPU copies of what the GPU textures hold now (filled from the bake's read-back or the
   // cache), valid until the next addTo with another model.
@@ -61,7 +61,7 @@ public:
   const NoiseVolume& detailVolume() const { return mDetailVolume; }
 
 private:
-  void load(const std::string& model);
+  void load(CloudModel model);
   void bake(uint32_t modelId, const std::string& key, const std::filesystem::path& file);
   // Creates the images unless they already have these sizes.
   void allocate(uint32_t detailSize);
@@ -77,7 +77,7 @@ private:
   PersistentImage mCurl;
   NoiseVolume mShapeVolume;
   NoiseVolume mDetailVolume;
-  std::optional<std::string> mModel;  // what the images hold now
+  std::optional<CloudModel> mModel;  // what the images hold now
   Activity mActivity;
 };
 

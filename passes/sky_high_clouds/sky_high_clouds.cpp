@@ -27,7 +27,8 @@ ComputePipeline buildPipeline(const Context& ctx, ShaderCompiler& compiler, bool
 
 // The sphere the pass puts the ground on: the physical atmosphere's ground, or the Earth.
 double planetRadiusM(const Scene& scene) {
-  return scene.sky.model == "physical" ? scene.atmosphere.groundRadiusKm * 1000.0 : kEarthRadiusM;
+  return scene.sky.model == SkyModel::Physical ? scene.atmosphere.groundRadiusKm * 1000.0
+                                               : kEarthRadiusM;
 }
 
 }  // namespace

@@ -63,7 +63,7 @@ const ComputePipeline& CloudPipelines::get(const shared::CloudParams& p) {
 }
 
 CloudFrameGeometry cloudFrameGeometry(const Scene& scene) {
-  if (scene.camera.mode == "geographic_topdown") {
+  if (scene.camera.mode == CameraMode::GeographicTopdown) {
     const WeatherRegion& r = resolvedRegion(scene.weather);
     const double top = std::max(scene.clouds.low.topM, scene.clouds.mid.topM);
     return {0.5 * (r.lat[0] + r.lat[1]), 0.5 * (r.lon[0] + r.lon[1]), top + kTopDownMarginM, true};
@@ -85,10 +85,10 @@ shared::CloudParams cloudParams(const Scene& scene, const LightingState& lightin
   p.frameKind = g.topDown ? CLOUD_FRAME_TOPDOWN : CLOUD_FRAME_OBSERVER;
   p.lightSteps = static_cast<uint32_t>(c.lightSteps);
   p.octaves = static_cast<uint32_t>(c.scatteringOctaves);
-  p.phaseKind = c.phase == "dual_lobe" ? CLOUD_PHASE_DUAL_LOBE : CLOUD_PHASE_HG;
+  p.phaseKind = c.phase == CloudPhase::DualLobe ? CLOUD_PHASE_DUAL_LOBE : CLOUD_PHASE_HG;
   p.energyConserving = c.energyConserving ? 1u : 0u;
-  p.calibratedCoverage = c.coverage == "calibrated" ? 1u : 0u;
-  p.model = c.model == "tang2019" ? CLOUD_MODEL_TANG2019 : CLOUD_MODEL_LU2023;
+  p.calibratedCoverage = c.coverage == CloudCoverageMode::Calibrated ? 1u : 0u;
+  p.model = c.model == CloudModel::Tang2019 ? CLOUD_MODEL_TANG2019 : CLOUD_MODEL_LU2023;
   p.maxSteps = static_cast<uint32_t>(c.maxSteps);
   p.lowBaseM = static_cast<float>(c.low.baseM);
   p.lowTopM = static_cast<float>(c.low.topM);

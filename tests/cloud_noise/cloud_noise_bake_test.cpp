@@ -4,7 +4,6 @@
 #include <cmath>
 #include <string>
 
-#include "engine/core/error.h"
 #include "tests/cloud_noise/cloud_noise_test_util.h"
 
 namespace sky {
@@ -81,7 +80,7 @@ void checkBake(const Fetched& f, const CloudNoise& noise, uint32_t detailSize) {
 
 TEST_F(CloudNoiseTest, Lu2023TexturesTileSpanTheirRangeAndOrderTheirFrequencies) {
   auto noise = make();
-  const Fetched f = fetch(*noise, "lu2023");
+  const Fetched f = fetch(*noise, CloudModel::Lu2023);
   checkBake(f, *noise, CLOUD_NOISE_DETAIL_SIZE_LU2023);
   EXPECT_TRUE(f.activity.wroteCache);
 }
@@ -90,7 +89,7 @@ TEST_F(CloudNoiseTest, Tang2019TexturesTileSpanTheirRangeAndOrderTheirFrequencie
   // A file where the cache folder should be: the bake works, only the entry is not written.
   { std::ofstream(cache() / "cloud_noise") << "in the way"; }
   auto noise = make();
-  const Fetched f = fetch(*noise, "tang2019");
+  const Fetched f = fetch(*noise, CloudModel::Tang2019);
   checkBake(f, *noise, CLOUD_NOISE_DETAIL_SIZE_TANG2019);
   EXPECT_FALSE(f.activity.wroteCache);
   EXPECT_FALSE(fs::is_regular_file(f.activity.cacheFile));
@@ -113,19 +112,6 @@ TEST(CloudNoiseTilingCheck, SeamIsSeen) {
   EXPECT_GT(test::edgeRoughness(s, 0).second, 3.0);
   EXPECT_LT(test::edgeRoughness(s, 1).first, 1.3);
   EXPECT_LT(test::edgeRoughness(s, 2).first, 1.3);
-}
-
-TEST_F(CloudNoiseTest, UnknownModelIsAnInputErrorNamingTheKey) {
-  auto noise = make();
-  FrameGraph graph(runtime());
-  try {
-    noise->addTo(graph, "nubis");
-    FAIL() << "no error";
-  } catch (const Error& e) {
-    EXPECT_EQ(e.kind(), ErrorKind::BadInput);
-    EXPECT_NE(std::string(e.what()).find("clouds.model: 'nubis'"), std::string::npos) << e.what();
-  }
-  EXPECT_THROW(noise->cacheKey(""), Error);
 }
 
 }  // namespace

@@ -23,17 +23,17 @@ void expectSameTextures(const Fetched& a, const Fetched& b) {
 }
 
 TEST_F(CloudNoiseTest, CacheHitLoadsWithoutBakingAndModelsSwitch) {
-  const Fetched baked = fetch(*make(), "lu2023");
+  const Fetched baked = fetch(*make(), CloudModel::Lu2023);
   ASSERT_TRUE(baked.activity.baked);
   ASSERT_TRUE(baked.activity.wroteCache);
   auto noise = make();
   EXPECT_EQ(baked.activity.cacheFile,
-            cache() / "cloud_noise" / (noise->cacheKey("lu2023") + ".bin"));
+            cache() / "cloud_noise" / (noise->cacheKey(CloudModel::Lu2023) + ".bin"));
   ASSERT_TRUE(fs::is_regular_file(baked.activity.cacheFile));
-  EXPECT_EQ(noise->cacheKey("lu2023").size(), 16u);
-  EXPECT_NE(noise->cacheKey("lu2023"), noise->cacheKey("tang2019"));
+  EXPECT_EQ(noise->cacheKey(CloudModel::Lu2023).size(), 16u);
+  EXPECT_NE(noise->cacheKey(CloudModel::Lu2023), noise->cacheKey(CloudModel::Tang2019));
 
-  const Fetched loaded = fetch(*noise, "lu2023");
+  const Fetched loaded = fetch(*noise, CloudModel::Lu2023);
   EXPECT_FALSE(loaded.activity.baked);
   EXPECT_TRUE(loaded.activity.loadedCache);
   EXPECT_TRUE(loaded.activity.bakeTimings.empty());
@@ -42,26 +42,26 @@ TEST_F(CloudNoiseTest, CacheHitLoadsWithoutBakingAndModelsSwitch) {
   EXPECT_TRUE(noise->detailVolume().rgba == baked.detail.rgba);
 
   // The same model again: only imported.
-  const Fetched again = fetch(*noise, "lu2023");
+  const Fetched again = fetch(*noise, CloudModel::Lu2023);
   EXPECT_FALSE(again.activity.baked);
   EXPECT_FALSE(again.activity.loadedCache);
   expectSameTextures(again, baked);
 
   // Another model bakes into its own entry (another detail size), and back loads the first.
-  const Fetched tang = fetch(*noise, "tang2019");
+  const Fetched tang = fetch(*noise, CloudModel::Tang2019);
   EXPECT_TRUE(tang.activity.baked);
   EXPECT_NE(tang.activity.cacheFile, baked.activity.cacheFile);
   EXPECT_EQ(tang.detail.size, CLOUD_NOISE_DETAIL_SIZE_TANG2019);
   EXPECT_EQ(noise->detailVolume().size, CLOUD_NOISE_DETAIL_SIZE_TANG2019);
   EXPECT_FALSE(tang.shape.rgba == baked.shape.rgba);
-  const Fetched back = fetch(*noise, "lu2023");
+  const Fetched back = fetch(*noise, CloudModel::Lu2023);
   EXPECT_TRUE(back.activity.loadedCache);
   expectSameTextures(back, baked);
   EXPECT_EQ(noise->detailVolume().size, CLOUD_NOISE_DETAIL_SIZE_LU2023);
 }
 
 TEST_F(CloudNoiseTest, DamagedCacheEntryIsBakedAgainToTheSameBytes) {
-  const Fetched baked = fetch(*make(), "lu2023");
+  const Fetched baked = fetch(*make(), CloudModel::Lu2023);
   ASSERT_TRUE(baked.activity.wroteCache);
   const fs::path file = baked.activity.cacheFile;
   const auto bytes = fs::file_size(file);
@@ -75,7 +75,7 @@ TEST_F(CloudNoiseTest, DamagedCacheEntryIsBakedAgainToTheSameBytes) {
     io.seekp(std::streamoff(bytes / 2));
     io.put(char(c ^ 0x10));
   }
-  const Fetched rebaked = fetch(*make(), "lu2023");
+  const Fetched rebaked = fetch(*make(), CloudModel::Lu2023);
   EXPECT_TRUE(rebaked.activity.baked);
   EXPECT_FALSE(rebaked.activity.loadedCache);
   EXPECT_TRUE(rebaked.activity.wroteCache);
@@ -85,8 +85,9 @@ TEST_F(CloudNoiseTest, DamagedCacheEntryIsBakedAgainToTheSameBytes) {
   // Truncated: a miss, not an error (every kind of damage is covered without a bake in
   // ReaderRejectsEveryDamagedEntry).
   fs::resize_file(file, bytes / 2);
-  EXPECT_FALSE(cloud_noise::readCacheEntry(file, make()->cacheKey("lu2023"), CLOUD_NOISE_SHAPE_SIZE,
-                                           CLOUD_NOISE_DETAIL_SIZE_LU2023, CLOUD_NOISE_CURL_SIZE));
+  EXPECT_FALSE(cloud_noise::readCacheEntry(file, make()->cacheKey(CloudModel::Lu2023),
+                                           CLOUD_NOISE_SHAPE_SIZE, CLOUD_NOISE_DETAIL_SIZE_LU2023,
+                                           CLOUD_NOISE_CURL_SIZE));
 }
 
 TEST(CloudNoiseCache, ReaderRejectsEveryDamagedEntry) {

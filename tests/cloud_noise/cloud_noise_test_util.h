@@ -61,7 +61,7 @@ protected:
   }
 
   // addTo on a fresh graph that only reads the three textures back.
-  Fetched fetch(CloudNoise& noise, const std::string& model) {
+  Fetched fetch(CloudNoise& noise, CloudModel model) {
     FrameGraph graph(runtime());
     const CloudNoise::Outputs out = noise.addTo(graph, model);
     Fetched f;

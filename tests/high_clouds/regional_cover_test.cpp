@@ -106,8 +106,9 @@ std::optional<glm::dvec2> layerLatLon(const Scene& scene, const shared::ViewStat
   const glm::dvec3 V =
       glm::normalize(glm::dvec3(view.forward) + nx * double(view.right.w) * glm::dvec3(view.right) -
                      ny * double(view.up.w) * glm::dvec3(view.up));
-  const double planetR =
-      scene.sky.model == "physical" ? scene.atmosphere.groundRadiusKm * 1000.0 : kEarthRadiusM;
+  const double planetR = scene.sky.model == SkyModel::Physical
+                             ? scene.atmosphere.groundRadiusKm * 1000.0
+                             : kEarthRadiusM;
   const double camAlt = std::max(scene.camera.altitudeM, 1.0);
   const double camR = planetR + camAlt, layerR = planetR + scene.highClouds.altitudeM;
   const double b = camR * V.z;
@@ -178,7 +179,7 @@ protected:
       in.regional = {coverTexture().addTo(graph, *map, ++mRevision), &coverTexture().sampler(),
                      tex.rankShape, tex.coverCoarse};
     }
-    if (scene.sky.model == "physical") {
+    if (scene.sky.model == SkyModel::Physical) {
       if (!mLuts) mLuts = std::make_unique<AtmosphereLuts>(ctx(), compiler());
       AtmosphereLuts::Frame f;
       f.atmosphere = scene.atmosphere;
@@ -354,7 +355,7 @@ TEST_F(RegionalCoverTest, RegionalCoverZeroDrawsNoCloud) {
 
 struct PlacementCase {
   View view;
-  const char* skyModel;
+  SkyModel skyModel;
 };
 
 class RegionalPlacementTest : public RegionalCoverTest,
@@ -407,12 +408,12 @@ TEST_P(RegionalPlacementTest, CloudsOnlyWhereTheForecastHasThem) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Views, RegionalPlacementTest,
-                         ::testing::Values(PlacementCase{View::Up, "kozlov"},
-                                           PlacementCase{View::EastHorizon, "kozlov"},
-                                           PlacementCase{View::EastHorizon, "physical"}),
+                         ::testing::Values(PlacementCase{View::Up, SkyModel::Kozlov},
+                                           PlacementCase{View::EastHorizon, SkyModel::Kozlov},
+                                           PlacementCase{View::EastHorizon, SkyModel::Physical}),
                          [](const ::testing::TestParamInfo<PlacementCase>& p) {
                            return std::string(p.param.view == View::Up ? "Up" : "EastHorizon") +
-                                  "_" + p.param.skyModel;
+                                  "_" + enumName(p.param.skyModel);
                          });
 
 // The cover upload follows the caller's revision, like the weather texture.

@@ -186,8 +186,8 @@ inline Scene unusualScene() {
   s.camera.heading = 1.0 / 3.0;
   s.camera.pitch = -0.0;
   s.camera.verticalFov = 70.00000000000001;
-  s.camera.projection = "equirectangular";
-  s.camera.mode = "geographic_topdown";
+  s.camera.projection = CameraProjection::Equirectangular;
+  s.camera.mode = CameraMode::GeographicTopdown;
   s.time.start = IsoTime::parse("2024-12-21T05:30:00.125-03:30").value();
   s.time.end = IsoTime::parse("2024-12-21T10:30:00.375+01:00").value();  // another zone
   s.time.stepSeconds = 61.3;
@@ -201,7 +201,7 @@ inline Scene unusualScene() {
   s.moon.earthshine = 100.0;
   s.sky.glowSize = 0.30000000000000004;
   s.sky.hazeHeight = 0.001;
-  s.sky.model = "physical";
+  s.sky.model = SkyModel::Physical;
   s.atmosphere.groundRadiusKm = 100.0;
   s.atmosphere.thicknessKm = 1000.0;
   s.atmosphere.rayleighScattering = {0.0f, 1e4f, 1.0f / 3.0f};
@@ -229,11 +229,11 @@ inline Scene unusualScene() {
   s.highClouds.edgeGlowDeg = 0.5;
   s.highClouds.brightness = 1e-3;
   s.highClouds.coverSource = "weather";
-  s.clouds.model = "tang2019";
-  s.clouds.coverage = "paper";
+  s.clouds.model = CloudModel::Tang2019;
+  s.clouds.coverage = CloudCoverageMode::Paper;
   s.clouds.extinction = 1e-5;
   s.clouds.g = -0.99;
-  s.clouds.phase = "hg";
+  s.clouds.phase = CloudPhase::Hg;
   s.clouds.gBack = -0.0001;
   s.clouds.backWeight = 1.0;
   s.clouds.attenuationClamp = 1.0 / 3.0;

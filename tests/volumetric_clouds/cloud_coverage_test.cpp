@@ -19,9 +19,9 @@ namespace {
 
 struct CoverageCase {
   const char* name;
-  const char* model;     // clouds.model
-  const char* coverage;  // clouds.coverage
-  bool mid;              // altocumulus in the mid layer instead of cumulus in the low one
+  CloudModel model;
+  CloudCoverageMode coverage;
+  bool mid;  // altocumulus in the mid layer instead of cumulus in the low one
 };
 
 void PrintTo(const CoverageCase& c, std::ostream* os) {
@@ -41,7 +41,8 @@ protected:
          "weather.region.lat=[45, 50]", "weather.region.lon=[5, 12]", "weather.spread=1",
          "weather.scale_km=150", "weather.cover_low=0", layerCover,
          std::string("weather.cloud_type=") + (c.mid ? "altocumulus" : "cumulus"),
-         std::string("clouds.model=") + c.model, std::string("clouds.coverage=") + c.coverage});
+         std::string("clouds.model=") + enumName(c.model),
+         std::string("clouds.coverage=") + enumName(c.coverage)});
     const RenderedFrame frame = render(scene);
     const ImageLayer* weather = frame.image.find("weather");
     EXPECT_NE(weather, nullptr);
@@ -64,7 +65,7 @@ TEST_P(CloudCoverage, MatchesTheMap) {
   const CoverageCase& c = GetParam();
   const CoverageMetrics m = measure(c);
   EXPECT_EQ(m.blocks, 32u * 32u);
-  if (std::string(c.coverage) == "calibrated") {
+  if (c.coverage == CloudCoverageMode::Calibrated) {
     EXPECT_GE(m.dice, 0.9);
     EXPECT_LE(m.meanAbsoluteError, 0.05);
     EXPECT_GE(m.correlation, 0.95);
@@ -78,12 +79,16 @@ TEST_P(CloudCoverage, MatchesTheMap) {
 
 INSTANTIATE_TEST_SUITE_P(
     Modes, CloudCoverage,
-    ::testing::Values(CoverageCase{"lu2023_low_calibrated", "lu2023", "calibrated", false},
-                      CoverageCase{"lu2023_low_paper", "lu2023", "paper", false},
-                      CoverageCase{"lu2023_mid_calibrated", "lu2023", "calibrated", true},
-                      CoverageCase{"lu2023_mid_paper", "lu2023", "paper", true},
-                      CoverageCase{"tang2019_low_calibrated", "tang2019", "calibrated", false},
-                      CoverageCase{"tang2019_low_paper", "tang2019", "paper", false}),
+    ::testing::Values(
+        CoverageCase{"lu2023_low_calibrated", CloudModel::Lu2023, CloudCoverageMode::Calibrated,
+                     false},
+        CoverageCase{"lu2023_low_paper", CloudModel::Lu2023, CloudCoverageMode::Paper, false},
+        CoverageCase{"lu2023_mid_calibrated", CloudModel::Lu2023, CloudCoverageMode::Calibrated,
+                     true},
+        CoverageCase{"lu2023_mid_paper", CloudModel::Lu2023, CloudCoverageMode::Paper, true},
+        CoverageCase{"tang2019_low_calibrated", CloudModel::Tang2019, CloudCoverageMode::Calibrated,
+                     false},
+        CoverageCase{"tang2019_low_paper", CloudModel::Tang2019, CloudCoverageMode::Paper, false}),
     [](const ::testing::TestParamInfo<CoverageCase>& param) {
       return std::string(param.param.name);
     });

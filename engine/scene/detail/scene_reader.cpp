@@ -175,6 +175,18 @@ void SceneReader::field(std::string_view key, std::string& value, const TextRule
   value = text;
 }
 
+size_t SceneReader::choice(const ConfigNode& node, const std::string& path,
+                           const std::vector<std::string_view>& names) {
+  if (!isTextLike(node)) fail(node, path, "expected a string, got " + node.describeKind());
+  if (node.text.empty()) fail(node, path, "must not be empty");
+  for (size_t i = 0; i < names.size(); ++i)
+    if (node.text == names[i]) return i;
+  std::string wording;  // "a, b or c"
+  for (size_t i = 0; i < names.size(); ++i)
+    wording += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + std::string(names[i]);
+  fail(node, path, "'" + messageText(node.text) + "' is not allowed: use " + wording);
+}
+
 namespace {
 
 // One end of a time range or a single instant; `where` names the part in messages.

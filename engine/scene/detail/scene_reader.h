@@ -90,6 +90,15 @@ public:
   void field(std::string_view key, bool& value, std::string_view);
   void field(std::string_view key, std::string& value, const TextRule& rule, std::string_view);
   void field(std::string_view key, TimeSettings& value, std::string_view);
+  // A choice: one of the names in E's table (field_rules.h).
+  template <SceneEnum E>
+  void field(std::string_view key, E& value, std::string_view) {
+    const ConfigNode* node = mMap.find(key);
+    if (!node) return;
+    std::vector<std::string_view> names;
+    for (const EnumName<E>& n : enumNames(E{})) names.emplace_back(n.name);
+    value = *enumValue<E>(names[choice(*node, childPath(key), names)]);
+  }
   void bothOrNeither(std::string_view a, std::string_view b);
   // A rule across fields, checked after they are read: fails at `key` (or at this map when
   // the key is absent) with "<key.path>: <what>".
@@ -130,6 +139,9 @@ private:
                               const ListRule& rule);
   [[noreturn]] static void fail(const ConfigNode& node, const std::string& path,
                                 const std::string& what);
+  // The index of the node's text in `names`; fails unless it is one of them.
+  static size_t choice(const ConfigNode& node, const std::string& path,
+                       const std::vector<std::string_view>& names);
   static double number(const ConfigNode& node, const std::string& path, NumberRange range,
                        const char* expected);
   std::string childPath(std::string_view key) const;

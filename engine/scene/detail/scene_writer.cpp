@@ -150,6 +150,10 @@ void SceneWriter::field(std::string_view key, const std::string& value, const Te
   mMap.add(std::string(key), {}, ConfigNode::makeScalar(value, ConfigNode::Style::String, {}));
 }
 
+void SceneWriter::choice(std::string_view key, const char* name) {
+  mMap.add(std::string(key), {}, ConfigNode::makeScalar(name, ConfigNode::Style::String, {}));
+}
+
 void SceneWriter::field(std::string_view key, const TimeSettings& value, std::string_view) {
   auto text = [](std::string t) {
     return ConfigNode::makeScalar(std::move(t), ConfigNode::Style::String, {});

@@ -49,6 +49,10 @@ public:
   void field(std::string_view key, const bool& value, std::string_view);
   void field(std::string_view key, const std::string& value, const TextRule&, std::string_view);
   void field(std::string_view key, const TimeSettings& value, std::string_view);
+  template <SceneEnum E>
+  void field(std::string_view key, const E& value, std::string_view) {
+    choice(key, enumName(value));
+  }
   template <class T>
   void list(std::string_view key, const std::vector<T>& items, ListRule, std::string_view) {
     ConfigNode seq = ConfigNode::makeSequence({});
@@ -67,6 +71,7 @@ public:
 private:
   explicit SceneWriter(ConfigNode& map) : mMap(map) {}
   void checkPairs() const;
+  void choice(std::string_view key, const char* name);
 
   ConfigNode& mMap;
   std::vector<std::pair<std::string, std::string>> mPairs;

@@ -118,6 +118,20 @@ void SchemaBuilder::field(std::string_view key, const std::string& value, const 
   mSchema["properties"][std::string(key)] = std::move(s);
 }
 
+void SchemaBuilder::choice(std::string_view key, const char* value,
+                           const std::vector<std::string_view>& names,
+                           std::string_view description) {
+  std::string pattern = "^(";
+  for (size_t i = 0; i < names.size(); ++i) pattern += (i ? "|" : "") + std::string(names[i]);
+  Json s = Json::object();
+  s["description"] = std::string(description);
+  s["type"] = "string";
+  s["minLength"] = 1;
+  s["pattern"] = pattern + ")$";
+  s["default"] = value;
+  mSchema["properties"][std::string(key)] = std::move(s);
+}
+
 Json orderedJson(const ConfigNode& map) {
   Json o = Json::object();
   for (const ConfigNode& c : map.children)

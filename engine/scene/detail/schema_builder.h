@@ -4,6 +4,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
@@ -66,6 +67,12 @@ public:
   void field(std::string_view key, const std::string& value, const TextRule& rule,
              std::string_view description);
   void field(std::string_view key, const TimeSettings& value, std::string_view description);
+  template <SceneEnum E>
+  void field(std::string_view key, const E& value, std::string_view description) {
+    std::vector<std::string_view> names;
+    for (const EnumName<E>& n : enumNames(E{})) names.emplace_back(n.name);
+    choice(key, enumName(value), names, description);
+  }
   template <class T>
   void list(std::string_view key, const std::vector<T>& items, ListRule rule,
             std::string_view description) {
@@ -94,6 +101,9 @@ private:
   template <class T>
   static Json listDefault(const std::vector<T>& items);
   static Json emptyObject(std::string_view description);
+  // A string that is one of `names`, as the pattern ^(a|b|c)$.
+  void choice(std::string_view key, const char* value, const std::vector<std::string_view>& names,
+              std::string_view description);
 
   Json& mSchema;
 };
