@@ -4,10 +4,15 @@
 #include <array>
 #include <cmath>
 
+#include "shaders/common/geo_shared.h"
+
 namespace sky::light {
 namespace {
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kDeg = kPi / 180.0;
+// The geographic Earth (engine/weather/geo.h): the sphere whose horizon a point above the
+// ground sees below.
+constexpr double kEarthRadiusM = GEO_EARTH_RADIUS_M;
 
 // Rayleigh optical depth of the whole atmosphere at sea level, Hansen & Travis (1974) eq. 2.29
 // with lambda in micrometres.
@@ -117,6 +122,28 @@ glm::dvec3 moonColor() {
 
 double luminance(const glm::dvec3& rgb) {
   return 0.2126 * rgb.r + 0.7152 * rgb.g + 0.0722 * rgb.b;
+}
+
+glm::vec3 illuminanceAtAltitude(const glm::vec3& aboveAtmosphere, double elevationDeg,
+                                double radiusDeg, double altitudeM, double turbidity) {
+  const double h = std::max(altitudeM, 0.0);
+  const double dipDeg = std::acos(kEarthRadiusM / (kEarthRadiusM + h)) / kDeg;
+  const double visible = discAboveHorizon(elevationDeg + dipDeg, radiusDeg);
+  if (visible <= 0.0) return glm::vec3(0.0f);
+  glm::dvec3 t;
+  if (elevationDeg >= 0.0) {
+    t = atmosphereTransmittance(elevationDeg, h, turbidity);
+  } else {
+    // Below the point's horizontal the ray dips to a tangent height ht before climbing out:
+    // roughly a horizontal path out from ht, plus the descent from h to ht (the horizontal
+    // path from ht less the one from h). Equal to the path from h at elevation 0.
+    const double c = std::cos(std::min(-elevationDeg, dipDeg) * kDeg);
+    const double ht = (kEarthRadiusM + h) * c - kEarthRadiusM;
+    const glm::dvec3 fromTangent = atmosphereTransmittance(0.0, ht, turbidity);
+    const glm::dvec3 fromPoint = atmosphereTransmittance(0.0, h, turbidity);
+    t = fromTangent * fromTangent / fromPoint;
+  }
+  return glm::vec3(glm::dvec3(aboveAtmosphere) * t * visible);
 }
 
 }  // namespace sky::light

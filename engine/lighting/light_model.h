@@ -62,4 +62,11 @@ glm::dvec3 moonColor();
 // Rec.709 luminance of a linear colour.
 double luminance(const glm::dvec3& rgb);
 
+// Illuminance (renderer units, rgb) from a body at apparent elevation `elevationDeg` with
+// angular radius `radiusDeg` and illuminance `aboveAtmosphere` outside the air, arriving at a
+// point `altitudeM` above the ground: the point sees below the sea-level horizon by the dip
+// acos(R / (R + h)), so high clouds stay sunlit after sunset, through a redder, longer path.
+glm::vec3 illuminanceAtAltitude(const glm::vec3& aboveAtmosphere, double elevationDeg,
+                                double radiusDeg, double altitudeM, double turbidity);
+
 }  // namespace sky::light

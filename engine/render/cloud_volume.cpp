@@ -5,8 +5,8 @@
 #include <cstdio>
 
 #include "engine/core/error.h"
+#include "engine/lighting/light_model.h"
 #include "engine/weather/geo.h"
-#include "passes/sky_high_clouds/sky_high_clouds.h"
 
 namespace sky {
 namespace {
@@ -118,9 +118,9 @@ CloudVolume makeCloudVolume(const Scene& cloudScene, const LightingState& lighti
   const glm::vec4* space[2] = {&lighting.gpu.sunSpace, &lighting.gpu.moonSpace};
   const char* names[2] = {"sun", "moon"};
   for (int i = 0; i < 2; ++i) {
-    const glm::vec3 e = illuminanceAtAltitude(glm::vec3(*space[i]), bodies[i]->elevationDeg,
-                                              bodies[i]->angularRadiusDeg, lightAltitude,
-                                              cloudScene.lighting.turbidity);
+    const glm::vec3 e = light::illuminanceAtAltitude(glm::vec3(*space[i]), bodies[i]->elevationDeg,
+                                                     bodies[i]->angularRadiusDeg, lightAltitude,
+                                                     cloudScene.lighting.turbidity);
     const std::string n = names[i];
     m[n + "_direction"] = bodies[i]->direction;
     m[n + "_illuminance"] = glm::dvec3(e);

@@ -33,28 +33,6 @@ double planetRadiusM(const Scene& scene) {
 
 }  // namespace
 
-glm::vec3 illuminanceAtAltitude(const glm::vec3& aboveAtmosphere, double elevationDeg,
-                                double radiusDeg, double altitudeM, double turbidity) {
-  const double h = std::max(altitudeM, 0.0);
-  const double dipDeg = std::acos(kEarthRadiusM / (kEarthRadiusM + h)) / kDeg;
-  const double visible = light::discAboveHorizon(elevationDeg + dipDeg, radiusDeg);
-  if (visible <= 0.0) return glm::vec3(0.0f);
-  glm::dvec3 t;
-  if (elevationDeg >= 0.0) {
-    t = light::atmosphereTransmittance(elevationDeg, h, turbidity);
-  } else {
-    // Below the point's horizontal the ray dips to a tangent height ht before climbing out:
-    // roughly a horizontal path out from ht, plus the descent from h to ht (the horizontal
-    // path from ht less the one from h). Equal to the path from h at elevation 0.
-    const double c = std::cos(std::min(-elevationDeg, dipDeg) * kDeg);
-    const double ht = (kEarthRadiusM + h) * c - kEarthRadiusM;
-    const glm::dvec3 fromTangent = light::atmosphereTransmittance(0.0, ht, turbidity);
-    const glm::dvec3 fromPoint = light::atmosphereTransmittance(0.0, h, turbidity);
-    t = fromTangent * fromTangent / fromPoint;
-  }
-  return glm::vec3(glm::dvec3(aboveAtmosphere) * t * visible);
-}
-
 shared::SkyHighCloudsParams skyHighCloudsParams(const Scene& scene, const LightingState& lighting,
                                                 const IsoTime& time, const shared::ViewState& view,
                                                 bool cloudsPresent, uint32_t textureSize,
@@ -91,14 +69,14 @@ shared::SkyHighCloudsParams skyHighCloudsParams(const Scene& scene, const Lighti
   p.meanCoefficients = meanCoefficients;
 
   const double turbidity = scene.lighting.turbidity;
-  p.sunAtLayer =
-      glm::vec4(illuminanceAtAltitude(glm::vec3(lighting.gpu.sunSpace), lighting.sun.elevationDeg,
-                                      lighting.sun.angularRadiusDeg, altitudeM, turbidity),
-                0.0f);
-  p.moonAtLayer =
-      glm::vec4(illuminanceAtAltitude(glm::vec3(lighting.gpu.moonSpace), lighting.moon.elevationDeg,
-                                      lighting.moon.angularRadiusDeg, altitudeM, turbidity),
-                0.0f);
+  p.sunAtLayer = glm::vec4(
+      light::illuminanceAtAltitude(glm::vec3(lighting.gpu.sunSpace), lighting.sun.elevationDeg,
+                                   lighting.sun.angularRadiusDeg, altitudeM, turbidity),
+      0.0f);
+  p.moonAtLayer = glm::vec4(
+      light::illuminanceAtAltitude(glm::vec3(lighting.gpu.moonSpace), lighting.moon.elevationDeg,
+                                   lighting.moon.angularRadiusDeg, altitudeM, turbidity),
+      0.0f);
   return p;
 }
 

@@ -109,11 +109,4 @@ void setRegionalCover(shared::SkyHighCloudsParams& params, const Scene& scene,
 // high layer with RegionalCoverTexture and calls setRegionalCover.
 bool highCloudsFromWeather(const Scene& scene, const WeatherMap& map);
 
-// Illuminance (renderer units, rgb) from a body at apparent elevation `elevationDeg` with
-// angular radius `radiusDeg` and illuminance `aboveAtmosphere` outside the air, arriving at a
-// point `altitudeM` above the ground: the point sees below the sea-level horizon by the dip
-// acos(R / (R + h)), so high clouds stay sunlit after sunset, through a redder, longer path.
-glm::vec3 illuminanceAtAltitude(const glm::vec3& aboveAtmosphere, double elevationDeg,
-                                double radiusDeg, double altitudeM, double turbidity);
-
 }  // namespace sky

@@ -7,10 +7,10 @@
 
 #include "engine/core/error.h"
 #include "engine/gpu/sampler.h"
+#include "engine/lighting/light_model.h"
 #include "engine/shader/shader_compiler.h"
 #include "engine/weather/geo.h"
 #include "engine/weather/weather_region.h"
-#include "passes/sky_high_clouds/sky_high_clouds.h"
 
 namespace sky {
 namespace {
@@ -149,8 +149,8 @@ shared::CloudParams cloudParams(const Scene& scene, const LightingState& lightin
   // a while after sunset at the ground.
   const double turbidity = scene.lighting.turbidity;
   auto at = [&](const BodyLight& body, const glm::vec4& space, double altitudeM) {
-    return illuminanceAtAltitude(glm::vec3(space), body.elevationDeg, body.angularRadiusDeg,
-                                 altitudeM, turbidity);
+    return light::illuminanceAtAltitude(glm::vec3(space), body.elevationDeg, body.angularRadiusDeg,
+                                        altitudeM, turbidity);
   };
   const double lowMid = 0.5 * (c.low.baseM + c.low.topM);
   const double midMid = 0.5 * (c.mid.baseM + c.mid.topM);

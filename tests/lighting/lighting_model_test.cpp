@@ -84,6 +84,26 @@ TEST(LightModel, DayFactorFallsFromDayToNight) {
   EXPECT_NEAR(light::nightLiftEv(-30.0, 0.8), 0.8 * light::nightLiftEv(-30.0, 1.0), 1e-12);
 }
 
+TEST(LightModel, HighCloudsStaySunlitAfterSunsetAndRedden) {
+  const glm::vec3 space(4.0f);
+  const glm::vec3 noon = light::illuminanceAtAltitude(space, 60.0, 0.265, 9000.0, 0.1);
+  const glm::vec3 low = light::illuminanceAtAltitude(space, 2.0, 0.265, 9000.0, 0.1);
+  const glm::vec3 after = light::illuminanceAtAltitude(space, -2.0, 0.265, 9000.0, 0.1);
+  // At 9 km the horizon dips by acos(R / (R + h)) = 3.05 degrees.
+  const glm::vec3 hidden = light::illuminanceAtAltitude(space, -3.5, 0.265, 9000.0, 0.1);
+  EXPECT_GT(noon.g, 3.0f);
+  EXPECT_GT(after.r, 0.0f) << "a 9 km layer still sees the sun 2 degrees below our horizon";
+  EXPECT_EQ(hidden, glm::vec3(0.0f));
+  EXPECT_GT(low.r / low.b, noon.r / noon.b) << "a low sun is redder";
+  EXPECT_GT(after.r / after.b, low.r / low.b);
+  // Continuous through elevation 0 (the two path models meet there).
+  const glm::vec3 a = light::illuminanceAtAltitude(space, 1e-4, 0.265, 9000.0, 0.1);
+  const glm::vec3 b = light::illuminanceAtAltitude(space, -1e-4, 0.265, 9000.0, 0.1);
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(a[c], b[c], 1e-3 * a[c]);
+  // At ground level there is no dip: the layer model is the observer's.
+  EXPECT_EQ(light::illuminanceAtAltitude(space, -0.5, 0.0, 0.0, 0.1), glm::vec3(0.0f));
+}
+
 TEST(LightModel, MoonColourIsWarmAtUnitLuminance) {
   glm::dvec3 c = light::moonColor();
   EXPECT_NEAR(light::luminance(c), 1.0, 1e-12);

@@ -49,27 +49,7 @@ double luminance(const float* rgb) {
   return 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2];
 }
 
-// ---- CPU: the light at the layer and the wind --------------------------------------------
-
-TEST(HighCloudLight, CloudsStaySunlitAfterSunsetAndRedden) {
-  const glm::vec3 space(4.0f);
-  const glm::vec3 noon = illuminanceAtAltitude(space, 60.0, 0.265, 9000.0, 0.1);
-  const glm::vec3 low = illuminanceAtAltitude(space, 2.0, 0.265, 9000.0, 0.1);
-  const glm::vec3 after = illuminanceAtAltitude(space, -2.0, 0.265, 9000.0, 0.1);
-  // At 9 km the horizon dips by acos(R / (R + h)) = 3.05 degrees.
-  const glm::vec3 hidden = illuminanceAtAltitude(space, -3.5, 0.265, 9000.0, 0.1);
-  EXPECT_GT(noon.g, 3.0f);
-  EXPECT_GT(after.r, 0.0f) << "a 9 km layer still sees the sun 2 degrees below our horizon";
-  EXPECT_EQ(hidden, glm::vec3(0.0f));
-  EXPECT_GT(low.r / low.b, noon.r / noon.b) << "a low sun is redder";
-  EXPECT_GT(after.r / after.b, low.r / low.b);
-  // Continuous through elevation 0 (the two path models meet there).
-  const glm::vec3 a = illuminanceAtAltitude(space, 1e-4, 0.265, 9000.0, 0.1);
-  const glm::vec3 b = illuminanceAtAltitude(space, -1e-4, 0.265, 9000.0, 0.1);
-  for (int c = 0; c < 3; ++c) EXPECT_NEAR(a[c], b[c], 1e-3 * a[c]);
-  // At ground level there is no dip: the layer model is the observer's.
-  EXPECT_EQ(illuminanceAtAltitude(space, -0.5, 0.0, 0.0, 0.1), glm::vec3(0.0f));
-}
+// ---- CPU: the wind ----------------------------------------------------------------------
 
 TEST(HighCloudWind, TextureDriftsDownwind) {
   Scene scene;
