@@ -5,8 +5,23 @@
 #include "engine/clouds/cloud_math.h"
 #include "engine/clouds/coverage_calibration.h"
 #include "engine/weather/cloud_layers_from_fields.h"
+#include "engine/weather/weather_region.h"
 
 namespace sky {
+
+VolumetricCloudsSettings volumetricCloudsSettings(const Scene& cloudScene) {
+  VolumetricCloudsSettings s;
+  s.clouds = cloudScene.clouds;
+  s.region = resolvedRegion(cloudScene.weather);
+  s.cameraLatDeg = cloudScene.camera.latitude;
+  s.cameraLonDeg = cloudScene.camera.longitude;
+  s.cameraAltitudeM = cloudScene.camera.altitudeM;
+  s.topDown = cloudScene.camera.mode == CameraMode::GeographicTopdown;
+  s.timeStart = cloudScene.time.start;
+  s.turbidity = cloudScene.lighting.turbidity;
+  return s;
+}
+
 CloudLayers::CloudLayers(const Context& ctx, ShaderCompiler& compiler, GraphRuntime& runtime)
     : mNoise(ctx, compiler, runtime), mWeather(ctx) {}
 

@@ -16,6 +16,11 @@
 
 namespace sky {
 
+// The volumetric pass's settings from `cloudScene`, the scene with the weather map's region
+// and a forecast's layer altitudes filled in (as the renderer makes it for each frame).
+// Internal error when the scene has no weather.region.
+VolumetricCloudsSettings volumetricCloudsSettings(const Scene& cloudScene);
+
 class CloudLayers {
 public:
   CloudLayers(const Context& ctx, ShaderCompiler& compiler, GraphRuntime& runtime);

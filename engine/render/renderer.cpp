@@ -129,7 +129,7 @@ void Renderer::setBakeProgress(std::function<void(double)> progress) {
 
 Renderer::CloudSetup Renderer::cloudSetup(const Scene& scene, const IsoTime& time) {
   const WeatherMap& weather = mClouds.weatherMap(scene, time);
-  CloudSetup s{scene, {}, {}, {}, &weather};
+  CloudSetup s{scene, {}, {}, {}, {}, &weather};
   // The map's region, resolved from the camera when the scene gives none.
   s.cloudScene.weather.region = weather.region;
   // A forecast file places the layers at the altitudes of its pressure levels (from gh); the
@@ -140,7 +140,8 @@ Renderer::CloudSetup Renderer::cloudSetup(const Scene& scene, const IsoTime& tim
     s.cloudScene.clouds.mid = {a.z, a.w};
   }
   // A top-down view is lit as seen from the middle of the weather region.
-  s.geometry = cloudFrameGeometry(s.cloudScene);
+  s.volumetric = volumetricCloudsSettings(s.cloudScene);
+  s.geometry = cloudFrameGeometry(s.volumetric);
   Scene litScene = scene;
   litScene.camera.latitude = s.geometry.latDeg;
   litScene.camera.longitude = s.geometry.lonDeg;
@@ -234,7 +235,7 @@ RenderedFrame Renderer::render(const Scene& scene, const IsoTime& time,
     cloudFrame = mClouds.addTo(graph, cloudScene, time);
     out.cloudNoise = mClouds.noiseActivity();
     VolumetricCloudsPass::Inputs in;
-    in.params = cloudParams(cloudScene, out.lighting, time, view, cloudFrame.maxCover,
+    in.params = cloudParams(setup.volumetric, out.lighting, time, view, cloudFrame.maxCover,
                             cloudFrame.weatherSize, cloudFrame.coverage, cloudFrame.noiseMeans);
     in.lighting = out.lighting.gpu;
     in.textures = cloudFrame.textures;
@@ -336,7 +337,7 @@ CloudVolume Renderer::exportCloudVolume(const Scene& scene, const IsoTime& time,
                     static_cast<uint32_t>(scene.output.height));
   // The raymarch's own parameters, so the grid holds the very field it marches through.
   CloudVolumeExportPass::Inputs in;
-  in.params = cloudParams(setup.cloudScene, setup.lighting, time, view, cloudFrame.maxCover,
+  in.params = cloudParams(setup.volumetric, setup.lighting, time, view, cloudFrame.maxCover,
                           cloudFrame.weatherSize, cloudFrame.coverage, cloudFrame.noiseMeans);
   in.box = grid.params;
   in.textures = cloudFrame.textures;

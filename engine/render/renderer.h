@@ -92,9 +92,11 @@ public:
 
 private:
   // What the clouds of a frame see: the scene with the weather map's region and layer
-  // altitudes filled in, where their rays start, and the lights after the local weather.
+  // altitudes filled in, the volumetric pass's settings from it, where their rays start, and
+  // the lights after the local weather.
   struct CloudSetup {
     Scene cloudScene;
+    VolumetricCloudsSettings volumetric;
     CloudFrameGeometry geometry;
     LightingState lighting;
     LocalWeather localWeather;

@@ -10,7 +10,6 @@
 #include "engine/lighting/light_model.h"
 #include "engine/shader/shader_compiler.h"
 #include "engine/weather/geo.h"
-#include "engine/weather/weather_region.h"
 
 namespace sky {
 namespace {
@@ -62,22 +61,23 @@ const ComputePipeline& CloudPipelines::get(const shared::CloudParams& p) {
   return *pipeline;
 }
 
-CloudFrameGeometry cloudFrameGeometry(const Scene& scene) {
-  if (scene.camera.mode == CameraMode::GeographicTopdown) {
-    const WeatherRegion& r = resolvedRegion(scene.weather);
-    const double top = std::max(scene.clouds.low.topM, scene.clouds.mid.topM);
+CloudFrameGeometry cloudFrameGeometry(const VolumetricCloudsSettings& s) {
+  if (s.topDown) {
+    const WeatherRegion& r = s.region;
+    const double top = std::max(s.clouds.low.topM, s.clouds.mid.topM);
     return {0.5 * (r.lat[0] + r.lat[1]), 0.5 * (r.lon[0] + r.lon[1]), top + kTopDownMarginM, true};
   }
-  return {scene.camera.latitude, scene.camera.longitude, scene.camera.altitudeM, false};
+  return {s.cameraLatDeg, s.cameraLonDeg, s.cameraAltitudeM, false};
 }
 
-shared::CloudParams cloudParams(const Scene& scene, const LightingState& lighting,
-                                const IsoTime& time, const shared::ViewState& view,
-                                const glm::vec2& maxCover, const glm::uvec2& weatherSize,
-                                const CoverageTables& coverage, const NoiseMeans& noiseMeans) {
-  const CloudSettings& c = scene.clouds;
-  const WeatherRegion& region = resolvedRegion(scene.weather);
-  const CloudFrameGeometry g = cloudFrameGeometry(scene);
+shared::CloudParams cloudParams(const VolumetricCloudsSettings& settings,
+                                const LightingState& lighting, const IsoTime& time,
+                                const shared::ViewState& view, const glm::vec2& maxCover,
+                                const glm::uvec2& weatherSize, const CoverageTables& coverage,
+                                const NoiseMeans& noiseMeans) {
+  const CloudSettings& c = settings.clouds;
+  const WeatherRegion& region = settings.region;
+  const CloudFrameGeometry g = cloudFrameGeometry(settings);
   shared::CloudParams p{};
   p.view = view;
   p.geo = geoFrame({g.latDeg, g.lonDeg, g.altitudeM});
@@ -109,7 +109,7 @@ shared::CloudParams cloudParams(const Scene& scene, const LightingState& lightin
   const double shapeM = c.shapeScaleKm * 1000.0, detailM = c.detailScaleKm * 1000.0;
   const glm::dvec3 camera = ecefFromLatLonAltitude(g.latDeg, g.lonDeg, g.altitudeM);
   const glm::dmat3 enu = enuToEcefRotation(g.latDeg, g.lonDeg);
-  const double elapsed = time.secondsSince(scene.time.start);
+  const double elapsed = time.secondsSince(settings.timeStart);
   const double toward = (c.windFrom + 180.0) * kDeg;
   const glm::dvec3 drift =
       c.windSpeedMs * elapsed * (std::sin(toward) * enu[0] + std::cos(toward) * enu[1]);
@@ -147,7 +147,7 @@ shared::CloudParams cloudParams(const Scene& scene, const LightingState& lightin
   // clouds (the moon by day does not), so the change from sun to moon at dusk is a blend, not
   // a switch. Each layer gets the light that reaches its middle altitude, so clouds stay lit
   // a while after sunset at the ground.
-  const double turbidity = scene.lighting.turbidity;
+  const double turbidity = settings.turbidity;
   auto at = [&](const BodyLight& body, const glm::vec4& space, double altitudeM) {
     return light::illuminanceAtAltitude(glm::vec3(space), body.elevationDeg, body.angularRadiusDeg,
                                         altitudeM, turbidity);

@@ -99,13 +99,26 @@ private:
 using CoverageTables =
     std::array<std::array<std::array<float, CLOUD_COVERAGE_LUT_SIZE>, CLOUD_COVERAGE_TYPE_KEYS>, 2>;
 
-// Where the frame's rays start: the scene's camera, or for camera.mode geographic_topdown the
-// region's centre above the clouds.
+// What the clouds take from the scene, built once per frame by engine/render
+// (volumetricCloudsSettings in engine/render/cloud_layers.h), not the whole Scene.
+struct VolumetricCloudsSettings {
+  CloudSettings clouds;  // clouds.*, with a forecast's layer altitudes in low and mid
+  WeatherRegion region;  // where the weather map lies
+  // The observer (camera.latitude, longitude, altitude_m), unless topDown: camera.mode
+  // geographic_topdown, rays straight down from above the region's centre.
+  double cameraLatDeg = 0.0, cameraLonDeg = 0.0, cameraAltitudeM = 0.0;
+  bool topDown = false;
+  IsoTime timeStart;       // time's start: the wind drifts the noise from this instant
+  double turbidity = 0.1;  // lighting.turbidity: the air the light crosses to each layer
+};
+
+// Where the frame's rays start: the observer, or for a top-down camera the region's centre
+// above the clouds.
 struct CloudFrameGeometry {
   double latDeg, lonDeg, altitudeM;
   bool topDown;
 };
-CloudFrameGeometry cloudFrameGeometry(const Scene& scene);
+CloudFrameGeometry cloudFrameGeometry(const VolumetricCloudsSettings& settings);
 
 // The mean of each channel of the baked noise textures (CloudParams.shapeMean, .detailMean):
 // what the octaves finer than a pixel's footprint fade to at a distance.
@@ -114,13 +127,14 @@ struct NoiseMeans {
   glm::vec4 detail{0.5f};
 };
 
-// The pass's uniforms for one frame: the layers and shells, the frame, the wind's drift of
-// the noise since the start of the scene's time, the key light and its illuminance at each
+// The pass's uniforms for one frame at `time`: the layers and shells, the frame, the wind's
+// drift of the noise since settings.timeStart, the key light and its illuminance at each
 // layer's altitude, the ambient light, the coverage tables and the noise means. `maxCover` is
 // the map's largest (low, mid) cover; `weatherSize` its texel counts.
-shared::CloudParams cloudParams(const Scene& scene, const LightingState& lighting,
-                                const IsoTime& time, const shared::ViewState& view,
-                                const glm::vec2& maxCover, const glm::uvec2& weatherSize,
-                                const CoverageTables& coverage, const NoiseMeans& noiseMeans);
+shared::CloudParams cloudParams(const VolumetricCloudsSettings& settings,
+                                const LightingState& lighting, const IsoTime& time,
+                                const shared::ViewState& view, const glm::vec2& maxCover,
+                                const glm::uvec2& weatherSize, const CoverageTables& coverage,
+                                const NoiseMeans& noiseMeans);
 
 }  // namespace sky

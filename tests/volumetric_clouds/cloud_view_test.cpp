@@ -393,8 +393,8 @@ TEST(CloudNoiseFrame, TheNoiseStaysWithTheGround) {
   b.weather.region = WeatherRegion{{46.0, 49.0}, {7.0, 10.5}};
   const shared::ViewState view = makeViewState(a.camera, 8, 8);
   const auto params = [&](const Scene& s, const IsoTime& t) {
-    return cloudParams(s, computeLighting(s, t), t, view, glm::vec2(0.5f, 0.0f), glm::uvec2(256),
-                       {}, {});
+    return cloudParams(volumetricCloudsSettings(s), computeLighting(s, t), t, view,
+                       glm::vec2(0.5f, 0.0f), glm::uvec2(256), {}, {});
   };
   const double shapeM = a.clouds.shapeScaleKm * 1000.0, detailM = a.clouds.detailScaleKm * 1000.0;
   const glm::dvec3 point = ecefFromLatLonAltitude(47.38, 8.53, 1200.0);
