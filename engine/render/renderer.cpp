@@ -197,8 +197,8 @@ RenderedFrame Renderer::render(const Scene& scene, const IsoTime& time,
     highAltitudeM = 0.5 * (weather.highAltitudeM->x + weather.highAltitudeM->y);
 
   SkyHighCloudsPass::Inputs sky{};
-  const bool cloudsPresent =
-      highFromWeather || scene.highClouds.source == "image" || scene.highClouds.cover > 0.0;
+  const bool cloudsPresent = highFromWeather || scene.highClouds.source == HighCloudSource::Image ||
+                             scene.highClouds.cover > 0.0;
   const ImageDesc& fine = graph.desc().resources[textures.coefficients.id].image;
   const ImageDesc& coarse = graph.desc().resources[textures.coarse.id].image;
   sky.params = skyHighCloudsParams(scene, out.lighting, time, view, cloudsPresent, fine.width,

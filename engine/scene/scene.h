@@ -130,27 +130,52 @@ struct AtmosphereSettings {
   bool operator==(const AtmosphereSettings&) const = default;
 };
 
+// high_clouds.source: the coefficient texture baked from noise and cover (cached on disk), or
+// read from the files high_clouds.coefficients and normals.
+enum class HighCloudSource { Procedural, Image };
+constexpr auto enumNames(HighCloudSource) {
+  return std::to_array<EnumName<HighCloudSource>>(
+      {{HighCloudSource::Procedural, "procedural"}, {HighCloudSource::Image, "image"}});
+}
+
+// high_clouds.style: what the procedural bake draws.
+enum class HighCloudStyle { Cirrus, Cirrostratus, Cirrocumulus };
+constexpr auto enumNames(HighCloudStyle) {
+  return std::to_array<EnumName<HighCloudStyle>>({{HighCloudStyle::Cirrus, "cirrus"},
+                                                  {HighCloudStyle::Cirrostratus, "cirrostratus"},
+                                                  {HighCloudStyle::Cirrocumulus, "cirrocumulus"}});
+}
+
+// high_clouds.cover_source: where the procedural layer's cover comes from (HighCloudSettings).
+enum class HighCloudCoverSource { Auto, Scene, Weather };
+constexpr auto enumNames(HighCloudCoverSource) {
+  return std::to_array<EnumName<HighCloudCoverSource>>(
+      {{HighCloudCoverSource::Auto, "auto"},
+       {HighCloudCoverSource::Scene, "scene"},
+       {HighCloudCoverSource::Weather, "weather"}});
+}
+
 // The high-cloud layer (cirrus, cirrostratus, cirrocumulus): a Kozlov coefficient texture and
 // normal map on a sphere at `altitudeM`, scrolled by the wind. See docs/high-clouds.md.
 struct HighCloudSettings {
-  std::string source = "procedural";  // "procedural" (baked, cached) | "image"
-  std::string style = "cirrus";       // "cirrus" | "cirrostratus" | "cirrocumulus" (procedural)
-  double cover = 0.0;                 // 0..1 (procedural); 0: no high clouds
-  std::string coverMap;               // optional greyscale image multiplying `cover`
-  std::string coefficients;           // "image": RGBA PNG/EXR (thin lit, dense, clear, edges)
-  std::string normals;                // "image": tangent-space normal map; "": derived
-  int resolution = 1024;              // baked texture size (square, power of two), 64..4096
-  int seed = 1;                       // procedural noise seed, 0..2^31-1
-  double altitudeM = 9000.0;          // layer altitude above sea level, 1000..20000
-  double tileSizeKm = 30.0;           // ground size of one texture repeat, 0.1..10000
-  double windSpeedMs = 15.0;          // 0..200
-  double windFrom = 270.0;            // direction the wind blows from, degrees from north
-  double edgeGlowDeg = 10.0;          // l: angular width of the edge glow (Kozlov 3.4), 0.5..90
-  double brightness = 1.0;            // multiplies the cloud terms, 0..100
-  // Where the procedural layer's cover comes from: "scene" (`cover`, uniform), "weather" (the
-  // weather map's high-layer cover per pixel, from a forecast file) or "auto" (weather when
-  // the weather map has a high layer, else scene).
-  std::string coverSource = "auto";
+  HighCloudSource source = HighCloudSource::Procedural;
+  HighCloudStyle style = HighCloudStyle::Cirrus;  // procedural
+  double cover = 0.0;                             // 0..1 (procedural); 0: no high clouds
+  std::string coverMap;                           // optional greyscale image multiplying `cover`
+  std::string coefficients;   // "image": RGBA PNG/EXR (thin lit, dense, clear, edges)
+  std::string normals;        // "image": tangent-space normal map; "": derived
+  int resolution = 1024;      // baked texture size (square, power of two), 64..4096
+  int seed = 1;               // procedural noise seed, 0..2^31-1
+  double altitudeM = 9000.0;  // layer altitude above sea level, 1000..20000
+  double tileSizeKm = 30.0;   // ground size of one texture repeat, 0.1..10000
+  double windSpeedMs = 15.0;  // 0..200
+  double windFrom = 270.0;    // direction the wind blows from, degrees from north
+  double edgeGlowDeg = 10.0;  // l: angular width of the edge glow (Kozlov 3.4), 0.5..90
+  double brightness = 1.0;    // multiplies the cloud terms, 0..100
+  // Where the procedural layer's cover comes from: Scene (`cover`, uniform), Weather (the
+  // weather map's high-layer cover per pixel, from a forecast file) or Auto (Weather when
+  // the weather map has a high layer, else Scene).
+  HighCloudCoverSource coverSource = HighCloudCoverSource::Auto;
 };
 
 // A volumetric cloud layer: a spherical shell between two altitudes above sea level.

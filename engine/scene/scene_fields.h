@@ -126,12 +126,10 @@ void describe(V& v, AtmosphereSettings& s) {
 
 template <class V>
 void describe(V& v, HighCloudSettings& s) {
-  v.field("source", s.source, TextRule{1, 0, "^(procedural|image)$", "procedural or image"},
+  v.field("source", s.source,
           "where the coefficient texture comes from: procedural (baked from noise and "
           "cover, cached on disk) or image (files given below)");
   v.field("style", s.style,
-          TextRule{1, 0, "^(cirrus|cirrostratus|cirrocumulus)$",
-                   "cirrus, cirrostratus or cirrocumulus"},
           "procedural cloud style: cirrus streaks, cirrostratus veil or cirrocumulus ripples");
   v.field("cover", s.cover, NumberRange{0, 1},
           "procedural high-cloud cover fraction (0: no high clouds)");
@@ -159,12 +157,11 @@ void describe(V& v, HighCloudSettings& s) {
           "angular width l of the glow of sparse edges around the light (Kozlov 3.4), degrees");
   v.field("brightness", s.brightness, NumberRange{0, 100}, "multiplies the cloud colour terms");
   v.field("cover_source", s.coverSource,
-          TextRule{1, 0, "^(auto|scene|weather)$", "auto, scene or weather"},
           "procedural: the cover from `cover` (scene), from the weather map's high layer per "
           "pixel (weather, needs weather.source file) or weather when the map has a high layer "
           "(auto)");
   v.check("resolution", (s.resolution & (s.resolution - 1)) == 0, "must be a power of two");
-  v.check("coefficients", s.source != "image" || !s.coefficients.empty(),
+  v.check("coefficients", s.source != HighCloudSource::Image || !s.coefficients.empty(),
           "is required when source is image");
 }
 

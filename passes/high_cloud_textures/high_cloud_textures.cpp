@@ -46,11 +46,16 @@ std::string bakeCoverMap(const HighCloudSettings& h, bool regionalCover) {
   return regionalCover ? std::string() : h.coverMap;
 }
 
-uint32_t styleId(const std::string& style) {
-  if (style == "cirrus") return HIGH_CLOUD_STYLE_CIRRUS;
-  if (style == "cirrostratus") return HIGH_CLOUD_STYLE_CIRROSTRATUS;
-  if (style == "cirrocumulus") return HIGH_CLOUD_STYLE_CIRROCUMULUS;
-  inputError("high_clouds.style: '" + style + "' is not cirrus, cirrostratus or cirrocumulus");
+uint32_t styleId(HighCloudStyle style) {
+  switch (style) {
+    case HighCloudStyle::Cirrus:
+      return HIGH_CLOUD_STYLE_CIRRUS;
+    case HighCloudStyle::Cirrostratus:
+      return HIGH_CLOUD_STYLE_CIRROSTRATUS;
+    case HighCloudStyle::Cirrocumulus:
+      return HIGH_CLOUD_STYLE_CIRROCUMULUS;
+  }
+  internalError("high cloud textures: no style " + std::to_string(static_cast<int>(style)));
 }
 
 uint32_t resolutionOf(const HighCloudSettings& h) {
@@ -102,7 +107,7 @@ HighCloudTextures::HighCloudTextures(const Context& ctx, ShaderCompiler& compile
       mReducePass(ctx, compiler),
       mCoverReducePass(ctx, compiler) {}
 
-float HighCloudTextures::rampWidth(const std::string& style) {
+float HighCloudTextures::rampWidth(HighCloudStyle style) {
   switch (styleId(style)) {
     case HIGH_CLOUD_STYLE_CIRROSTRATUS:
       return float(HIGH_CLOUD_RAMP_CIRROSTRATUS);
@@ -117,18 +122,18 @@ HighCloudTextures::Outputs HighCloudTextures::addTo(FrameGraph& graph, const Sce
                                                     bool regionalCover) {
   mActivity = {};
   const HighCloudSettings& h = scene.highClouds;
-  if (regionalCover && h.source != "procedural")
+  if (regionalCover && h.source != HighCloudSource::Procedural)
     inputError(
         "high_clouds.cover_source: a cover from the weather map needs high_clouds.source "
         "procedural, not '" +
-        h.source + "'");
+        std::string(enumName(h.source)) + "'");
   const std::string sig = signature(scene, regionalCover);
   if (!mSignature || *mSignature != sig) {
     // Forget what the images held until the new contents are complete: an error on the way
     // makes the next call load again.
     mSignature.reset();
     mHasRankShape = mHasCoverCoarse = false;
-    if (h.source == "image")
+    if (h.source == HighCloudSource::Image)
       loadImages(scene);
     else if (!regionalCover && h.cover <= 0.0)
       makeClear();
@@ -159,11 +164,10 @@ std::string HighCloudTextures::signature(const Scene& scene, bool regionalCover)
     const fs::path resolved = scene.resolvePath(path);
     return resolved.string() + "@" + high_clouds::fileStamp(resolved);
   };
-  if (h.source == "image") return "image|" + file(h.coefficients) + "|" + file(h.normals);
-  if (h.source != "procedural")
-    inputError("high_clouds.source: '" + h.source + "' is not procedural or image");
+  if (h.source == HighCloudSource::Image)
+    return "image|" + file(h.coefficients) + "|" + file(h.normals);
   if (!regionalCover && h.cover <= 0.0) return "clear";
-  return std::string(regionalCover ? "regional" : "procedural") + "|" + h.style + "|" +
+  return std::string(regionalCover ? "regional" : "procedural") + "|" + enumName(h.style) + "|" +
          exact(bakeCover(h, regionalCover)) + "|" + std::to_string(h.seed) + "|" +
          std::to_string(h.resolution) + "|" + file(bakeCoverMap(h, regionalCover));
 }
@@ -172,8 +176,8 @@ std::string HighCloudTextures::cacheKey(const Scene& scene, bool regionalCover) 
   const HighCloudSettings& h = scene.highClouds;
   const std::string coverMap = bakeCoverMap(h, regionalCover);
   std::string text(kCacheFormat);
-  text += "|" + h.style + "|" + exact(bakeCover(h, regionalCover)) + "|" + std::to_string(h.seed) +
-          "|" + std::to_string(h.resolution) + "|";
+  text += "|" + std::string(enumName(h.style)) + "|" + exact(bakeCover(h, regionalCover)) + "|" +
+          std::to_string(h.seed) + "|" + std::to_string(h.resolution) + "|";
   if (!coverMap.empty()) {
     const fs::path path = scene.resolvePath(coverMap);
     std::error_code ec;
@@ -235,7 +239,6 @@ void HighCloudTextures::loadImages(const Scene& scene) {
 void HighCloudTextures::loadProcedural(const Scene& scene, bool regionalCover) {
   const HighCloudSettings& h = scene.highClouds;
   const uint32_t size = resolutionOf(h);
-  // A bad style is an error even when the cache would answer.
   mRampWidth = rampWidth(h.style);
   const std::string key = cacheKey(scene, regionalCover);
   const fs::path file = cacheDir() / "high_clouds" / (key + ".exr");

@@ -27,6 +27,7 @@ class Context;
 class GraphRuntime;
 class ShaderCompiler;
 struct Scene;
+enum class HighCloudStyle;
 
 class HighCloudTextures {
 public:
@@ -94,9 +95,8 @@ public:
   // the key of the reference-cover bake addTo makes then.
   std::string cacheKey(const Scene& scene, bool regionalCover = false) const;
 
-  // The ramp width w of a procedural style (HIGH_CLOUD_RAMP_*); BadInput naming
-  // high_clouds.style for an unknown one.
-  static float rampWidth(const std::string& style);
+  // The ramp width w of a procedural style (HIGH_CLOUD_RAMP_*).
+  static float rampWidth(HighCloudStyle style);
 
 private:
   // What the images must hold for `scene`: settings and input files' stamps, no file read.

@@ -100,14 +100,18 @@ bool highCloudsFromWeather(const Scene& scene, const WeatherMap& map) {
   const HighCloudSettings& hc = scene.highClouds;
   const bool hasHighLayer =
       map.width > 0 && map.height > 0 && map.coverHigh.size() == size_t(map.width) * map.height;
-  const bool procedural = hc.source == "procedural";
-  if (hc.coverSource == "scene") return false;
-  if (hc.coverSource == "auto") return procedural && hasHighLayer;
-  if (hc.coverSource != "weather")
-    inputError("high_clouds.cover_source: '" + hc.coverSource + "' is not auto, scene or weather");
+  const bool procedural = hc.source == HighCloudSource::Procedural;
+  switch (hc.coverSource) {
+    case HighCloudCoverSource::Scene:
+      return false;
+    case HighCloudCoverSource::Auto:
+      return procedural && hasHighLayer;
+    case HighCloudCoverSource::Weather:
+      break;
+  }
   if (!procedural)
     inputError("high_clouds.cover_source: weather needs high_clouds.source procedural, not '" +
-               hc.source + "'");
+               std::string(enumName(hc.source)) + "'");
   if (!hasHighLayer)
     inputError(
         "high_clouds.cover_source: weather needs a weather map with a high layer "

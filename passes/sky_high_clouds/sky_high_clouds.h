@@ -100,11 +100,11 @@ void setRegionalCover(shared::SkyHighCloudsParams& params, const Scene& scene,
 
 // Whether the high clouds take their cover per pixel from the weather map's high layer
 // (regional cover) rather than from high_clouds.cover, by high_clouds.cover_source:
-//  - "scene": never;
-//  - "weather": always; BadInput unless the source is procedural and the map has a high layer
+//  - scene: never;
+//  - weather: always; BadInput unless the source is procedural and the map has a high layer
 //    (WeatherMap::coverHigh, from a forecast file);
-//  - "auto": when the source is procedural and the map has a high layer.
-// BadInput naming high_clouds.cover_source for any other value. When true, the caller passes
+//  - auto: when the source is procedural and the map has a high layer.
+// When true, the caller passes
 // regionalCover to HighCloudTextures::addTo (which then bakes even at cover 0), uploads the
 // high layer with RegionalCoverTexture and calls setRegionalCover.
 bool highCloudsFromWeather(const Scene& scene, const WeatherMap& map);

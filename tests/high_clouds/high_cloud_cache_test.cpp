@@ -43,7 +43,7 @@ TEST_F(HighCloudTest, OtherSettingsBakeUnderAnotherKey) {
   std::vector<Scene> variants(4, base);
   variants[0].highClouds.cover = 0.6;
   variants[1].highClouds.seed = 4;
-  variants[2].highClouds.style = "cirrocumulus";
+  variants[2].highClouds.style = HighCloudStyle::Cirrocumulus;
   variants[3].highClouds.resolution = 128;
   for (const Scene& v : variants) {
     const Fetched f = fetch(*make(), v);  // a fresh object: only the disk cache could answer

@@ -31,8 +31,8 @@ inline std::filesystem::path highCloudData() {
 inline Scene proceduralScene(const std::string& style, double cover, int resolution = 128,
                              int seed = 1) {
   Scene scene;
-  scene.highClouds.source = "procedural";
-  scene.highClouds.style = style;
+  scene.highClouds.source = HighCloudSource::Procedural;
+  scene.highClouds.style = enumValue<HighCloudStyle>(style).value();
   scene.highClouds.cover = cover;
   scene.highClouds.resolution = resolution;
   scene.highClouds.seed = seed;
@@ -42,7 +42,7 @@ inline Scene proceduralScene(const std::string& style, double cover, int resolut
 
 inline Scene imageScene(const std::string& coefficients, const std::string& normals = "") {
   Scene scene;
-  scene.highClouds.source = "image";
+  scene.highClouds.source = HighCloudSource::Image;
   scene.highClouds.coefficients = coefficients;
   scene.highClouds.normals = normals;
   scene.baseDir = highCloudData();

@@ -97,7 +97,7 @@ TEST_F(SkyHighCloudsTest, CloudTermsMatchTheReference) {
   Scene scene = testScene("clear_noon");
   scene.sun.azimuth = 180.0;
   scene.sun.elevation = 35.0;
-  scene.highClouds.source = "image";
+  scene.highClouds.source = HighCloudSource::Image;
   scene.highClouds.coefficients = (dir / "coefficients.exr").string();
   scene.highClouds.normals = (dir / "normals.exr").string();
   scene.highClouds.brightness = 1.5;

@@ -214,8 +214,8 @@ inline Scene unusualScene() {
   s.atmosphere.ozoneCenterKm = 999.9999999999999;
   s.atmosphere.ozoneHalfWidthKm = 0.01;
   s.atmosphere.groundAlbedo = {0.0f, 1.0f, 0.1f};
-  s.highClouds.source = "image";
-  s.highClouds.style = "cirrocumulus";
+  s.highClouds.source = HighCloudSource::Image;
+  s.highClouds.style = HighCloudStyle::Cirrocumulus;
   s.highClouds.cover = 1.0 / 3.0;
   s.highClouds.coverMap = "maps/cover \"high\".png";
   s.highClouds.coefficients = "C:/textures/cirrus coefficients.exr";
@@ -228,7 +228,7 @@ inline Scene unusualScene() {
   s.highClouds.windFrom = -359.5;
   s.highClouds.edgeGlowDeg = 0.5;
   s.highClouds.brightness = 1e-3;
-  s.highClouds.coverSource = "weather";
+  s.highClouds.coverSource = HighCloudCoverSource::Weather;
   s.clouds.model = CloudModel::Tang2019;
   s.clouds.coverage = CloudCoverageMode::Paper;
   s.clouds.extinction = 1e-5;
