@@ -135,14 +135,14 @@ int weatherCommand(const std::vector<std::string>& argv) {
 
   std::printf("%s: %dx%d map over lat [%g, %g], lon [%g, %g], cover from %s\n",
               file.filename().string().c_str(), w, h, map.region.lat[0], map.region.lat[1],
-              map.region.lon[0], map.region.lon[1], scene.weather.cover.c_str());
+              map.region.lon[0], map.region.lon[1], enumName(scene.weather.cover));
   const std::vector<float> layers[3] = {channel(map, 0), channel(map, 1), map.coverHigh};
   const char* names[3] = {"low", "mid", "high"};
   // The tcc map for comparison, when the file has the model's own cover and rh was used.
   std::optional<WeatherMap> tcc;
-  if (scene.weather.cover == "rh" && hasTcc(fields)) {
+  if (scene.weather.cover == WeatherCover::Rh && hasTcc(fields)) {
     WeatherSettings settings = scene.weather;
-    settings.cover = "tcc";
+    settings.cover = WeatherCover::Tcc;
     tcc = weatherMapFromFields(fields, time, settings, map.region, sceneWindMs(scene.clouds));
   }
   for (int l = 0; l < 3; ++l) {

@@ -265,10 +265,53 @@ struct WeatherAutomatonSettings {
   bool operator==(const WeatherAutomatonSettings&) const = default;
 };
 
+// weather.source: where the weather map comes from, fbm cover, a painted image or a GRIB2 or
+// NetCDF forecast. (WeatherSource, engine/weather/weather_source.h, is the map's builder.)
+enum class WeatherMapSource { Procedural, Image, File };
+constexpr auto enumNames(WeatherMapSource) {
+  return std::to_array<EnumName<WeatherMapSource>>({{WeatherMapSource::Procedural, "procedural"},
+                                                    {WeatherMapSource::Image, "image"},
+                                                    {WeatherMapSource::File, "file"}});
+}
+
+// weather.cloud_type: the map's type channel (cloudTypeValue, engine/weather/weather_map.h).
+enum class CloudType { Stratus, Stratocumulus, Cumulus, Altostratus, Altocumulus };
+constexpr auto enumNames(CloudType) {
+  return std::to_array<EnumName<CloudType>>({{CloudType::Stratus, "stratus"},
+                                             {CloudType::Stratocumulus, "stratocumulus"},
+                                             {CloudType::Cumulus, "cumulus"},
+                                             {CloudType::Altostratus, "altostratus"},
+                                             {CloudType::Altocumulus, "altocumulus"}});
+}
+
+// weather.cover: a forecast's cover from relative humidity, Lu (1)(2), or the model's own
+// layer cloud cover.
+enum class WeatherCover { Rh, Tcc };
+constexpr auto enumNames(WeatherCover) {
+  return std::to_array<EnumName<WeatherCover>>(
+      {{WeatherCover::Rh, "rh"}, {WeatherCover::Tcc, "tcc"}});
+}
+
+// weather.advection: how the map moves with time (WeatherSettings::advection).
+enum class WeatherAdvection { None, Data, Wind };
+constexpr auto enumNames(WeatherAdvection) {
+  return std::to_array<EnumName<WeatherAdvection>>({{WeatherAdvection::None, "none"},
+                                                    {WeatherAdvection::Data, "data"},
+                                                    {WeatherAdvection::Wind, "wind"}});
+}
+
+// weather.evolution: clouds that grow and dissolve between forecast steps by a cellular
+// automaton (Ca), or not.
+enum class WeatherEvolution { None, Ca };
+constexpr auto enumNames(WeatherEvolution) {
+  return std::to_array<EnumName<WeatherEvolution>>(
+      {{WeatherEvolution::None, "none"}, {WeatherEvolution::Ca, "ca"}});
+}
+
 // The weather map the volumetric clouds read: per lat/lon cell the low and mid cover (Lu's
 // CMc), the cloud type and a density scale. See docs/weather.md.
 struct WeatherSettings {
-  std::string source = "procedural";  // "procedural" | "image" | "file"
+  WeatherMapSource source = WeatherMapSource::Procedural;
   // The map's bounds. Absent: a square of cameraRegionKm centred on the camera (snapped to the
   // map's texels), clipped to the data for source "file" (engine/weather/weather_region.h).
   std::optional<WeatherRegion> region;
@@ -280,29 +323,29 @@ struct WeatherSettings {
   double scaleKm = 150.0;  // feature size of the cover pattern, km
   int seed = 1;            // 0..2^31-1
   int resolution = 256;    // map texels along its longer side, 8..8192
-  // "stratus" | "stratocumulus" | "cumulus" | "altostratus" | "altocumulus": the map's type
-  // channel (0 stratiform, 0.5 cellular, 1 convective), shared by both layers.
-  std::string cloudType = "cumulus";
+  // The map's type channel (0 stratiform, 0.5 cellular, 1 convective), shared by both layers.
+  CloudType cloudType = CloudType::Cumulus;
   // image: RGBA PNG/EXR over the region (R low cover, G mid cover, B type, A density scale).
   std::string image;
   // file: a GRIB2 or NetCDF forecast; cover from relative humidity (Lu (1)(2)) per layer of
   // pressure levels, or the model's own layer cloud cover ("tcc").
   std::string file;
-  std::string cover = "rh";  // "rh" | "tcc"
+  WeatherCover cover = WeatherCover::Rh;
   WeatherLevelSettings low{1000.0, 800.0, 0.80};
   WeatherLevelSettings mid{800.0, 450.0, 0.65};
   WeatherLevelSettings high{450.0, 150.0, 0.80};
-  // Before the file's first step or after its last (any time, for a single step): "data"
-  // carries the nearest step's map with the file's wind at steering_hpa; "none" holds it.
-  std::string advection = "none";  // "none" | "data" | "wind" (clouds.wind_*)
-  double steeringHpa = 500.0;      // 1..1100
+  // Before the file's first step or after its last (any time, for a single step): Data
+  // carries the nearest step's map with the file's wind at steering_hpa, Wind with
+  // clouds.wind_*; None holds it.
+  WeatherAdvection advection = WeatherAdvection::None;
+  double steeringHpa = 500.0;  // 1..1100
   // The instant the map shows at the scene's first frame (ISO 8601); later frames of a
   // time-lapse move it on by the same time. Empty: the scene's time.
   std::string time;
   // Kozlov section 5's local weather: the cover around the camera filtered over this radius.
   double localRadiusKm = 5.0;  // 0.1..200
   // Cellular-automaton growth and decay between forecast steps (Liu et al. 2015, Dobashi).
-  std::string evolution = "none";  // "none" | "ca"
+  WeatherEvolution evolution = WeatherEvolution::None;
   WeatherAutomatonSettings automaton;
 
   bool operator==(const WeatherSettings&) const = default;

@@ -258,7 +258,6 @@ void describe(V& v, WeatherAutomatonSettings& s) {
 template <class V>
 void describe(V& v, WeatherSettings& s) {
   v.field("source", s.source,
-          TextRule{1, 0, "^(procedural|image|file)$", "procedural, image or file"},
           "where the weather map comes from: procedural (fbm cover), image (painted) or file "
           "(a GRIB2 or NetCDF forecast)");
   v.section("region", s.region,
@@ -277,8 +276,6 @@ void describe(V& v, WeatherSettings& s) {
   v.field("resolution", s.resolution, NumberRange{8, 8192},
           "procedural: map texels along the region's longer side");
   v.field("cloud_type", s.cloudType,
-          TextRule{1, 0, "^(stratus|stratocumulus|cumulus|altostratus|altocumulus)$",
-                   "stratus, stratocumulus, cumulus, altostratus or altocumulus"},
           "procedural: cloud type (the type channel: stratus and altostratus 0, "
           "stratocumulus and altocumulus 0.5, cumulus 1)");
   v.field("image", s.image, TextRule{0, 4096},
@@ -287,13 +284,13 @@ void describe(V& v, WeatherSettings& s) {
   v.field("file", s.file, TextRule{0, 4096},
           "file source: a GRIB2 or NetCDF forecast (relative paths are relative to the scene "
           "file)");
-  v.field("cover", s.cover, TextRule{1, 0, "^(rh|tcc)$", "rh or tcc"},
+  v.field("cover", s.cover,
           "file source: cover from relative humidity (rh, Lu (1)(2)) or the model's own layer "
           "cloud cover (tcc)");
   v.section("low", s.low, "file source: the low layer's pressure levels and rh_cr");
   v.section("mid", s.mid, "file source: the mid layer's pressure levels and rh_cr");
   v.section("high", s.high, "file source: the high layer's pressure levels and rh_cr");
-  v.field("advection", s.advection, TextRule{1, 0, "^(none|data|wind)$", "none, data or wind"},
+  v.field("advection", s.advection,
           "how the map moves with time: not at all (none), with the forecast file's wind at "
           "steering_hpa outside the file's steps (data), or with clouds.wind_speed_ms and "
           "wind_from (wind); between a file's steps the cover is interpolated");
@@ -305,16 +302,18 @@ void describe(V& v, WeatherSettings& s) {
   v.field("local_radius_km", s.localRadiusKm, NumberRange{0.1, 200},
           "radius over which the cover around the camera is filtered into the local weather "
           "(overcast) that dims the ambient light and thickens the haze, km (Kozlov 5)");
-  v.field("evolution", s.evolution, TextRule{1, 0, "^(none|ca)$", "none or ca"},
+  v.field("evolution", s.evolution,
           "clouds that grow and dissolve between forecast steps: none, or ca (a cellular "
           "automaton, Liu et al. 2015 after Dobashi et al. 2000)");
   v.section("automaton", s.automaton, "evolution ca: the cellular automaton's time steps");
-  v.check("advection", s.advection != "data" || s.source == "file",
+  v.check("advection", s.advection != WeatherAdvection::Data || s.source == WeatherMapSource::File,
           "data needs source file (the wind comes from the forecast); wind uses the scene's");
   v.check("time", s.time.empty() || IsoTime::parse(s.time).has_value(),
           "must be an ISO 8601 instant with a zone, e.g. 2024-06-21T12:00:00Z");
-  v.check("image", s.source != "image" || !s.image.empty(), "is required when source is image");
-  v.check("file", s.source != "file" || !s.file.empty(), "is required when source is file");
+  v.check("image", s.source != WeatherMapSource::Image || !s.image.empty(),
+          "is required when source is image");
+  v.check("file", s.source != WeatherMapSource::File || !s.file.empty(),
+          "is required when source is file");
 }
 
 template <class V>

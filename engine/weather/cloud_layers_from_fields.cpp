@@ -411,7 +411,7 @@ std::vector<float> stepLayerCover(const WeatherFields& fields, const WeatherStep
       internalError(fileName(fields) + ": field " + f.name + " has " +
                     std::to_string(f.values.size()) + " values on a grid of " + std::to_string(n));
   };
-  if (weather.cover == "tcc") {
+  if (weather.cover == WeatherCover::Tcc) {
     const LevelField* f = step.find(layer.tccName, 0.0);
     if (!f)
       inputError(std::string("weather.cover: tcc needs ") + layer.tccName +
@@ -598,8 +598,6 @@ double standardAtmosphereAltitudeM(double pressureHpa) {
 
 LayerCover layerCover(const WeatherFields& fields, double timeUnix, const WeatherSettings& weather,
                       const WeatherRegion& region) {
-  if (weather.cover != "rh" && weather.cover != "tcc")
-    inputError("weather.cover: '" + weather.cover + "' is not rh or tcc");
   if (fields.steps.empty()) inputError("weather.file: " + fileName(fields) + " holds no fields");
   const Bracket b = bracketTime(fields.steps, timeUnix);
   LayerCover out = stepLayers(fields, fields.steps[b.first], weather, region);
@@ -644,7 +642,7 @@ WeatherMap weatherMapFromFields(const WeatherFields& fields, double timeUnix,
 
   // Outside the file's steps the nearest step's clouds drift with its wind (Kozlov section 5:
   // weather that moves); between steps the forecast itself says how they move.
-  if (weather.advection != "data" && weather.advection != "wind") return map;
+  if (weather.advection == WeatherAdvection::None) return map;
   const Bracket b = bracketTime(fields.steps, timeUnix);
   if (b.weight != 0.0) return map;
   const WeatherStep& step = fields.steps[b.first];
@@ -652,7 +650,7 @@ WeatherMap weatherMapFromFields(const WeatherFields& fields, double timeUnix,
   if (dt == 0.0 || (timeUnix > fields.steps.front().validTimeUnix &&
                     timeUnix < fields.steps.back().validTimeUnix))
     return map;
-  if (weather.advection == "wind") {
+  if (weather.advection == WeatherAdvection::Wind) {
     advectMap(map, sceneWindMs, dt);
     return map;
   }

@@ -40,7 +40,7 @@ struct LayerCover {
 // per point the largest Lu (1) cover over the layer's r levels within [topHpa, bottomHpa];
 // "tcc": tcc_low / tcc_mid / tcc_high as they are. Missing values count as clear. BadInput
 // naming weather.<layer> (no r level in its range; the file's levels listed), weather.cover
-// (no tcc field, or an unknown cover) or weather.file (no steps). `region` only sets the
+// (no tcc field) or weather.file (no steps). `region` only sets the
 // altitudes' means.
 LayerCover layerCover(const WeatherFields& fields, double timeUnix, const WeatherSettings& weather,
                       const WeatherRegion& region);

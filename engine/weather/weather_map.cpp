@@ -290,12 +290,18 @@ glm::vec2 WeatherMap::maxCover() const {
   return m;
 }
 
-float cloudTypeValue(const std::string& name) {
-  if (name == "stratus" || name == "altostratus") return 0.0f;
-  if (name == "stratocumulus" || name == "altocumulus") return 0.5f;
-  if (name == "cumulus") return 1.0f;
-  inputError("weather.cloud_type: '" + name +
-             "' is not stratus, stratocumulus, cumulus, altostratus or altocumulus");
+float cloudTypeValue(CloudType type) {
+  switch (type) {
+    case CloudType::Stratus:
+    case CloudType::Altostratus:
+      return 0.0f;
+    case CloudType::Stratocumulus:
+    case CloudType::Altocumulus:
+      return 0.5f;
+    case CloudType::Cumulus:
+      return 1.0f;
+  }
+  internalError("weather map: no cloud type " + std::to_string(static_cast<int>(type)));
 }
 
 glm::uvec2 proceduralMapSize(const WeatherSettings& weather, const WeatherRegion& region) {
@@ -313,18 +319,22 @@ WeatherMap makeWeatherMap(const Scene& scene, const WeatherRegion& r) {
     inputError("weather.region.lat: [south, north] must rise within [-90, 90]");
   if (!(r.lon[0] < r.lon[1]) || r.lon[1] - r.lon[0] > 360.0)
     inputError("weather.region.lon: [west, east] must rise and span at most 360 degrees");
-  if (w.source == "image") return readImageMap(scene, r);
-  if (w.source == "procedural") return proceduralMap(scene, r);
-  if (w.source == "file") {
-    const WeatherFields fields = readWeatherFile(scene);
-    // The forecast valid at the scene's time (its start for a time-lapse).
-    return weatherMapFromFields(fields, double(scene.time.start.unixSeconds), w, r);
+  switch (w.source) {
+    case WeatherMapSource::Image:
+      return readImageMap(scene, r);
+    case WeatherMapSource::Procedural:
+      return proceduralMap(scene, r);
+    case WeatherMapSource::File:
+      break;
   }
-  inputError("weather.source: '" + w.source + "' is not procedural, image or file");
+  const WeatherFields fields = readWeatherFile(scene);
+  // The forecast valid at the scene's time (its start for a time-lapse).
+  return weatherMapFromFields(fields, double(scene.time.start.unixSeconds), w, r);
 }
 
 WeatherMap makeWeatherMap(const Scene& scene) {
-  if (scene.weather.source != "file") return makeWeatherMap(scene, mapRegion(scene));
+  if (scene.weather.source != WeatherMapSource::File)
+    return makeWeatherMap(scene, mapRegion(scene));
   const WeatherFields fields = readWeatherFile(scene);
   const WeatherRegion data = dataRegion(fields.grid);
   return weatherMapFromFields(fields, double(scene.time.start.unixSeconds), scene.weather,

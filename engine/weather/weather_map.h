@@ -41,9 +41,8 @@ struct WeatherMap {
 };
 
 // The type channel's value of a cloud type: stratus and altostratus 0 (stratiform),
-// stratocumulus and altocumulus 0.5 (cellular), cumulus 1 (convective). BadInput naming
-// weather.cloud_type for any other name.
-float cloudTypeValue(const std::string& name);
+// stratocumulus and altocumulus 0.5 (cellular), cumulus 1 (convective).
+float cloudTypeValue(CloudType type);
 
 // The map of `scene.weather` over `region` (mapRegion(scene) for the scene's own):
 // "procedural" (fbm cover, see weather_map.cpp and docs/weather.md), "image" (an RGBA

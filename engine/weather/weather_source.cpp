@@ -36,17 +36,19 @@ std::string settingsSignature(const Scene& scene, const WeatherRegion& region) {
   const WeatherSettings& w = scene.weather;
   std::ostringstream s;
   s.precision(17);
-  s << w.source << '|' << region.lat[0] << ',' << region.lat[1] << ',' << region.lon[0] << ','
-    << region.lon[1] << '|' << w.coverLow << '|' << w.coverMid << '|' << w.spread << '|'
-    << w.scaleKm << '|' << w.seed << '|' << w.resolution << '|' << w.cloudType << '|' << w.cover;
+  s << enumName(w.source) << '|' << region.lat[0] << ',' << region.lat[1] << ',' << region.lon[0]
+    << ',' << region.lon[1] << '|' << w.coverLow << '|' << w.coverMid << '|' << w.spread << '|'
+    << w.scaleKm << '|' << w.seed << '|' << w.resolution << '|' << enumName(w.cloudType) << '|'
+    << enumName(w.cover);
   for (const WeatherLevelSettings* l : {&w.low, &w.mid, &w.high})
     s << '|' << l->bottomHpa << ',' << l->topHpa << ',' << l->rhCritical;
-  s << '|' << w.advection << '|' << w.steeringHpa << '|' << w.evolution;
-  if (w.advection == "wind") s << '|' << scene.clouds.windSpeedMs << ',' << scene.clouds.windFrom;
-  if (w.evolution == "ca")
+  s << '|' << enumName(w.advection) << '|' << w.steeringHpa << '|' << enumName(w.evolution);
+  if (w.advection == WeatherAdvection::Wind)
+    s << '|' << scene.clouds.windSpeedMs << ',' << scene.clouds.windFrom;
+  if (w.evolution == WeatherEvolution::Ca)
     s << '|' << w.automaton.stepS << ',' << w.automaton.windowH << ',' << w.automaton.lifetimeMin
       << ',' << w.automaton.strength;
-  if (w.source == "image") s << '|' << fileStamp(scene.resolvePath(w.image));
+  if (w.source == WeatherMapSource::Image) s << '|' << fileStamp(scene.resolvePath(w.image));
   return s.str();
 }
 
@@ -73,12 +75,13 @@ glm::dvec2 sceneWindMs(const CloudSettings& clouds) {
 
 WeatherMap WeatherSource::moved(const Scene& scene, double timeUnix) {
   const WeatherSettings& w = scene.weather;
-  if (w.source == "file")
+  if (w.source == WeatherMapSource::File)
     return weatherMapFromFields(*mFields, timeUnix, w, mRegion, sceneWindMs(scene.clouds));
   WeatherMap map = *mStill;
   // A painted or procedural map shows the scene's first frame; the wind carries it from there.
   const double seconds = timeUnix - weatherTimeUnix(scene, scene.time.start);
-  if (w.advection == "wind" && seconds != 0.0) advectMap(map, sceneWindMs(scene.clouds), seconds);
+  if (w.advection == WeatherAdvection::Wind && seconds != 0.0)
+    advectMap(map, sceneWindMs(scene.clouds), seconds);
   return map;
 }
 
@@ -88,7 +91,7 @@ void WeatherSource::evolve(const Scene& scene, const std::string& signature, dou
   // exactly at the steps; elsewhere (a single step, a painted or procedural map) in fixed
   // windows of automaton.window_h.
   std::pair<double, double> window = automatonWindow(timeUnix, scene.weather.automaton);
-  if (mFields && scene.weather.source == "file") {
+  if (mFields && scene.weather.source == WeatherMapSource::File) {
     const std::vector<WeatherStep>& steps = mFields->steps;
     for (size_t i = 0; i + 1 < steps.size(); ++i)
       if (timeUnix >= steps[i].validTimeUnix && timeUnix < steps[i + 1].validTimeUnix)
@@ -109,12 +112,12 @@ void WeatherSource::evolve(const Scene& scene, const std::string& signature, dou
 
 const WeatherMap& WeatherSource::map(const Scene& scene, const IsoTime& frame) {
   const WeatherSettings& w = scene.weather;
-  if (w.advection == "data" && w.source != "file")
+  if (w.advection == WeatherAdvection::Data && w.source != WeatherMapSource::File)
     inputError(
         "weather.advection: data needs source file (the wind comes from the forecast); "
         "use wind for the scene's wind");
   std::string signature;
-  if (w.source == "file") {
+  if (w.source == WeatherMapSource::File) {
     const std::string stamp = filesStamp(scene);
     if (!mFields || stamp != mFieldsStamp) {
       mFields.reset();  // a failed read leaves nothing stale behind
@@ -138,8 +141,9 @@ const WeatherMap& WeatherSource::map(const Scene& scene, const IsoTime& frame) {
   const double t = weatherTimeUnix(scene, frame);
   // Whether the map changes with time: between a file's steps the cover is interpolated,
   // advection carries it, the automaton evolves it.
-  const bool timeDependent = (w.source == "file" && mFields->steps.size() > 1) ||
-                             w.advection != "none" || w.evolution == "ca";
+  const bool timeDependent = (w.source == WeatherMapSource::File && mFields->steps.size() > 1) ||
+                             w.advection != WeatherAdvection::None ||
+                             w.evolution == WeatherEvolution::Ca;
   const std::string base = signature;
   if (timeDependent) {
     std::ostringstream s;
@@ -151,7 +155,7 @@ const WeatherMap& WeatherSource::map(const Scene& scene, const IsoTime& frame) {
     mMap.reset();
     mMapSignature = signature;
     WeatherMap map = moved(scene, t);
-    if (w.evolution == "ca") evolve(scene, base, t, map);
+    if (w.evolution == WeatherEvolution::Ca) evolve(scene, base, t, map);
     mMap = std::move(map);
     ++mRevision;
   }

@@ -124,10 +124,10 @@ TEST(SceneFiles, EveryExampleLoadsAndItsFilesExist) {
        std::filesystem::directory_iterator(configs() / "examples")) {
     SCOPED_TRACE(e.path().filename().string());
     const Scene s = loadSceneFile(e.path());
-    if (s.weather.source == "file") {
+    if (s.weather.source == WeatherMapSource::File) {
       EXPECT_TRUE(std::filesystem::exists(s.resolvePath(s.weather.file))) << s.weather.file;
     }
-    if (s.weather.source == "image") {
+    if (s.weather.source == WeatherMapSource::Image) {
       EXPECT_TRUE(std::filesystem::exists(s.resolvePath(s.weather.image))) << s.weather.image;
     }
     ++examples;

@@ -35,7 +35,7 @@ protected:
 
   Scene scene(const std::string& image) const {
     Scene s;
-    s.weather.source = "image";
+    s.weather.source = WeatherMapSource::Image;
     s.weather.image = image;
     s.weather.region = WeatherRegion{{40.0, 44.0}, {-2.0, 4.0}};
     s.baseDir = mDir;

@@ -22,7 +22,7 @@ using test::catchError;
 
 Scene proceduralScene(double low, double mid, double spread, int resolution = 96, int seed = 1) {
   Scene scene;
-  scene.weather.source = "procedural";
+  scene.weather.source = WeatherMapSource::Procedural;
   scene.weather.region = WeatherRegion{{44.0, 50.0}, {4.0, 13.0}};
   scene.weather.coverLow = low;
   scene.weather.coverMid = mid;
@@ -109,7 +109,7 @@ TEST(WeatherMapProcedural, CoverZeroIsExactlyZeroAndOneExactlyOne) {
 
 TEST(WeatherMapProcedural, LayersAreDecorrelatedAndTypeAndDensityFilled) {
   Scene scene = proceduralScene(0.5, 0.5, 0.5, 128);
-  scene.weather.cloudType = "stratocumulus";
+  scene.weather.cloudType = CloudType::Stratocumulus;
   const WeatherMap map = makeWeatherMap(scene);
   EXPECT_LT(std::abs(correlation(channel(map, 0), channel(map, 1))), 0.25);
   for (const glm::vec4& t : map.texels) {
@@ -209,27 +209,18 @@ TEST(WeatherMapProcedural, TheFbmIsStandardised) {
 
 TEST(WeatherMapProcedural, BadSettingsNameTheKey) {
   Scene scene = proceduralScene(0.3, 0.0, 0.5);
-  scene.weather.cloudType = "nimbus";
+  scene.weather.region = WeatherRegion{{50.0, 40.0}, {5.0, 12.0}};
   Error e = catchError([&] { makeWeatherMap(scene); });
   EXPECT_EQ(e.kind(), ErrorKind::BadInput);
-  EXPECT_NE(std::string(e.what()).find("weather.cloud_type: 'nimbus'"), std::string::npos);
-  scene = proceduralScene(0.3, 0.0, 0.5);
-  scene.weather.region = WeatherRegion{{50.0, 40.0}, {5.0, 12.0}};
-  e = catchError([&] { makeWeatherMap(scene); });
   EXPECT_NE(std::string(e.what()).find("weather.region.lat"), std::string::npos);
-  scene = proceduralScene(0.3, 0.0, 0.5);
-  scene.weather.source = "grib";
-  e = catchError([&] { makeWeatherMap(scene); });
-  EXPECT_NE(std::string(e.what()).find("weather.source: 'grib'"), std::string::npos);
 }
 
 TEST(CloudType, ValuesByFamily) {
-  EXPECT_EQ(cloudTypeValue("stratus"), 0.0f);
-  EXPECT_EQ(cloudTypeValue("altostratus"), 0.0f);
-  EXPECT_EQ(cloudTypeValue("stratocumulus"), 0.5f);
-  EXPECT_EQ(cloudTypeValue("altocumulus"), 0.5f);
-  EXPECT_EQ(cloudTypeValue("cumulus"), 1.0f);
-  EXPECT_EQ(catchError([] { cloudTypeValue("Cumulus"); }).kind(), ErrorKind::BadInput);
+  EXPECT_EQ(cloudTypeValue(CloudType::Stratus), 0.0f);
+  EXPECT_EQ(cloudTypeValue(CloudType::Altostratus), 0.0f);
+  EXPECT_EQ(cloudTypeValue(CloudType::Stratocumulus), 0.5f);
+  EXPECT_EQ(cloudTypeValue(CloudType::Altocumulus), 0.5f);
+  EXPECT_EQ(cloudTypeValue(CloudType::Cumulus), 1.0f);
 }
 
 // A 3 x 2 map by hand: texel (x, y) holds (x + 10 y, ...). Region 40..42N, 0..3E, so texel

@@ -62,13 +62,13 @@ TEST(Advection, AnEastWindMovesTheCloudsEastBySpeedTimesTime) {
 }
 
 TEST(Advection, TheForecastDriftsWithItsWindOnlyOutsideItsSteps) {
-  Scene scene = test::gfsScene(test::kLuRegion, "rh");
+  Scene scene = test::gfsScene(test::kLuRegion, WeatherCover::Rh);
   const WeatherFields fields = readWeatherFile(scene);
   ASSERT_EQ(fields.steps.size(), 1u);
   const double valid = fields.steps[0].validTimeUnix;
   const WeatherMap still =
       weatherMapFromFields(fields, valid + 6 * 3600.0, scene.weather, *scene.weather.region);
-  scene.weather.advection = "data";
+  scene.weather.advection = WeatherAdvection::Data;
   const WeatherMap atStep =
       weatherMapFromFields(fields, valid, scene.weather, *scene.weather.region);
   const WeatherMap later =

@@ -156,7 +156,7 @@ TEST(LayerCover, TccIsTheModelsOwnCover) {
   f.push_back(constant(g, "tcc_mid", 0.0, 0.2f));
   f.push_back(constant(g, "tcc_high", 0.0, kNaN));
   WeatherSettings w;
-  w.cover = "tcc";
+  w.cover = WeatherCover::Tcc;
   const LayerCover c = layerCover(oneStep(g, f), 0.0, w, kTestRegion);
   EXPECT_FLOAT_EQ(c.low[pointAt(g, 45.0, 10.0)], 0.3f);
   EXPECT_FLOAT_EQ(c.low[pointAt(g, -45.0, 10.0)], 0.7f);
@@ -182,13 +182,13 @@ TEST(LayerCover, Errors) {
             "weather.low: synthetic.grib2 has no relative humidity (r) between 800 and 1000 hPa "
             "(it has no r at all)");
   // tcc asked for but absent.
-  w.cover = "tcc";
+  w.cover = WeatherCover::Tcc;
   e = catchError([&] { layerCover(oneStep(g, allLevels(g, 0.5f)), 0.0, w, kTestRegion); });
   EXPECT_EQ(e.kind(), ErrorKind::BadInput);
   EXPECT_NE(std::string(e.what()).find("weather.cover: tcc needs tcc_low"), std::string::npos)
       << e.what();
   // A file without steps.
-  w.cover = "rh";
+  w.cover = WeatherCover::Rh;
   WeatherFields empty;
   empty.file = "empty.nc";
   empty.grid = g;
@@ -411,10 +411,10 @@ TEST(WeatherMapFromFields, ChannelsSizeAndAltitudes) {
   for (LevelField& l : f)
     if (l.pressureHpa <= 450 && l.pressureHpa > 150) l.values.assign(g.size(), 0.5f);
   WeatherSettings w;
-  w.source = "file";
+  w.source = WeatherMapSource::File;
   w.region = {{0.0, 55.0}, {39.0, 105.0}};
   w.resolution = 64;
-  w.cloudType = "stratocumulus";
+  w.cloudType = CloudType::Stratocumulus;
   const WeatherMap map = weatherMapFromFields(oneStep(g, f), 0.0, w, *w.region);
   const glm::uvec2 size = proceduralMapSize(w, *w.region);
   EXPECT_EQ(map.width, size.x);

@@ -19,11 +19,11 @@ inline std::filesystem::path weatherDataDir() {
 }
 
 // A scene whose weather map comes from the GFS GRIB2 fixture over `region` (256 texels along
-// the longer side), cover from relative humidity ("rh") or the model's tcc ("tcc").
-inline Scene gfsScene(const WeatherRegion& region, const std::string& cover) {
+// the longer side), cover from relative humidity (Rh) or the model's tcc (Tcc).
+inline Scene gfsScene(const WeatherRegion& region, WeatherCover cover) {
   Scene scene;
   scene.baseDir = weatherDataDir();
-  scene.weather.source = "file";
+  scene.weather.source = WeatherMapSource::File;
   scene.weather.file = "gfs_2p5deg_r_gh_t_tcc_uv500.grib2";
   scene.weather.cover = cover;
   scene.weather.region = region;

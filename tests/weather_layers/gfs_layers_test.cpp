@@ -47,8 +47,8 @@ std::vector<float> channel(const WeatherMap& map, int c) {
 }
 
 TEST(GfsLayers, LuRegionFromHumidityAndFromTcc) {
-  const Scene rh = test::gfsScene(test::kLuRegion, "rh");
-  const Scene tcc = test::gfsScene(test::kLuRegion, "tcc");
+  const Scene rh = test::gfsScene(test::kLuRegion, WeatherCover::Rh);
+  const Scene tcc = test::gfsScene(test::kLuRegion, WeatherCover::Tcc);
   const WeatherMap a = makeWeatherMap(rh);
   const WeatherMap b = makeWeatherMap(tcc);
   ASSERT_EQ(a.width, 256u);
@@ -93,7 +93,7 @@ TEST(GfsLayers, LuRegionFromHumidityAndFromTcc) {
 
 TEST(GfsLayers, TheSecondRegionCrossesZeroEast) {
   // Europe and the North Atlantic, 35-70N, 30W-30E: across the grid's seam at 0E.
-  const WeatherMap map = makeWeatherMap(test::gfsScene(test::kAtlanticRegion, "rh"));
+  const WeatherMap map = makeWeatherMap(test::gfsScene(test::kAtlanticRegion, WeatherCover::Rh));
   const LayerFigures low = figures(channel(map, 0)), mid = figures(channel(map, 1));
   std::printf("[ gfs ] atlantic: low mean %.3f covered %.3f, mid mean %.3f covered %.3f\n",
               low.mean, low.covered, mid.mean, mid.covered);
@@ -112,7 +112,7 @@ TEST(GfsLayers, TheSecondRegionCrossesZeroEast) {
 TEST(GfsLayers, NetcdfOfTheSameFieldsGivesTheSameMap) {
   // The NetCDF fixture is the GRIB file's r, t and gh from 100 to 1000 hPa through
   // grib_to_netcdf (values packed as 16-bit integers): read by its extension, the same map.
-  const Scene grib = test::gfsScene(test::kLuRegion, "rh");
+  const Scene grib = test::gfsScene(test::kLuRegion, WeatherCover::Rh);
   Scene nc = grib;
   nc.weather.file = "gfs_trop_r_t_gh_era5style.nc";
   const WeatherMap a = makeWeatherMap(grib), b = makeWeatherMap(nc);
@@ -130,7 +130,7 @@ TEST(GfsLayers, NetcdfOfTheSameFieldsGivesTheSameMap) {
 }
 
 TEST(GfsLayers, FileErrors) {
-  Scene scene = test::gfsScene(test::kLuRegion, "rh");
+  Scene scene = test::gfsScene(test::kLuRegion, WeatherCover::Rh);
   scene.weather.file = "no_such_forecast.grib2";
   Error e = catchError([&] { makeWeatherMap(scene); });
   EXPECT_EQ(e.kind(), ErrorKind::BadInput);

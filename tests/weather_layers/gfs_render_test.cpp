@@ -38,7 +38,7 @@ TEST_P(GfsRender, MatchesTheMapAtTheDataCellSize) {
   const RenderCase& c = GetParam();
   Scene scene = test::cloudScene("cumulus_noon",
                                  {"camera.mode=geographic_topdown", "clouds.coverage=calibrated"});
-  const Scene gfs = test::gfsScene(c.region, "rh");
+  const Scene gfs = test::gfsScene(c.region, WeatherCover::Rh);
   scene.baseDir = gfs.baseDir;
   scene.weather = gfs.weather;
   scene.output.width = c.width;
@@ -80,7 +80,7 @@ INSTANTIATE_TEST_SUITE_P(
 TEST_F(GfsHighClouds, SitWhereTheMapsHighCoverSaysAndTheLightKnowsIt) {
   Scene scene = test::cloudScene(
       "cumulus_noon", {"camera.pitch=90", "camera.vertical_fov=20", "high_clouds.resolution=256"});
-  const Scene gfs = test::gfsScene(test::kLuRegion, "rh");
+  const Scene gfs = test::gfsScene(test::kLuRegion, WeatherCover::Rh);
   scene.baseDir = gfs.baseDir;
   scene.weather = gfs.weather;
   scene.output.width = 32;

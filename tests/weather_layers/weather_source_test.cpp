@@ -89,7 +89,7 @@ IsoTime instant(const char* text) {
 }
 
 TEST(WeatherSource, WeatherTimeShowsTheForecastAtAnotherInstantAndMovesOnWithTheFrames) {
-  Scene scene = test::gfsScene(test::kAtlanticRegion, "rh");
+  Scene scene = test::gfsScene(test::kAtlanticRegion, WeatherCover::Rh);
   scene.weather.resolution = 64;
   // The sun of a winter evening over a forecast valid at another time.
   scene.time.start = instant("2023-12-21T16:00:00Z");
@@ -100,7 +100,7 @@ TEST(WeatherSource, WeatherTimeShowsTheForecastAtAnotherInstantAndMovesOnWithThe
   EXPECT_EQ(weatherTimeUnix(scene, scene.time.start), double(scene.time.start.unixSeconds));
 
   scene.weather.time = IsoTime{int64_t(valid) + 3 * 3600, 0.0, 0}.format();
-  scene.weather.advection = "data";
+  scene.weather.advection = WeatherAdvection::Data;
   const double shown = weatherTimeUnix(scene, scene.time.start.plusSeconds(1800.0));
   EXPECT_EQ(shown, valid + 3.5 * 3600.0) << "weather.time plus the frame's time since the start";
   const WeatherMap& moved = source.map(scene, scene.time.start.plusSeconds(1800.0));
@@ -126,7 +126,7 @@ TEST(WeatherSource, APatternReadsOneStepPerFileAndInterpolatesBetweenThem) {
   writeShiftedCopy(dir / "gfs.f006.grib2", 6, true);
   std::ofstream(dir / "notes.txt") << "not a forecast";  // the pattern must not pick it up
 
-  Scene scene = test::gfsScene(test::kAtlanticRegion, "rh");
+  Scene scene = test::gfsScene(test::kAtlanticRegion, WeatherCover::Rh);
   scene.weather.resolution = 64;
   scene.baseDir = dir;
   scene.weather.file = "gfs.f0*.grib2";
@@ -197,7 +197,7 @@ TEST(WeatherSource, TheSceneWindCarriesAProceduralMapFromTheFirstFrame) {
   const WeatherMap still = source.map(scene, scene.time.start.plusSeconds(3 * 3600.0));
   EXPECT_EQ(first.texels, still.texels) << "advection none holds the map";
 
-  scene.weather.advection = "wind";
+  scene.weather.advection = WeatherAdvection::Wind;
   const WeatherMap start = source.map(scene, scene.time.start);
   EXPECT_EQ(start.texels, first.texels) << "the first frame shows the map as made";
   const uint64_t built = source.revision();
@@ -225,7 +225,7 @@ TEST(WeatherSource, TheSceneWindCarriesAProceduralMapFromTheFirstFrame) {
     }
   EXPECT_LT(err, 1e-4) << "over " << n << " texels";
 
-  scene.weather.advection = "data";
+  scene.weather.advection = WeatherAdvection::Data;
   const Error e = test::catchError([&] { source.map(scene, scene.time.start); });
   EXPECT_NE(std::string(e.what()).find("weather.advection: data needs source file"),
             std::string::npos)
@@ -242,7 +242,7 @@ TEST(WeatherSource, TheAutomatonEvolvesTheCoverBetweenWindowEndsOnly) {
   WeatherSource still;
   const WeatherMap plain = still.map(scene, scene.time.start);
 
-  scene.weather.evolution = "ca";
+  scene.weather.evolution = WeatherEvolution::Ca;
   WeatherSource source;
   EXPECT_EQ(source.map(scene, scene.time.start).texels, plain.texels)
       << "at the window's start the map is the data's";
