@@ -76,7 +76,7 @@ TEST_F(CloudLookTest, NoonTopsAreBrighterThanTheClearSkyBesideThem) {
   EXPECT_GT(tops, 1.5 * skyMean);
 }
 
-TEST_F(CloudLookTest, BasesAreBlueGreyNotBrown) {
+TEST_F(CloudLookTest, BasesAreGreyNotBrown) {
   // Looking up at the bases of noon cumulus (60 % cover) 90 degrees from the sun (sun 60
   // degrees up in the south, the view 30 degrees up to the north), so no forward-scattered
   // sunlight brightens them. The darkest third of the opaque cloud pixels, as the viewer
