@@ -202,10 +202,10 @@ void main() {
         stretch = s.density > 0.0 ? 1.0 : min(stretch * 1.5, 4.0);
         if (s.density > 0.0 && params.extinction * s.density * dt > CLOUD_STEP_MAX_TAU &&
             dt > CLOUD_STEP_MIN_M) {
-          // A step deeper than CLOUD_STEP_MAX_TAU optical depths would take the light of its
-          // middle, tens of metres inside, for a surface that is lit at its face: where that
-          // middle falls depends on the ray's altitude, and whole rows of pixels showed the
-          // same bands. Shorten it to that depth and sample its new middle.
+          // A step deeper than CLOUD_STEP_MAX_TAU optical depths would take the density and
+          // light of its middle, tens of metres inside, for the whole step, though what the
+          // eye sees of an opaque cloud lies within an optical depth or two of its face.
+          // Shorten it to that depth and sample its new middle.
           dt = max(CLOUD_STEP_MAX_TAU / (params.extinction * s.density), CLOUD_STEP_MIN_M);
           p = o + d * (t + 0.5 * dt);
           footprint = CLOUD_TOPDOWN != 0 ? 0.0 : max((t + 0.5 * dt) * params.view.forward.w, 0.25 * dt);
