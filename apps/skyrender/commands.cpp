@@ -100,6 +100,14 @@ double numberOption(const CliArgs& args, const std::string& option, double min, 
   return v;
 }
 
+// The Vulkan context options of the environment (SKY_VALIDATION, ...) with the device the
+// command's --gpu picks ("" the default one).
+ContextOptions contextOptions(const CliArgs& args) {
+  ContextOptions options = ContextOptions::fromEnvironment();
+  options.gpu = args.value("--gpu").value_or("");
+  return options;
+}
+
 }  // namespace
 
 int ephemerisCommand(const std::vector<std::string>& argv) {
@@ -222,9 +230,7 @@ int renderCommand(const std::vector<std::string>& argv) {
   if (auto v = args.value("--dump-graph")) graphPath = *v;
   warnIfCacheUnwritable();
 
-  ContextOptions options = ContextOptions::fromEnvironment();
-  options.gpu = args.value("--gpu").value_or("");
-  Context ctx(options);
+  Context ctx(contextOptions(args));
   ShaderCompiler compiler;
   Renderer renderer(ctx, compiler);
   renderer.setBakeProgress(bakeProgressBar());
@@ -298,8 +304,9 @@ CloudVolumeBox boxOption(const std::string& text) {
   for (int a = 0; a < 3; ++a)
     if (v[a + 3] <= v[a]) {
       char why[160];
-      std::snprintf(why, sizeof why, "--box '%s': the maximum %s (%g) must lie above the minimum (%g)",
-                    text.c_str(), axes[a], v[a + 3], v[a]);
+      std::snprintf(why, sizeof why,
+                    "--box '%s': the maximum %s (%g) must lie above the minimum (%g)", text.c_str(),
+                    axes[a], v[a + 3], v[a]);
       inputError(why);
     }
   return {glm::dvec3(v[0], v[1], v[2]), glm::dvec3(v[3], v[4], v[5])};
@@ -328,9 +335,7 @@ int exportVolumeCommand(const std::vector<std::string>& argv) {
   if (box) cloudVolumeGrid(*box, voxelM);
   warnIfCacheUnwritable();
 
-  ContextOptions options = ContextOptions::fromEnvironment();
-  options.gpu = args.value("--gpu").value_or("");
-  Context ctx(options);
+  Context ctx(contextOptions(args));
   ShaderCompiler compiler;
   Renderer renderer(ctx, compiler);
   const CloudVolume volume = renderer.exportCloudVolume(scene, scene.time.start, box, voxelM);
@@ -370,9 +375,7 @@ int schemaCommand(const std::vector<std::string>& argv) {
 int devicesCommand(const std::vector<std::string>& argv) {
   CliArgs args("devices", argv, {"--gpu"}, {}, {});
   args.expectPositionals(0, 0, "");
-  ContextOptions options = ContextOptions::fromEnvironment();
-  options.gpu = args.value("--gpu").value_or("");
-  Context ctx(options);
+  Context ctx(contextOptions(args));
   for (const PhysicalDeviceInfo& d : Context::enumerate(ctx.instance()))
     std::printf("%u: %s (Vulkan %u.%u)%s\n", d.index, d.name.c_str(),
                 VK_API_VERSION_MAJOR(d.apiVersion), VK_API_VERSION_MINOR(d.apiVersion),

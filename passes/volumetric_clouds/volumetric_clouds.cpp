@@ -24,17 +24,25 @@ constexpr float kLightShare = 1e-3f;
 // Top-down rays start this far above the highest layer.
 constexpr double kTopDownMarginM = 500.0;
 
-void readTextures(GraphBuilder& b, const CloudTextures& t) {
-  if (!t.noiseSampler || !t.weatherSampler) internalError("volumetric clouds: no sampler");
-  for (ImageId id : {t.shape, t.detail, t.curl, t.weather, t.weatherCoarse})
-    b.read(id, Access::SampledCompute);
-}
-
 float luminance(const glm::vec3& c) {
   return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b;
 }
 
 }  // namespace
+
+void readCloudTextures(GraphBuilder& b, const CloudTextures& t) {
+  if (!t.noiseSampler || !t.weatherSampler) internalError("cloud textures: no sampler");
+  for (ImageId id : {t.shape, t.detail, t.curl, t.weather, t.weatherCoarse})
+    b.read(id, Access::SampledCompute);
+}
+
+std::vector<Binding> cloudTextureBindings(const CloudTextures& t) {
+  return {Binding::of(VOLUMETRIC_CLOUDS_BINDING_SHAPE, t.shape, t.noiseSampler),
+          Binding::of(VOLUMETRIC_CLOUDS_BINDING_DETAIL, t.detail, t.noiseSampler),
+          Binding::of(VOLUMETRIC_CLOUDS_BINDING_CURL, t.curl, t.noiseSampler),
+          Binding::of(VOLUMETRIC_CLOUDS_BINDING_WEATHER, t.weather, t.weatherSampler),
+          Binding::of(VOLUMETRIC_CLOUDS_BINDING_WEATHER_COARSE, t.weatherCoarse, t.weatherSampler)};
+}
 
 CloudPipelines::CloudPipelines(const Context& ctx, ShaderCompiler& compiler, const char* file,
                                const char* name)
@@ -195,7 +203,7 @@ VolumetricCloudsPass::VolumetricCloudsPass(const Context& ctx, ShaderCompiler& c
 VolumetricCloudsPass::Outputs VolumetricCloudsPass::setup(GraphBuilder& b, const Inputs& in) {
   mInputs = in;
   mPipeline = &mPipelines.get(in.params);
-  readTextures(b, in.textures);
+  readCloudTextures(b, in.textures);
   ImageDesc desc;
   desc.width = in.params.view.size.x;
   desc.height = in.params.view.size.y;
@@ -213,20 +221,14 @@ VolumetricCloudsPass::Outputs VolumetricCloudsPass::setup(GraphBuilder& b, const
 
 void VolumetricCloudsPass::execute(PassContext& ctx) const {
   const auto& size = mInputs.params.view.size;
-  const CloudTextures& t = mInputs.textures;
-  ctx.dispatch(
-      *mPipeline,
-      {Binding::of(VOLUMETRIC_CLOUDS_BINDING_PARAMS, ctx.uniform(mInputs.params)),
-       Binding::of(VOLUMETRIC_CLOUDS_BINDING_LIGHTING, ctx.uniform(mInputs.lighting)),
-       Binding::of(VOLUMETRIC_CLOUDS_BINDING_CLOUDS, mOutputs.clouds),
-       Binding::of(VOLUMETRIC_CLOUDS_BINDING_DEPTH, mOutputs.depth),
-       Binding::of(VOLUMETRIC_CLOUDS_BINDING_STEPS, mOutputs.steps),
-       Binding::of(VOLUMETRIC_CLOUDS_BINDING_SHAPE, t.shape, t.noiseSampler),
-       Binding::of(VOLUMETRIC_CLOUDS_BINDING_DETAIL, t.detail, t.noiseSampler),
-       Binding::of(VOLUMETRIC_CLOUDS_BINDING_CURL, t.curl, t.noiseSampler),
-       Binding::of(VOLUMETRIC_CLOUDS_BINDING_WEATHER, t.weather, t.weatherSampler),
-       Binding::of(VOLUMETRIC_CLOUDS_BINDING_WEATHER_COARSE, t.weatherCoarse, t.weatherSampler)},
-      mPipeline->groupsX(size.x), mPipeline->groupsY(size.y));
+  std::vector<Binding> bindings = cloudTextureBindings(mInputs.textures);
+  bindings.insert(bindings.end(),
+                  {Binding::of(VOLUMETRIC_CLOUDS_BINDING_PARAMS, ctx.uniform(mInputs.params)),
+                   Binding::of(VOLUMETRIC_CLOUDS_BINDING_LIGHTING, ctx.uniform(mInputs.lighting)),
+                   Binding::of(VOLUMETRIC_CLOUDS_BINDING_CLOUDS, mOutputs.clouds),
+                   Binding::of(VOLUMETRIC_CLOUDS_BINDING_DEPTH, mOutputs.depth),
+                   Binding::of(VOLUMETRIC_CLOUDS_BINDING_STEPS, mOutputs.steps)});
+  ctx.dispatch(*mPipeline, bindings, mPipeline->groupsX(size.x), mPipeline->groupsY(size.y));
 }
 
 CloudDensitySlicePass::CloudDensitySlicePass(const Context& ctx, ShaderCompiler& compiler)
@@ -235,7 +237,7 @@ CloudDensitySlicePass::CloudDensitySlicePass(const Context& ctx, ShaderCompiler&
 CloudDensitySlicePass::Outputs CloudDensitySlicePass::setup(GraphBuilder& b, const Inputs& in) {
   mInputs = in;
   mPipeline = &mPipelines.get(in.params);
-  readTextures(b, in.textures);
+  readCloudTextures(b, in.textures);
   ImageDesc desc;
   desc.width = kWidth;
   desc.height = kHeight;
@@ -246,17 +248,11 @@ CloudDensitySlicePass::Outputs CloudDensitySlicePass::setup(GraphBuilder& b, con
 }
 
 void CloudDensitySlicePass::execute(PassContext& ctx) const {
-  const CloudTextures& t = mInputs.textures;
-  ctx.dispatch(
-      *mPipeline,
-      {Binding::of(VOLUMETRIC_CLOUDS_BINDING_PARAMS, ctx.uniform(mInputs.params)),
-       Binding::of(CLOUD_SLICE_BINDING_IMAGE, mOutputs.slice),
-       Binding::of(VOLUMETRIC_CLOUDS_BINDING_SHAPE, t.shape, t.noiseSampler),
-       Binding::of(VOLUMETRIC_CLOUDS_BINDING_DETAIL, t.detail, t.noiseSampler),
-       Binding::of(VOLUMETRIC_CLOUDS_BINDING_CURL, t.curl, t.noiseSampler),
-       Binding::of(VOLUMETRIC_CLOUDS_BINDING_WEATHER, t.weather, t.weatherSampler),
-       Binding::of(VOLUMETRIC_CLOUDS_BINDING_WEATHER_COARSE, t.weatherCoarse, t.weatherSampler)},
-      mPipeline->groupsX(kWidth), mPipeline->groupsY(kHeight));
+  std::vector<Binding> bindings = cloudTextureBindings(mInputs.textures);
+  bindings.insert(bindings.end(),
+                  {Binding::of(VOLUMETRIC_CLOUDS_BINDING_PARAMS, ctx.uniform(mInputs.params)),
+                   Binding::of(CLOUD_SLICE_BINDING_IMAGE, mOutputs.slice)});
+  ctx.dispatch(*mPipeline, bindings, mPipeline->groupsX(kWidth), mPipeline->groupsY(kHeight));
 }
 
 }  // namespace sky

@@ -7,6 +7,7 @@
 #include <array>
 #include <map>
 #include <memory>
+#include <vector>
 
 #include "engine/gpu/compute_pipeline.h"
 #include "engine/graph/frame_graph.h"
@@ -29,6 +30,13 @@ struct CloudTextures {
   ImageId weather, weatherCoarse;           // engine/weather WeatherTexture
   const Sampler* weatherSampler = nullptr;  // linear, clamp
 };
+
+// Every pass that samples the cloud field (the raymarch, the density slice, the volume
+// export) reads these textures in setup and binds them at the same slots in execute
+// (cloud_field.glsl declares them).
+void readCloudTextures(GraphBuilder& b, const CloudTextures& t);
+// The five sampler bindings; the caller appends its own parameters and images.
+std::vector<Binding> cloudTextureBindings(const CloudTextures& t);
 
 // The cloud shaders compiled for the scene's fixed choices (CloudParams.frame x/z/w and
 // .options: ray start, light steps, octaves, phase, energy-conserving steps, coverage mode and
