@@ -24,10 +24,14 @@ void main() {
   float altitude = (1.0 - uv.y) * params.sliceTopM;
   // The point `distance` along the ground at `altitude`, in the camera's ENU frame.
   float R = params.geo.origin.w;
+  // c + (R + altitude) up with c the Earth's centre, its height written as the drop below the
+  // camera's horizon plane, (R + altitude)(1 - cos) = 2 (R + altitude) sin^2(angle / 2): the
+  // sum itself cancels in float to half a metre, which across a sharp cloud edge changes the
+  // density the slice shows.
   float angle = distance / R;
-  vec3 c = geoCentre(params.geo);
-  vec3 up = vec3(sin(angle) * heading, cos(angle));
-  vec3 p = c + (R + altitude) * up;
+  float sh = sin(0.5 * angle);
+  vec3 p = vec3((R + altitude) * sin(angle) * heading,
+                (altitude - params.geo.origin.z) - 2.0 * (R + altitude) * sh * sh);
   CloudSample s;
   cloudSampleAt(p, 0.0, s);
   vec2 wuv;
