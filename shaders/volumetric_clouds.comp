@@ -28,6 +28,11 @@ float gFootprintM = 0.0;
 // offset): a new value for every view sample, so the texel grid of the noise does not show
 // through the shadows as a regular pattern.
 float gLightOffset = 0.5;
+// The optical depth toward the sun [0] and the moon [1] that the last light march of this
+// cloud found, and whether the current sample may take it instead of marching again
+// (CLOUD_LIGHT_REUSE_T).
+float gLightTau[2] = float[2](0.0, 0.0);
+bool gReuseLight = false;
 
 // A light sample stands for a whole light step, tens to thousands of metres: it sees the
 // cloud filtered to a quarter of that (or to the view sample's footprint, the larger), so
@@ -63,8 +68,10 @@ vec3 cloudScattering(vec3 p, vec3 d, CloudSample s, float tauView) {
                     : (s.layer == 0 ? params.moonAtLow.rgb : params.moonAtMid.rgb);
     if (max(E.r, max(E.g, E.b)) <= 0.0) continue;
     vec3 L = i == 0 ? params.sunDirection.xyz : params.moonDirection.xyz;
-    float tau = params.extinction *
-                lightMarchDensity(p, L, params.lightDistanceM, CLOUD_LIGHT_STEPS, gLightOffset);
+    if (!gReuseLight)
+      gLightTau[i] = params.extinction *
+                     lightMarchDensity(p, L, params.lightDistanceM, CLOUD_LIGHT_STEPS, gLightOffset);
+    float tau = gLightTau[i];
     // The phase function is per steradian; in the renderer's units (illuminance 1 = pi x
     // radiance 1, lighting_shared.h) radiance = pi * E * phase.
     S += VIEW_PI * E *
@@ -79,12 +86,13 @@ vec3 cloudScattering(vec3 p, vec3 d, CloudSample s, float tauView) {
   return sigmaT * S;
 }
 
-// The view ray's start offset, a fraction of a step: white noise from a hash of the pixel and
-// the frame (PCG, Jarzynski & Olano 2020), so banding turns into grain with no pattern the eye
-// can lock onto, and successive frames of a time-lapse average it out. An ordered pattern
-// (interleaved gradient noise) showed as a 2-pixel checkerboard in shadows and at edges.
-float startJitter(uvec2 pixel, uint frame) {
-  uvec3 v = uvec3(pixel, frame) * 1664525u + 1013904223u;
+// White noise in [0, 1) from a hash of the pixel, the frame and a sample number (PCG3D,
+// Jarzynski & Olano 2020): the march's jitters, so banding turns into grain with no pattern
+// the eye can lock onto, and successive frames of a time-lapse average it out. An ordered
+// pattern (interleaved gradient noise) showed as a 2-pixel checkerboard in shadows and at
+// edges.
+float pixelHash(uvec2 pixel, uint frame, uint n) {
+  uvec3 v = uvec3(pixel, frame + n * 0x9E3779B9u) * 1664525u + 1013904223u;
   v.x += v.y * v.z;
   v.y += v.z * v.x;
   v.z += v.x * v.y;
@@ -95,9 +103,20 @@ float startJitter(uvec2 pixel, uint frame) {
   return float(v.x >> 8u) * (1.0 / 16777216.0);
 }
 
+// The shape-only clearance (CloudSample.clearance, noise units below the coverage threshold)
+// at which the march may stride 4x through clear air; with less clearance it strides less.
+// 0.3 spares the fringes the strides skipped at the default shape scale (docs/clouds.md).
+#define CLOUD_STRIDE_CLEARANCE 0.3
+
 // The view ray's steps inside a cloud are at most this many optical depths deep (and no
 // shorter than CLOUD_STEP_MIN_M metres).
 #define CLOUD_STEP_MAX_TAU 0.5
+
+// Once the view ray's transmittance is below this, what is left of the pixel (at most this
+// share) is lit with the light march of the sample before, a few metres back in the same
+// cloud, instead of a new march: deep inside an opaque cloud half the samples lie past this
+// point, and the light march is most of a sample's cost.
+#define CLOUD_LIGHT_REUSE_T 0.1
 #define CLOUD_STEP_MIN_M 2.0
 
 // Up to two intervals along the ray (origin o, unit d) where the point lies between the
@@ -168,7 +187,7 @@ void main() {
     vec2 iv[2];
     int n = shellIntervals(o, d, geoCentre(params.geo), R + params.shellBaseM, R + params.shellTopM,
                            R, iv);
-    float jitter = startJitter(id, params.frameIndex) * params.jitter;
+    float jitter = pixelHash(id, params.frameIndex, 0u) * params.jitter;
     int maxSteps = int(params.maxSteps);
     for (int k = 0; k < n && samples < maxSteps; ++k) {
       float t = iv[k].x;
@@ -179,6 +198,9 @@ void main() {
       float tauView = 0.0;
       while (t < iv[k].y && samples < maxSteps && transmittance > params.transmittanceCutoff) {
         stepLen = (params.stepM + params.stepGrowth * t) * stretch;  // Lu: grows with distance
+        // A stretched step's length is random (mean unchanged): what strides still skip turns
+        // into fine grain instead of lines where the strides of neighbouring rays line up.
+        if (stretch > 1.0) stepLen *= 0.5 + pixelHash(id, params.frameIndex, uint(samples) + 1u);
         float dt = min(stepLen, iv[k].y - t);
         vec3 p = o + d * (t + 0.5 * dt);
         // What one sample resolves: a pixel's width at this distance, or a quarter of the step
@@ -199,7 +221,13 @@ void main() {
           stretch = 1.0;
           continue;
         }
-        stretch = s.density > 0.0 ? 1.0 : min(stretch * 1.5, 4.0);
+        // Stride only as far as the clearance says no cloud is near: a stretched step samples
+        // its middle alone and skips what lies between. Striding up to 4x right beside the
+        // clouds missed their thin fringes in the same way along whole rows of the view, whose
+        // rays cross the gap below a cloud in nearly the same steps: horizontal striations.
+        float strideCap = s.density > 0.0 ? 1.0
+                          : clamp(1.0 + 3.0 * s.clearance / CLOUD_STRIDE_CLEARANCE, 1.0, 4.0);
+        stretch = min(stretch * 1.5, strideCap);
         if (s.density > 0.0 && params.extinction * s.density * dt > CLOUD_STEP_MAX_TAU &&
             dt > CLOUD_STEP_MIN_M) {
           // A step deeper than CLOUD_STEP_MAX_TAU optical depths would take the density and
@@ -216,6 +244,7 @@ void main() {
           float sigmaT = params.extinction * s.density;
           gFootprintM = footprint;
           gLightOffset = fract(jitter + 0.6180339887 * float(samples));  // golden-ratio sequence
+          gReuseLight = tauView > 0.0 && transmittance < CLOUD_LIGHT_REUSE_T;
           vec3 S = cloudScattering(p, d, s, tauView + 0.5 * sigmaT * dt);
           float stepT = exp(-sigmaT * dt);  // Lu (19)(20) over one step
           vec3 integrated = CLOUD_ENERGY_CONSERVING != 0 ? integrateStep(S, sigmaT, dt) : S * dt;

@@ -58,6 +58,11 @@ struct CloudSample {
   float hTop;     // distance up to the top of the cloud's range (m)
   float hBottom;  // distance down to its bottom (m)
   float type;     // the weather map's cloud type (0 stratiform, 0.5 cellular, 1 convective)
+  // How far below the coverage threshold the shape alone leaves this point (noise units,
+  // >= 0): 0 in or near a cloud and wherever the outline is not resolved. The detail only
+  // erodes, so a point with a large clearance lies well outside any cloud and the march may
+  // stride there (CLOUD_STRIDE_CLEARANCE in volumetric_clouds.comp).
+  float clearance;
 };
 
 float coverageLutEntry(int index) {
@@ -111,6 +116,7 @@ bool cloudSampleAt(vec3 p, float footprintM, out CloudSample s) {
   s.hTop = 0.0;
   s.hBottom = 0.0;
   s.type = 0.0;
+  s.clearance = 1.0;  // no cloud can be here
   vec3 lla = latLonAltitude(params.geo, p);
   float h = lla.z;
   int layer = (h >= params.lowBaseM && h <= params.lowTopM)   ? 0
@@ -136,13 +142,32 @@ bool cloudSampleAt(vec3 p, float footprintM, out CloudSample s) {
   s.hTop = max(range.y - f, 0.0) * (top - base);
   s.hBottom = max(f - range.x, 0.0) * (top - base);
   if (cover <= 0.0 || s.ph < 0.0 || s.ph > 1.0) return true;
+  s.clearance = 0.0;
+
+  // Far away a sample spans whole clouds (the shape's R has 4 cells a repeat), and the field
+  // there is drawn as its mean: the cover times the height profile times CLOUD_FAR_DENSITY, a
+  // smooth band at the horizon instead of the speckle of clouds hit and missed at random.
+  // Where the outline is not resolved at all no noise is read (the long light step, most
+  // samples near the horizon).
+  const bool tang = CLOUD_TANG != 0;
+  // Lu's height profile (6)(10) and erosion (15) read CMc too: a cell at 30 % cover gets
+  // clouds only 30 % of the layer tall and a third as dense, which no threshold can make look
+  // 30 % covered. Calibrated coverage therefore evaluates them as for full cover (the shape of
+  // a well-developed cloud) and leaves the cover to the calibrated threshold alone; the paper's
+  // mode keeps CMc everywhere. engine/clouds/coverage_calibration.h calibrates the same way.
+  float profileCover = CLOUD_CALIBRATED != 0 ? 1.0 : cover;
+  float shapeCellM = 1.0 / params.shapeRepeatsPerM;
+  float keepOutline = noiseKeep(footprintM, shapeCellM / 4.0);
+  float profile = tang ? tangTypeGradient(s.ph, type) : luGD(s.ph, profileCover);
+  float farDensity = cover * profile * CLOUD_FAR_DENSITY;
+  s.density = farDensity * w.a;
+  if (keepOutline <= 0.0) return true;
 
   vec3 offset = ecefOffset(p);
   vec4 shape = textureLod(shapeNoise, (params.shapeOrigin.xyz + offset) * params.shapeRepeatsPerM, 0.0);
   // Shape channels G, B, A are Worley fbm at 8, 16 and 32 cells a repeat (docs/cloud-noise.md);
   // R (4 cells) stays: it is the cloud's outline, and a metre-wide pixel at 100 km still
   // resolves it.
-  float shapeCellM = 1.0 / params.shapeRepeatsPerM;
   vec3 keepShape = vec3(noiseKeep(footprintM, shapeCellM / 8.0),
                         noiseKeep(footprintM, shapeCellM / 16.0),
                         noiseKeep(footprintM, shapeCellM / 32.0));
@@ -155,37 +180,29 @@ bool cloudSampleAt(vec3 p, float footprintM, out CloudSample s) {
   float threshold = coverageThreshold(layer, type, cover);
   // The detail noise only erodes (Lu (18), Tang's erosion): where the shape alone leaves no
   // cloud there is none, and the costly detail lookup is skipped.
-  const bool tang = CLOUD_TANG != 0;
-  // Lu's height profile (6)(10) and erosion (15) read CMc too: a cell at 30 % cover gets
-  // clouds only 30 % of the layer tall and a third as dense, which no threshold can make look
-  // 30 % covered. Calibrated coverage therefore evaluates them as for full cover (the shape of
-  // a well-developed cloud) and leaves the cover to the calibrated threshold alone; the paper's
-  // mode keeps CMc everywhere. engine/clouds/coverage_calibration.h calibrates the same way.
-  float profileCover = CLOUD_CALIBRATED != 0 ? 1.0 : cover;
-  // Far away a sample spans whole clouds (the shape's R has 4 cells a repeat), and the field
-  // there is drawn as its mean: the cover times the height profile times CLOUD_FAR_DENSITY, a
-  // smooth band at the horizon instead of the speckle of clouds hit and missed at random.
-  float keepOutline = noiseKeep(footprintM, shapeCellM / 4.0);
-  float profile = tang ? tangTypeGradient(s.ph, type) : luGD(s.ph, profileCover);
-  float farDensity = cover * profile * CLOUD_FAR_DENSITY;
-  s.density = farDensity * w.a;
-  if (keepOutline <= 0.0) return true;
-  float shapeOnly = tang ? tangDensity(tangBaseShape(shape, s.ph, type), 0.0, cover, threshold)
+  float baseShape = tang ? tangBaseShape(shape, s.ph, type) : luNStex(shape) * luGS(s.ph, profileCover);
+  float shapeOnly = tang ? tangDensity(baseShape, 0.0, cover, threshold)
                          : luNSfinal(luNStex(shape), luGS(s.ph, profileCover), threshold);
+  // Only where the outline is fully resolved does the shape bound the cloud.
+  if (keepOutline >= 1.0) s.clearance = max(threshold - baseShape, 0.0);
   s.density = mix(farDensity, 0.0, keepOutline) * w.a;
   if (shapeOnly <= 0.0) return true;
-  float density;
-  if (tang) {
-    // Tang: curl noise bends the detail lookup, more at the bottom where the billows are.
+  // Detail finer than the sample resolves is its mean: when none of it is resolved (light
+  // samples of the longer steps), nothing is read.
+  bool anyDetail = keepDetail.x > 0.0;
+  vec3 detail = params.detailMean.rgb;
+  if (anyDetail) {
+    // Curl noise bends the detail lookup, more toward the bottom, so the erosion swirls into
+    // wisps there instead of repeating the detail texture's cells (Tang; Schneider 2015). Lu
+    // has no curl term; ours takes Tang's. The bend leaves the detail's distribution as it
+    // is, so the coverage calibration, which reads the detail unbent, still holds.
     vec2 ground = params.curlOrigin.xy + p.xy;  // east, north on the camera's ground plane
     vec3 curl = textureLod(curlNoise, ground * params.curlRepeatsPerM, 0.0).xyz * 2.0 - 1.0;
     dq += curl * params.curlStrength * (1.0 - s.ph);
-    vec3 detail = mix(params.detailMean.rgb, textureLod(detailNoise, dq, 0.0).rgb, keepDetail);
-    density = tangCloudDensity(shape, detail, s.ph, cover, type, threshold);
-  } else {
-    vec3 detail = mix(params.detailMean.rgb, textureLod(detailNoise, dq, 0.0).rgb, keepDetail);
-    density = luCloudDensity(shape, detail, s.ph, profileCover, threshold);
+    detail = mix(detail, textureLod(detailNoise, dq, 0.0).rgb, keepDetail);
   }
+  float density = tang ? tangCloudDensity(shape, detail, s.ph, cover, type, threshold)
+                       : luCloudDensity(shape, detail, s.ph, profileCover, threshold);
   // The boundary can be no sharper than the sample resolves: the gain falls to 1 as the
   // shape's medium octave (G) fades.
   float sharpness = mix(1.0, params.edgeSharpness, keepShape.x);
