@@ -28,10 +28,11 @@ float gFootprintM = 0.0;
 // offset): a new value for every view sample, so the texel grid of the noise does not show
 // through the shadows as a regular pattern.
 float gLightOffset = 0.5;
-// The optical depth toward the sun [0] and the moon [1] that the last light march of this
-// cloud found, and whether the current sample may take it instead of marching again
-// (CLOUD_LIGHT_REUSE_T).
+// The optical depth toward the sun [0] and the moon [1] that the last light march found, the
+// layer it was marched in (each layer has its own light), and whether the current sample may
+// take it instead of marching again (CLOUD_LIGHT_REUSE_T).
 float gLightTau[2] = float[2](0.0, 0.0);
+int gLightLayer = -1;
 bool gReuseLight = false;
 
 // A light sample stands for a whole light step, tens to thousands of metres: it sees the
@@ -68,9 +69,11 @@ vec3 cloudScattering(vec3 p, vec3 d, CloudSample s, float tauView) {
                     : (s.layer == 0 ? params.moonAtLow.rgb : params.moonAtMid.rgb);
     if (max(E.r, max(E.g, E.b)) <= 0.0) continue;
     vec3 L = i == 0 ? params.sunDirection.xyz : params.moonDirection.xyz;
-    if (!gReuseLight)
+    if (!gReuseLight) {
       gLightTau[i] = params.extinction *
                      lightMarchDensity(p, L, params.lightDistanceM, CLOUD_LIGHT_STEPS, gLightOffset);
+      gLightLayer = s.layer;
+    }
     float tau = gLightTau[i];
     // The phase function is per steradian; in the renderer's units (illuminance 1 = pi x
     // radiance 1, lighting_shared.h) radiance = pi * E * phase.
@@ -111,13 +114,13 @@ float pixelHash(uvec2 pixel, uint frame, uint n) {
 // The view ray's steps inside a cloud are at most this many optical depths deep (and no
 // shorter than CLOUD_STEP_MIN_M metres).
 #define CLOUD_STEP_MAX_TAU 0.5
+#define CLOUD_STEP_MIN_M 2.0
 
 // Once the view ray's transmittance is below this, what is left of the pixel (at most this
 // share) is lit with the light march of the sample before, a few metres back in the same
 // cloud, instead of a new march: deep inside an opaque cloud half the samples lie past this
 // point, and the light march is most of a sample's cost.
 #define CLOUD_LIGHT_REUSE_T 0.1
-#define CLOUD_STEP_MIN_M 2.0
 
 // Up to two intervals along the ray (origin o, unit d) where the point lies between the
 // spheres of radius rIn and rOut around c, before the ray meets the ground sphere rGround.
@@ -244,7 +247,8 @@ void main() {
           float sigmaT = params.extinction * s.density;
           gFootprintM = footprint;
           gLightOffset = fract(jitter + 0.6180339887 * float(samples));  // golden-ratio sequence
-          gReuseLight = tauView > 0.0 && transmittance < CLOUD_LIGHT_REUSE_T;
+          gReuseLight =
+              tauView > 0.0 && transmittance < CLOUD_LIGHT_REUSE_T && s.layer == gLightLayer;
           vec3 S = cloudScattering(p, d, s, tauView + 0.5 * sigmaT * dt);
           float stepT = exp(-sigmaT * dt);  // Lu (19)(20) over one step
           vec3 integrated = CLOUD_ENERGY_CONSERVING != 0 ? integrateStep(S, sigmaT, dt) : S * dt;
