@@ -180,9 +180,11 @@ bool cloudSampleAt(vec3 p, float footprintM, out CloudSample s) {
   float threshold = coverageThreshold(layer, type, cover);
   // The detail noise only erodes (Lu (18), Tang's erosion): where the shape alone leaves no
   // cloud there is none, and the costly detail lookup is skipped.
-  float baseShape = tang ? tangBaseShape(shape, s.ph, type) : luNStex(shape) * luGS(s.ph, profileCover);
+  float nstex = luNStex(shape);  // Lu (12)
+  float gs = luGS(s.ph, profileCover);  // Lu (7)
+  float baseShape = tang ? tangBaseShape(shape, s.ph, type) : nstex * gs;
   float shapeOnly = tang ? tangDensity(baseShape, 0.0, cover, threshold)
-                         : luNSfinal(luNStex(shape), luGS(s.ph, profileCover), threshold);
+                         : luNSfinal(nstex, gs, threshold);  // Lu (17)
   // Only where the outline is fully resolved does the shape bound the cloud.
   if (keepOutline >= 1.0) s.clearance = max(threshold - baseShape, 0.0);
   s.density = mix(farDensity, 0.0, keepOutline) * w.a;
