@@ -53,13 +53,19 @@ std::vector<SliceTexel> cloudyTexels(const RenderedFrame& frame, size_t count) {
   return out;
 }
 
-class CloudVolumeExport : public CloudRenderTest {};
+class CloudVolumeExport : public CloudRenderTest {
+ protected:
+  // The export scene's frame with its density slice, the reference both tests sample.
+  RenderedFrame renderWithSlice(const Scene& scene) {
+    RenderOptions options;
+    options.debugOutputs = {"cloud_density_slice"};
+    return render(scene, options);
+  }
+};
 
 TEST_F(CloudVolumeExport, VoxelsHoldTheRaymarchDensityAtTheirCentres) {
   const Scene scene = exportScene();
-  RenderOptions options;
-  options.debugOutputs = {"cloud_density_slice"};
-  const RenderedFrame frame = render(scene, options);
+  const RenderedFrame frame = renderWithSlice(scene);
   const std::vector<SliceTexel> texels = cloudyTexels(frame, 6);
   ASSERT_EQ(texels.size(), 6u) << "the slice crosses no cloud";
   for (const SliceTexel& t : texels) {
@@ -78,9 +84,7 @@ TEST_F(CloudVolumeExport, VoxelsHoldTheRaymarchDensityAtTheirCentres) {
 
 TEST_F(CloudVolumeExport, TinyGridRoundTripsThroughOpenVdb) {
   const Scene scene = exportScene();
-  RenderOptions options;
-  options.debugOutputs = {"cloud_density_slice"};
-  const RenderedFrame frame = render(scene, options);
+  const RenderedFrame frame = renderWithSlice(scene);
   const std::vector<SliceTexel> texels = cloudyTexels(frame, 1);
   ASSERT_EQ(texels.size(), 1u);
   const glm::dvec3 centre = slicePoint(scene, texels[0].i, texels[0].j);
