@@ -102,6 +102,11 @@ inline glm::vec2 cloudTypeRange(int layer, float t) {
   return s < 1.0f ? glm::mix(k0, k1, s) : glm::mix(k1, k2, s - 1.0f);
 }
 
+inline float cloudTypeTexture(float t) {
+  const float x = std::clamp(t / 0.5f, 0.0f, 1.0f);
+  return x * x * (3.0f - 2.0f * x);  // GLSL smoothstep(0, 0.5, t)
+}
+
 inline float cloudHeightFraction(float layerFraction, glm::vec2 range) {
   return (layerFraction - range.x) / (range.y - range.x);
 }

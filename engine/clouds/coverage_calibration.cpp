@@ -57,6 +57,28 @@ glm::dvec2 columnPosition(int k, glm::vec2 offset) {
   return {x - std::floor(x), y - std::floor(y)};
 }
 
+// The noise samples as a cloud of the column's type sees them: its shape's G, B, A and its
+// detail kept by column.textureKeep, the rest their means (shaders/common/cloud_field.glsl).
+class KeptNoise {
+public:
+  KeptNoise(const NoiseVolume& shape, const NoiseVolume& detail, float keep) : mKeep(keep) {
+    if (keep >= 1.0f) return;  // the means are not needed
+    mShapeMean = channelMeans(shape);
+    mDetailMean = glm::vec3(channelMeans(detail));
+  }
+  glm::vec4 shape(glm::vec4 s) const {
+    if (mKeep >= 1.0f) return s;
+    return {s.r, glm::mix(glm::vec3(mShapeMean.g, mShapeMean.b, mShapeMean.a),
+                          glm::vec3(s.g, s.b, s.a), mKeep)};
+  }
+  glm::vec3 detail(glm::vec3 d) const { return mKeep >= 1.0f ? d : glm::mix(mDetailMean, d, mKeep); }
+
+private:
+  float mKeep;
+  glm::vec4 mShapeMean{0.0f};
+  glm::vec3 mDetailMean{0.0f};
+};
+
 // The noise at every sample of the grid, reduced to what the density reads from it: Lu (12)'s
 // NStex from the shape and Lu (14)'s fbm from the detail (Tang's density reads the same two).
 struct GridSamples {
@@ -74,6 +96,7 @@ GridSamples sampleGrid(const NoiseVolume& shape, const NoiseVolume& detail,
   s.dzM = range * column.thicknessM / grid.heights;
   s.nstex.resize(size_t(s.columns) * size_t(s.heights));
   s.ndfbm.resize(s.nstex.size());
+  const KeptNoise kept(shape, detail, column.textureKeep);
   parallelFor(s.columns, [&](int k) {
     const glm::dvec2 ground = columnPosition(k, grid.offset) * column.shapeScaleM;
     for (int j = 0; j < s.heights; ++j) {
@@ -81,8 +104,9 @@ GridSamples sampleGrid(const NoiseVolume& shape, const NoiseVolume& detail,
       const double z = (column.typeRange.x + ph * range) * column.thicknessM;
       const glm::dvec3 p(ground, z);
       const size_t i = size_t(k) * size_t(s.heights) + size_t(j);
-      s.nstex[i] = luNStex(sampleNoise(shape, glm::vec3(p / column.shapeScaleM)));
-      s.ndfbm[i] = luNDfbm(glm::vec3(sampleNoise(detail, glm::vec3(p / column.detailScaleM))));
+      s.nstex[i] = luNStex(kept.shape(sampleNoise(shape, glm::vec3(p / column.shapeScaleM))));
+      s.ndfbm[i] =
+          luNDfbm(kept.detail(glm::vec3(sampleNoise(detail, glm::vec3(p / column.detailScaleM)))));
     }
   });
   return s;
@@ -237,6 +261,7 @@ double meanColumnOpacity(const NoiseVolume& shape, const NoiseVolume& detail,
   const int columns = grid.columnsPerSide * grid.columnsPerSide;
   const double range = double(column.typeRange.y) - double(column.typeRange.x);
   const double dz = range * column.thicknessM / grid.heights;
+  const KeptNoise kept(shape, detail, column.textureKeep);
   double sum = 0;
   for (int k = 0; k < columns; ++k) {
     const glm::dvec2 ground = columnPosition(k, grid.offset) * column.shapeScaleM;
@@ -244,8 +269,9 @@ double meanColumnOpacity(const NoiseVolume& shape, const NoiseVolume& detail,
     for (int j = 0; j < grid.heights; ++j) {
       const float ph = heightFraction(j, grid.heights);
       const glm::dvec3 p(ground, (column.typeRange.x + ph * range) * column.thicknessM);
-      const glm::vec4 s = sampleNoise(shape, glm::vec3(p / column.shapeScaleM));
-      const glm::vec3 d = glm::vec3(sampleNoise(detail, glm::vec3(p / column.detailScaleM)));
+      const glm::vec4 s = kept.shape(sampleNoise(shape, glm::vec3(p / column.shapeScaleM)));
+      const glm::vec3 d =
+          kept.detail(glm::vec3(sampleNoise(detail, glm::vec3(p / column.detailScaleM))));
       depth += cloudEdgeDensity(column.model == CloudModel::Lu2023
                                     ? luCloudDensity(s, d, ph, cmc, threshold)
                                     : tangCloudDensity(s, d, ph, cover, column.type, threshold),

@@ -35,6 +35,9 @@ struct CoverageColumn {
   float profileCover = -1.0f;
   // The raymarch's cloudEdgeDensity gain applied to each density (1: the density as is).
   float edgeSharpness = 1.0f;
+  // How much of the shape's G, B, A and of the detail the cloud keeps (cloudTypeTexture of the
+  // type): the rest of each is the channel's mean over its volume, as the raymarch has it.
+  float textureKeep = 1.0f;
 };
 
 // Thresholds for cover i / (kCoverageLutSize - 1).

@@ -67,12 +67,16 @@ CoverageTables CloudLayers::coverageTables(const Scene& scene, const WeatherMap&
       // As the shader does in calibrated mode (shaders/common/cloud_field.glsl): Lu's height
       // profile and erosion at full cover, the cover carried by the threshold alone.
       column.profileCover = 1.0f;
-      column.edgeSharpness = static_cast<float>(c.edgeSharpness);
+      // And as it does for the type: the fine structure kept, the boundary sharpened with it.
+      column.textureKeep = clouds::cloudTypeTexture(column.type);
+      column.edgeSharpness =
+          glm::mix(1.0f, static_cast<float>(c.edgeSharpness), column.textureKeep);
       std::ostringstream key;
       key.precision(17);
       key << enumName(column.model) << '|' << layer << '|' << column.type << '|'
           << column.thicknessM << '|' << column.shapeScaleM << '|' << column.detailScaleM << '|'
-          << column.extinction << '|' << column.profileCover << '|' << column.edgeSharpness;
+          << column.extinction << '|' << column.profileCover << '|' << column.edgeSharpness << '|'
+          << column.textureKeep;
       auto it = mLuts.find(key.str());
       if (it == mLuts.end()) {
         it = mLuts

@@ -130,6 +130,15 @@ vec2 cloudTypeRange(int layer, float t) {
   return s < 1.0 ? mix(k0, k1, s) : mix(k1, k2, s - 1.0);
 }
 
+// How much of the noise's fine structure a cloud of type t keeps: 0 for stratiform cloud
+// (stratus, altostratus), 1 from cellular on, smooth between. Our choice, not Lu's or Tang's
+// (their density reads the type only through the height range): the shape's G, B, A octaves,
+// the detail and the boundary sharpening fade with it, so a stratiform layer is a smooth sheet
+// shaped by the shape's low octave alone instead of the cells an altocumulus shows.
+float cloudTypeTexture(float t) {
+  return smoothstep(0.0, 0.5, t);
+}
+
 // Lu's ph: the height fraction inside the cloud's [bottom, top] (layer fractions). Outside the
 // cloud it is < 0 or > 1, and every density function returns 0 there.
 float cloudHeightFraction(float layerFraction, vec2 range) {

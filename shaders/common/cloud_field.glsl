@@ -168,15 +168,18 @@ bool cloudSampleAt(vec3 p, float footprintM, out CloudSample s) {
   // Shape channels G, B, A are Worley fbm at 8, 16 and 32 cells a repeat (docs/cloud-noise.md);
   // R (4 cells) stays: it is the cloud's outline, and a metre-wide pixel at 100 km still
   // resolves it.
-  vec3 keepShape = vec3(noiseKeep(footprintM, shapeCellM / 8.0),
-                        noiseKeep(footprintM, shapeCellM / 16.0),
-                        noiseKeep(footprintM, shapeCellM / 32.0));
+  // A stratiform type keeps less of the fine structure at any footprint (cloudTypeTexture).
+  float typeKeep = cloudTypeTexture(type);
+  vec3 keepShape = typeKeep * vec3(noiseKeep(footprintM, shapeCellM / 8.0),
+                                   noiseKeep(footprintM, shapeCellM / 16.0),
+                                   noiseKeep(footprintM, shapeCellM / 32.0));
   shape.gba = mix(params.shapeMean.gba, shape.gba, keepShape);
   vec3 dq = (params.detailOrigin.xyz + offset) * params.detailRepeatsPerM;
   // Detail R, G, B: Worley fbm at 2, 4, 8 cells (lu2023) or 4, 8, 16 (tang2019).
   float detailCellM = 1.0 / params.detailRepeatsPerM / (CLOUD_TANG != 0 ? 4.0 : 2.0);
-  vec3 keepDetail = vec3(noiseKeep(footprintM, detailCellM), noiseKeep(footprintM, detailCellM / 2.0),
-                         noiseKeep(footprintM, detailCellM / 4.0));
+  vec3 keepDetail = typeKeep * vec3(noiseKeep(footprintM, detailCellM),
+                                    noiseKeep(footprintM, detailCellM / 2.0),
+                                    noiseKeep(footprintM, detailCellM / 4.0));
   float threshold = coverageThreshold(layer, type, cover);
   // The detail noise only erodes (Lu (18), Tang's erosion): where the shape alone leaves no
   // cloud there is none, and the costly detail lookup is skipped.
@@ -206,7 +209,7 @@ bool cloudSampleAt(vec3 p, float footprintM, out CloudSample s) {
   float density = tang ? tangCloudDensity(shape, detail, s.ph, cover, type, threshold)
                        : luCloudDensity(shape, detail, s.ph, profileCover, threshold);
   // The boundary can be no sharper than the sample resolves: the gain falls to 1 as the
-  // shape's medium octave (G) fades.
+  // shape's medium octave (G) fades (and, with it, for stratiform cloud).
   float sharpness = mix(1.0, params.edgeSharpness, keepShape.x);
   s.density = mix(farDensity, cloudEdgeDensity(density, sharpness), keepOutline) * w.a;
   return true;

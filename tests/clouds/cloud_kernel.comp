@@ -130,5 +130,6 @@ void main() {
   put(21, vec4(diffuseTransmittance(tauD, gD), cloudDiffuseInScatter(tauD, gD, strength),
                cloudEdgeDensity(dEdge, kEdge), cloudDiffusionLeak(typeD)));
   put(22, vec4(cloudAmbientDiffuse(r0.xyz, r1.xyz, sigmaT, 2000.0 * r2.w, 2000.0 * r0.w,
-                                   10.0 * r2.x, r1.w, gD, 1.5 * r2.z), 0.0));
+                                   10.0 * r2.x, r1.w, gD, 1.5 * r2.z),
+               cloudTypeTexture(typeD)));
 }

@@ -255,11 +255,11 @@ TEST_F(CloudKernelTest, LightingMatchesItsTwin) {
                 names);
       const float ambientSigma = at(kAmbient, i, 3);
       const char* ambientNames[4] = {"cloudAmbientDiffuse r", "cloudAmbientDiffuse g",
-                                     "cloudAmbientDiffuse b", "unused"};
+                                     "cloudAmbientDiffuse b", "cloudTypeTexture"};
       expectRow(kAmbientDiffuse, i,
                 {cloudAmbientDiffuse(glm::vec3(r0), glm::vec3(r1), ambientSigma, 2000.0f * r2.w,
                                      2000.0f * r0.w, 10.0f * r2.x, r1.w, gD, 1.5f * r2.z),
-                 0.0f},
+                 cloudTypeTexture(typeD)},
                 ambientNames, 2e-4);
     }
     const float stepSigma = at(kIntegrateInputs, i, 0), dt = at(kIntegrateInputs, i, 1);

@@ -51,17 +51,21 @@ TEST_F(CoverageCalibrationTest, CalibratedThresholdsGiveTheCoverOnFreshColumns) 
     int layer;
     float type;
     float profileCover;
+    float textureKeep = 1.0f;  // 0: a stratiform sheet's, fine octaves at their means
   };
   const Case cases[] = {
       {CloudModel::Lu2023, 0, 1.0f, -1.0f},   {CloudModel::Lu2023, 0, 0.0f, -1.0f},
       {CloudModel::Lu2023, 1, 0.5f, -1.0f},   {CloudModel::Lu2023, 0, 1.0f, 1.0f},
       {CloudModel::Lu2023, 1, 0.5f, 1.0f},    {CloudModel::Tang2019, 0, 1.0f, -1.0f},
-      {CloudModel::Tang2019, 0, 0.0f, -1.0f}, {CloudModel::Tang2019, 1, 0.5f, -1.0f}};
+      {CloudModel::Tang2019, 0, 0.0f, -1.0f}, {CloudModel::Tang2019, 1, 0.5f, -1.0f},
+      {CloudModel::Lu2023, 1, 0.0f, 1.0f, 0.0f},  {CloudModel::Tang2019, 0, 0.0f, -1.0f, 0.0f}};
   for (const Case& k : cases) {
     SCOPED_TRACE(std::string(enumName(k.model)) + " layer " + std::to_string(k.layer) + " type " +
-                 std::to_string(k.type) + " profile cover " + std::to_string(k.profileCover));
+                 std::to_string(k.type) + " profile cover " + std::to_string(k.profileCover) +
+                 " texture kept " + std::to_string(k.textureKeep));
     CoverageColumn col = column(k.model, k.layer, k.type);
     col.profileCover = k.profileCover;
+    col.textureKeep = k.textureKeep;
     const CoverageLut lut = calibrateCoverage(sShape, sDetail, col);
     double worst = 0;
     for (int i = 1; i <= 9; ++i) {
@@ -72,7 +76,8 @@ TEST_F(CoverageCalibrationTest, CalibratedThresholdsGiveTheCoverOnFreshColumns) 
       worst = std::max(worst, std::abs(opacity - cover));
     }
     std::cout << enumName(k.model) << " layer " << k.layer << " type " << k.type
-              << " profile cover " << k.profileCover << ": worst |opacity - cover| " << worst
+              << " profile cover " << k.profileCover << " texture kept " << k.textureKeep
+              << ": worst |opacity - cover| " << worst
               << "\n";
   }
 }
