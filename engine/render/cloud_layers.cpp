@@ -101,7 +101,7 @@ CloudLayers::Frame CloudLayers::addTo(FrameGraph& graph, const Scene& scene, con
   f.textures = {noise.shape, noise.detail,   noise.curl,         &mNoise.sampler(),
                 weather.map, weather.coarse, &mWeather.sampler()};
   f.coverage = coverageTables(scene, map);
-  f.noiseMeans = {channelMeans(mNoise.shapeVolume()), channelMeans(mNoise.detailVolume())};
+  f.noiseMeans = {mNoise.shapeMean(), mNoise.detailMean()};
   f.maxCover = map.maxCover();
   f.weatherSize = glm::uvec2(map.width, map.height);
   return f;

@@ -122,8 +122,7 @@ void CloudNoise::load(CloudModel model) {
     uploadImage(mCtx, mShape.image, mShape.state, toFloats(entry->shape.rgba));
     uploadImage(mCtx, mDetail.image, mDetail.state, toFloats(entry->detail.rgba));
     uploadImage(mCtx, mCurl.image, mCurl.state, toFloats(entry->curl));
-    mShapeVolume = std::move(entry->shape);
-    mDetailVolume = std::move(entry->detail);
+    setVolumes(std::move(entry->shape), std::move(entry->detail));
     mActivity.loadedCache = true;
     return;
   }
@@ -159,9 +158,15 @@ void CloudNoise::bake(uint32_t modelId, const std::string& key, const fs::path& 
   } catch (const Error&) {
     // An unwritable cache folder costs a bake next time, not the render.
   }
-  mShapeVolume = std::move(entry.shape);
-  mDetailVolume = std::move(entry.detail);
+  setVolumes(std::move(entry.shape), std::move(entry.detail));
   mActivity.baked = true;
+}
+
+void CloudNoise::setVolumes(NoiseVolume shape, NoiseVolume detail) {
+  mShapeVolume = std::move(shape);
+  mDetailVolume = std::move(detail);
+  mShapeMean = channelMeans(mShapeVolume);
+  mDetailMean = channelMeans(mDetailVolume);
 }
 
 void CloudNoise::addTimings(const FrameResult& result) {

@@ -59,6 +59,10 @@ public:
   // cache), valid until the next addTo with another model.
   const NoiseVolume& shapeVolume() const { return mShapeVolume; }
   const NoiseVolume& detailVolume() const { return mDetailVolume; }
+  // Their channel means (channelMeans), computed once when the volumes change: what the
+  // raymarch's level of detail fades each octave to.
+  glm::vec4 shapeMean() const { return mShapeMean; }
+  glm::vec4 detailMean() const { return mDetailMean; }
 
 private:
   void load(CloudModel model);
@@ -66,6 +70,7 @@ private:
   // Creates the images unless they already have these sizes.
   void allocate(uint32_t detailSize);
   void addTimings(const FrameResult& result);
+  void setVolumes(NoiseVolume shape, NoiseVolume detail);
 
   const Context& mCtx;
   GraphRuntime& mRuntime;
@@ -77,6 +82,7 @@ private:
   PersistentImage mCurl;
   NoiseVolume mShapeVolume;
   NoiseVolume mDetailVolume;
+  glm::vec4 mShapeMean{0.0f}, mDetailMean{0.0f};
   std::optional<CloudModel> mModel;  // what the images hold now
   Activity mActivity;
 };
