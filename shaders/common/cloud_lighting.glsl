@@ -119,7 +119,7 @@ float cloudDiffuseInScatter(float tau, float g, float strength) {
 // The slab keeps the diffuse light it does not let through; a cumulus cell, about as wide as
 // it is tall, loses it through its sides as well, so light toward its far side falls off
 // faster. cloudDiffuseInScatter's depth is scaled by this: 1 for stratiform and cellular
-// cloud (type up to 0.5), rising to 2 for convective cells (type 1). Calibrated against the
+// cloud (type up to 0.5), rising to 3 for convective cells (type 1). Calibrated against the
 // path tracer: the deck's base and the cumulus's lit/shadowed ratio (docs/cloud-model.md).
 float cloudDiffusionLeak(float type) {
   return 1.0 + 2.0 * clamp(2.0 * type - 1.0, 0.0, 1.0);
