@@ -35,13 +35,17 @@ float gLightTau[2] = float[2](0.0, 0.0);
 int gLightLayer = -1;
 bool gReuseLight = false;
 
+// The latitude and longitude along the light march being run (latLonLine through the view
+// sample and the long step's sample, lightLongStepDistance).
+LatLonLine gLightLine;
+
 // A light sample stands for a whole light step, tens to thousands of metres: it sees the
 // cloud filtered to a quarter of that (or to the view sample's footprint, the larger), so
 // the shadow of detail finer than the step does not alias into streaks across the cloud.
 float cloudDensityForLight(vec3 p, float lengthM) {
   ++gLightSamples;
   CloudSample s;
-  cloudSampleAt(p, max(gFootprintM, 0.25 * lengthM), s);
+  cloudSampleAtLla(p, latLonAltitudeOn(gLightLine, p), max(gFootprintM, 0.25 * lengthM), false, s);
   return s.density;
 }
 #include "common/cloud_light_march.glsl"
@@ -70,6 +74,7 @@ vec3 cloudScattering(vec3 p, vec3 d, CloudSample s, float tauView) {
     if (max(E.r, max(E.g, E.b)) <= 0.0) continue;
     vec3 L = i == 0 ? params.sunDirection.xyz : params.moonDirection.xyz;
     if (!gReuseLight) {
+      gLightLine = latLonLine(p, s.latLon, L, lightLongStepDistance(params.lightDistanceM));
       gLightTau[i] = params.extinction *
                      lightMarchDensity(p, L, params.lightDistanceM, CLOUD_LIGHT_STEPS, gLightOffset);
       gLightLayer = s.layer;

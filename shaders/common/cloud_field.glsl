@@ -63,6 +63,7 @@ struct CloudSample {
   // erodes, so a point with a large clearance lies well outside any cloud and the march may
   // stride there (CLOUD_STRIDE_CLEARANCE in volumetric_clouds.comp).
   float clearance;
+  vec2 latLon;    // the point's latitude and longitude (degrees)
 };
 
 float coverageLutEntry(int index) {
@@ -106,10 +107,37 @@ float noiseKeep(float footprintM, float cellM) {
 // a cloud's core density its volume averages to (docs/clouds.md, the horizon).
 #define CLOUD_FAR_DENSITY 0.5
 
-// The cloud at point p, seen by a sample `footprintM` wide (0: full detail). Returns false
-// where no cloud can be (outside both layers, outside the weather region, or where the coarse
-// map has no cover nearby): the caller may step faster there. `s.density` is 0 then.
-bool cloudSampleAt(vec3 p, float footprintM, out CloudSample s) {
+// Latitude and longitude along a straight line, taken linear in the distance through the
+// exact values at its origin and `lengthM` metres on. The line's ground track bends away
+// from that by under s^2 / 2R: 3 m at the light march's 6 km reach, where the weather map's
+// texels are kilometres. The light march takes its samples' latitudes and longitudes from
+// here: latLonAltitude's two arctangents in every light sample were 5 % of the pass.
+struct LatLonLine {
+  vec3 origin;
+  vec3 direction;  // unit
+  vec2 latLon;     // at the origin (degrees)
+  vec2 rate;       // change per metre along the line
+};
+
+LatLonLine latLonLine(vec3 origin, vec2 latLonAtOrigin, vec3 direction, float lengthM) {
+  vec2 change = latLonAltitude(params.geo, origin + direction * lengthM).xy - latLonAtOrigin;
+  change.y -= 360.0 * round(change.y / 360.0);  // across 180 E the short way
+  return LatLonLine(origin, direction, latLonAtOrigin, change / lengthM);
+}
+
+// (latitude, longitude, altitude) of a point p on the line; the altitude is exact (the
+// layers and the height profiles need it to the metre).
+vec3 latLonAltitudeOn(LatLonLine line, vec3 p) {
+  float along = dot(p - line.origin, line.direction);
+  return vec3(line.latLon + line.rate * along, geoAltitude(params.geo, p));
+}
+
+// The cloud at point p, whose latitude, longitude (degrees) and altitude are lla, seen by a
+// sample `footprintM` wide (0: full detail). Returns false where no cloud can be (outside
+// both layers, outside the weather region, or, with `coarseCheck`, where the coarse map has
+// no cover nearby): the caller may step faster there. `s.density` is 0 then. A caller that
+// only wants the density skips the coarse check: the weather map's cover is 0 there too.
+bool cloudSampleAtLla(vec3 p, vec3 lla, float footprintM, bool coarseCheck, out CloudSample s) {
   s.density = 0.0;
   s.layer = -1;
   s.ph = 0.0;
@@ -117,7 +145,7 @@ bool cloudSampleAt(vec3 p, float footprintM, out CloudSample s) {
   s.hBottom = 0.0;
   s.type = 0.0;
   s.clearance = 1.0;  // no cloud can be here
-  vec3 lla = latLonAltitude(params.geo, p);
+  s.latLon = lla.xy;
   float h = lla.z;
   int layer = (h >= params.lowBaseM && h <= params.lowTopM)   ? 0
               : (h >= params.midBaseM && h <= params.midTopM) ? 1
@@ -127,8 +155,10 @@ bool cloudSampleAt(vec3 p, float footprintM, out CloudSample s) {
   if (!regionUv(params.region, lla.x, lla.y, uv)) return false;  // Lu: only inside the region
   // The coarse map holds the largest cover around each block, dilated by a block, so a
   // bilinear value of 0 means no cover anywhere near.
-  vec2 coarse = textureLod(weatherCoarse, uv, 0.0).rg;
-  if ((layer == 0 ? coarse.r : coarse.g) <= 0.0) return false;
+  if (coarseCheck) {
+    vec2 coarse = textureLod(weatherCoarse, uv, 0.0).rg;
+    if ((layer == 0 ? coarse.r : coarse.g) <= 0.0) return false;
+  }
   s.layer = layer;
   vec4 w = textureLod(weatherMap, uv, 0.0);
   float cover = layer == 0 ? w.r : w.g;
@@ -213,6 +243,11 @@ bool cloudSampleAt(vec3 p, float footprintM, out CloudSample s) {
   float sharpness = mix(1.0, params.edgeSharpness, keepShape.x);
   s.density = mix(farDensity, cloudEdgeDensity(density, sharpness), keepOutline) * w.a;
   return true;
+}
+
+// cloudSampleAtLla at p with its exact latitude, longitude and altitude.
+bool cloudSampleAt(vec3 p, float footprintM, out CloudSample s) {
+  return cloudSampleAtLla(p, latLonAltitude(params.geo, p), footprintM, true, s);
 }
 
 #endif
