@@ -107,6 +107,12 @@ inline float cloudTypeTexture(float t) {
   return x * x * (3.0f - 2.0f * x);  // GLSL smoothstep(0, 0.5, t)
 }
 
+inline float cloudRollWeight(int layer, float t) {
+  if (layer != 0) return 0.0f;
+  const float x = std::clamp((std::abs(t - 0.5f) - 0.2f) / 0.1f, 0.0f, 1.0f);
+  return 1.0f - x * x * (3.0f - 2.0f * x);  // GLSL 1 - smoothstep(0.2, 0.3, |t - 0.5|)
+}
+
 inline float cloudHeightFraction(float layerFraction, glm::vec2 range) {
   return (layerFraction - range.x) / (range.y - range.x);
 }

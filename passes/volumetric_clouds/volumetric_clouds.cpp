@@ -19,6 +19,10 @@ constexpr double kDeg = kPi / 180.0;
 
 // Tang's curl noise bends the detail lookup by up to this many detail repeats.
 constexpr float kCurlStrength = 0.1f;
+// Stratocumulus rolls are this many times longer (along the wind) than wide: the shape's
+// 1.25 km cells become streets about 5 km long at the default scale (real cloud streets
+// run tens of kilometres; the noise's repeat bounds them).
+constexpr double kRollStretch = 4.0;
 // A light is marched toward when it gives more than this share of the light at the clouds.
 constexpr float kLightShare = 1e-3f;
 // Top-down rays start this far above the highest layer.
@@ -128,6 +132,16 @@ shared::CloudParams cloudParams(const VolumetricCloudsSettings& settings,
   // noise position's east and north coordinates, reduced by whole repeats (shapeM) likewise.
   const glm::dvec2 ground(glm::dot(noise, enu[0]), glm::dot(noise, enu[1]));
   p.curlOrigin = glm::vec4(glm::vec2(glm::mod(ground, shapeM)), 0.0f, 0.0f);
+  // Stratocumulus rolls run along the wind (cloudRollWeight): the shape noise is stretched
+  // kRollStretch times along it. The stretch is linear, so the camera's stretched position
+  // is reduced by whole repeats in double like the others; it moves columns of the texture
+  // to other columns, so the cover calibration (which reads columns) still holds.
+  const glm::dvec3 axis = std::sin(toward) * enu[0] + std::cos(toward) * enu[1];
+  const double compression = 1.0 - 1.0 / kRollStretch;
+  const glm::dvec3 rolled = noise - compression * glm::dot(noise, axis) * axis;
+  p.rollOrigin = glm::vec4(glm::vec3(glm::mod(rolled, shapeM)), 0.0f);
+  p.rollAxis = glm::vec4(glm::vec3(axis), 0.0f);
+  p.rollCompression = static_cast<float>(compression);
   p.shapeRepeatsPerM = static_cast<float>(1.0 / shapeM);
   p.detailRepeatsPerM = static_cast<float>(1.0 / detailM);
   p.curlRepeatsPerM = static_cast<float>(1.0 / shapeM);

@@ -139,6 +139,17 @@ float cloudTypeTexture(float t) {
   return smoothstep(0.0, 0.5, t);
 }
 
+// How much a low cloud of type t runs in rolls along the wind instead of round cells: 1 for
+// stratocumulus (t = 0.5), fading to 0 by t = 0.2 and t = 0.8, and 0 in the mid layer
+// (altocumulus keeps its small round cells). Our choice, after the boundary-layer rolls that
+// line stratocumulus up in streets along the mean wind (Atkinson & Zhang 1996, "Mesoscale
+// shallow convection in the atmosphere", Rev. Geophys. 34); neither paper has them. The
+// caller stretches the shape noise along the wind by this share (cloud_field.glsl).
+float cloudRollWeight(int layer, float t) {
+  if (layer != 0) return 0.0;
+  return 1.0 - smoothstep(0.2, 0.3, abs(t - 0.5));
+}
+
 // Lu's ph: the height fraction inside the cloud's [bottom, top] (layer fractions). Outside the
 // cloud it is < 0 or > 1, and every density function returns 0 there.
 float cloudHeightFraction(float layerFraction, vec2 range) {

@@ -194,7 +194,17 @@ bool cloudSampleAtLla(vec3 p, vec3 lla, float footprintM, bool coarseCheck, out 
   if (keepOutline <= 0.0) return true;
 
   vec3 offset = ecefOffset(p);
-  vec4 shape = textureLod(shapeNoise, (params.shapeOrigin.xyz + offset) * params.shapeRepeatsPerM, 0.0);
+  // Stratocumulus runs in rolls along the wind (cloudRollWeight): the shape noise stretched
+  // along params.rollAxis. Between cells and rolls the two lookups are blended.
+  float roll = cloudRollWeight(layer, type);
+  vec4 shape = vec4(0.0);
+  if (roll < 1.0)
+    shape = textureLod(shapeNoise, (params.shapeOrigin.xyz + offset) * params.shapeRepeatsPerM, 0.0);
+  if (roll > 0.0) {
+    vec3 rolled = params.rollOrigin.xyz + offset -
+                  params.rollCompression * dot(offset, params.rollAxis.xyz) * params.rollAxis.xyz;
+    shape = mix(shape, textureLod(shapeNoise, rolled * params.shapeRepeatsPerM, 0.0), roll);
+  }
   // Shape channels G, B, A are Worley fbm at 8, 16 and 32 cells a repeat (docs/cloud-noise.md);
   // R (4 cells) stays: it is the cloud's outline, and a metre-wide pixel at 100 km still
   // resolves it.

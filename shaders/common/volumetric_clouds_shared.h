@@ -95,11 +95,21 @@ struct CloudParams {
   float weatherTexelsV;
   float multipleScattering;  // strength of the diffusion term (cloudDiffuseInScatter), 0: off
 
+  // Stratocumulus rolls (cloudRollWeight): the shape noise is looked up with a point's
+  // coordinate along rollAxis shortened by this share, 1 - 1 / (how much longer than wide).
+  float rollCompression;
+  float rollUnused0;  // std140: the rest of the row
+  float rollUnused1;
+  float rollUnused2;
+
   // The camera in each noise texture's Earth-fixed frame (ECEF axes, m, wind drift taken
   // off), reduced by whole repeats of that texture so floats keep their precision.
   vec4 shapeOrigin;   // xyz: for the shape noise (repeat 1 / shapeRepeatsPerM)
   vec4 detailOrigin;  // xyz: for the detail noise (repeat 1 / detailRepeatsPerM)
   vec4 curlOrigin;    // xy: east and north on the ground plane at the camera (curl noise)
+  vec4 rollOrigin;    // xyz: shapeOrigin in the rolls' frame (shortened along rollAxis), reduced
+                      // by whole repeats likewise
+  vec4 rollAxis;      // xyz: unit ECEF direction the stratocumulus rolls run along (the wind's)
   vec4 keyDirection;  // xyz: unit direction to the brighter light at the clouds (ENU)
   vec4 sunDirection;  // xyz: unit direction to the sun (ENU)
   vec4 moonDirection; // xyz: to the moon
@@ -120,7 +130,7 @@ SKY_SHARED_END
 
 #ifdef __cplusplus
 static_assert(sizeof(sky::shared::CloudParams) ==
-                  64 + 64 + 16 + 10 * 16 + 14 * 16 + CLOUD_COVERAGE_LUT_VEC4S * 16,
+                  64 + 64 + 16 + 11 * 16 + 16 * 16 + CLOUD_COVERAGE_LUT_VEC4S * 16,
               "std140 layout of CloudParams");
 #endif
 #endif

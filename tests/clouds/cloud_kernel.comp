@@ -132,4 +132,5 @@ void main() {
   put(22, vec4(cloudAmbientDiffuse(r0.xyz, r1.xyz, sigmaT, 2000.0 * r2.w, 2000.0 * r0.w,
                                    10.0 * r2.x, r1.w, gD, 1.5 * r2.z),
                cloudTypeTexture(typeD)));
+  put(23, vec4(cloudRollWeight(0, typeD), cloudRollWeight(1, typeD), 0.0, 0.0));
 }

@@ -29,7 +29,7 @@ using namespace sky::clouds;
 
 constexpr int kQueries = 256;  // KERNEL_QUERIES in cloud_kernel.comp
 constexpr int kGroup = 64;     // KERNEL_GROUP
-constexpr int kRows = 23;
+constexpr int kRows = 24;
 
 // What each row of the results image holds (cloud_kernel.comp writes them in this order).
 enum KernelRow {
@@ -56,6 +56,7 @@ enum KernelRow {
   kEnergy,
   kDiffusion,       // diffuseTransmittance, cloudDiffuseInScatter, cloudEdgeDensity, leak
   kAmbientDiffuse,  // cloudAmbientDiffuse
+  kRollWeight,      // cloudRollWeight, low and mid layer
 };
 
 // Float maths on lavapipe against float maths in C++: exp, log, pow and division differ in the
@@ -261,6 +262,9 @@ TEST_F(CloudKernelTest, LightingMatchesItsTwin) {
                                      2000.0f * r0.w, 10.0f * r2.x, r1.w, gD, 1.5f * r2.z),
                  cloudTypeTexture(typeD)},
                 ambientNames, 2e-4);
+      const char* rollNames[4] = {"cloudRollWeight low", "cloudRollWeight mid", "", ""};
+      expectRow(kRollWeight, i, {cloudRollWeight(0, typeD), cloudRollWeight(1, typeD), 0.0f, 0.0f},
+                rollNames);
     }
     const float stepSigma = at(kIntegrateInputs, i, 0), dt = at(kIntegrateInputs, i, 1);
     {

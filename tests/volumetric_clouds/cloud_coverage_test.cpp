@@ -21,7 +21,8 @@ struct CoverageCase {
   const char* name;
   CloudModel model;
   CloudCoverageMode coverage;
-  bool mid;  // altocumulus in the mid layer instead of cumulus in the low one
+  bool mid;  // altocumulus in the mid layer instead of a low cloud
+  const char* lowType = "cumulus";  // the low cloud (stratocumulus: rolls, cloudRollWeight)
 };
 
 void PrintTo(const CoverageCase& c, std::ostream* os) {
@@ -40,7 +41,7 @@ protected:
         {"camera.mode=geographic_topdown", "output.width=256", "output.height=256",
          "weather.region.lat=[45, 50]", "weather.region.lon=[5, 12]", "weather.spread=1",
          "weather.scale_km=150", "weather.cover_low=0", layerCover,
-         std::string("weather.cloud_type=") + (c.mid ? "altocumulus" : "cumulus"),
+         std::string("weather.cloud_type=") + (c.mid ? "altocumulus" : c.lowType),
          std::string("clouds.model=") + enumName(c.model),
          std::string("clouds.coverage=") + enumName(c.coverage)});
     const RenderedFrame frame = render(scene);
@@ -83,6 +84,8 @@ INSTANTIATE_TEST_SUITE_P(
         CoverageCase{"lu2023_low_calibrated", CloudModel::Lu2023, CloudCoverageMode::Calibrated,
                      false},
         CoverageCase{"lu2023_low_paper", CloudModel::Lu2023, CloudCoverageMode::Paper, false},
+        CoverageCase{"lu2023_stratocumulus_calibrated", CloudModel::Lu2023,
+                     CloudCoverageMode::Calibrated, false, "stratocumulus"},
         CoverageCase{"lu2023_mid_calibrated", CloudModel::Lu2023, CloudCoverageMode::Calibrated,
                      true},
         CoverageCase{"lu2023_mid_paper", CloudModel::Lu2023, CloudCoverageMode::Paper, true},
