@@ -28,12 +28,14 @@ float gFootprintM = 0.0;
 // offset): a new value for every view sample, so the texel grid of the noise does not show
 // through the shadows as a regular pattern.
 float gLightOffset = 0.5;
-// The optical depth toward the sun [0] and the moon [1] that the last light march found, the
-// layer it was marched in (each layer has its own light), and whether the current sample may
-// take it instead of marching again (CLOUD_LIGHT_REUSE_T).
-float gLightTau[2] = float[2](0.0, 0.0);
-int gLightLayer = -1;
-bool gReuseLight = false;
+// The light of the view ray's current cloud: the optical depth toward the sun (x) and the
+// moon (y) that its last light march found, the layer it was marched in (each layer has its
+// own light), and whether a march in this cloud has run yet (CLOUD_LIGHT_REUSE_T).
+struct CloudLight {
+  vec2 tau;
+  int layer;
+  bool haveTau;
+};
 
 // The latitude and longitude along the light march being run (latLonLine through the view
 // sample and the long step's sample, lightLongStepDistance).
@@ -50,48 +52,66 @@ float cloudDensityForLight(vec3 p, float lengthM) {
 }
 #include "common/cloud_light_march.glsl"
 
-// Light scattered toward the eye per metre at p (before the view ray's own attenuation):
-// the sun and the moon through the cloud toward each (Lu (24) with the clamp (22), the phase
-// (23) and the multiple-scattering octaves, plus the diffusion term), and the sky above and
-// the ground below (Tang's slab ambient with diffusion). Scattering equals extinction: cloud
-// droplets barely absorb.
 // The phase function's mean cosine, the asymmetry the diffusion term sees.
 float meanCosine() {
   return CLOUD_DUAL_LOBE != 0 ? mix(params.g, params.gBack, params.backWeight) : params.g;
 }
 
-// tauView: the optical depth along the view ray from where it entered this cloud.
-vec3 cloudScattering(vec3 p, vec3 d, CloudSample s, float tauView) {
-  float sigmaT = params.extinction * s.density;
+// The sun's (i = 0) or the moon's (1) illuminance at a layer, and whether the march lights
+// with it at all (not when too dim to matter next to the other, or below the horizon).
+vec3 keyLightAt(int i, int layer) {
+  return i == 0 ? (layer == 0 ? params.sunAtLow.rgb : params.sunAtMid.rgb)
+                : (layer == 0 ? params.moonAtLow.rgb : params.moonAtMid.rgb);
+}
+bool keyLightMarched(int i, int layer) {
+  vec3 E = keyLightAt(i, layer);
+  return (i == 0 ? params.sunMarched : params.moonMarched) != 0.0 && max(E.r, max(E.g, E.b)) > 0.0;
+}
+
+// Lu (24): the optical depth from the cloud sample s at p toward the sun (x) and the moon (y).
+vec2 marchKeyLights(vec3 p, CloudSample s) {
+  vec2 tau = vec2(0.0);
+  for (int i = 0; i < 2; ++i) {
+    if (!keyLightMarched(i, s.layer)) continue;
+    vec3 L = i == 0 ? params.sunDirection.xyz : params.moonDirection.xyz;
+    gLightLine = latLonLine(p, s.latLon, L, lightLongStepDistance(params.lightDistanceM));
+    tau[i] = params.extinction *
+             lightMarchDensity(p, L, params.lightDistanceM, CLOUD_LIGHT_STEPS, gLightOffset);
+  }
+  return tau;
+}
+
+// The sun's and the moon's light that a cloud sample of `layer` and `type` scatters toward
+// the eye (direction d) per unit of extinction, given the optical depth toward each: Lu (24)
+// with the clamp (22), the phase (23) and the multiple-scattering octaves, plus the diffusion
+// term. Scattering equals extinction: cloud droplets barely absorb.
+vec3 cloudKeyLightScattering(vec3 d, int layer, float type, vec2 tau) {
   vec3 S = vec3(0.0);
   // Lu (22): the attenuation is at most that of ac times the densest path toward the light.
   float tauClamp = params.extinction * params.attenuationClamp * lightMarchReach(params.lightDistanceM);
   for (int i = 0; i < 2; ++i) {
-    float marched = i == 0 ? params.sunMarched : params.moonMarched;
-    if (marched == 0.0) continue;  // too dim to matter next to the other
-    vec3 E = i == 0 ? (s.layer == 0 ? params.sunAtLow.rgb : params.sunAtMid.rgb)
-                    : (s.layer == 0 ? params.moonAtLow.rgb : params.moonAtMid.rgb);
-    if (max(E.r, max(E.g, E.b)) <= 0.0) continue;
+    if (!keyLightMarched(i, layer)) continue;
+    vec3 E = keyLightAt(i, layer);
     vec3 L = i == 0 ? params.sunDirection.xyz : params.moonDirection.xyz;
-    if (!gReuseLight) {
-      gLightLine = latLonLine(p, s.latLon, L, lightLongStepDistance(params.lightDistanceM));
-      gLightTau[i] = params.extinction *
-                     lightMarchDensity(p, L, params.lightDistanceM, CLOUD_LIGHT_STEPS, gLightOffset);
-      gLightLayer = s.layer;
-    }
-    float tau = gLightTau[i];
     // The phase function is per steradian; in the renderer's units (illuminance 1 = pi x
     // radiance 1, lighting_shared.h) radiance = pi * E * phase.
     S += VIEW_PI * E *
-         cloudInScatter(tau, tauClamp, dot(d, L), params.g, params.gBack, params.backWeight,
+         cloudInScatter(tau[i], tauClamp, dot(d, L), params.g, params.gBack, params.backWeight,
                         CLOUD_DUAL_LOBE, CLOUD_OCTAVES);
-    S += E * cloudDiffuseInScatter(tau * cloudDiffusionLeak(s.type), meanCosine(),
+    S += E * cloudDiffuseInScatter(tau[i] * cloudDiffusionLeak(type), meanCosine(),
                                    params.multipleScattering);
   }
+  return S;
+}
+
+// The sky above and the ground below scattered toward the eye per unit of extinction (Tang's
+// slab ambient with diffusion); tauView: the optical depth along the view ray from where it
+// entered this cloud.
+vec3 cloudAmbientScattering(vec3 d, CloudSample s, float tauView) {
+  float sigmaT = params.extinction * s.density;
   float viewDown = clamp(0.5 - 0.5 * d.z, 0.0, 1.0);
-  S += cloudAmbientDiffuse(params.ambientTop.rgb, params.ambientBottom.rgb, sigmaT, s.hTop,
-                           s.hBottom, tauView, viewDown, meanCosine(), params.multipleScattering);
-  return sigmaT * S;
+  return cloudAmbientDiffuse(params.ambientTop.rgb, params.ambientBottom.rgb, sigmaT, s.hTop,
+                             s.hBottom, tauView, viewDown, meanCosine(), params.multipleScattering);
 }
 
 // White noise in [0, 1) from a hash of the pixel, the frame and a sample number (PCG3D,
@@ -120,6 +140,7 @@ float pixelHash(uvec2 pixel, uint frame, uint n) {
 // shorter than CLOUD_STEP_MIN_M metres).
 #define CLOUD_STEP_MAX_TAU 0.5
 #define CLOUD_STEP_MIN_M 2.0
+#define CLOUD_NO_DEPTH_LIMIT 1e30
 
 // Once the view ray's transmittance is below this, what is left of the pixel (at most this
 // share) is lit with the light march of the sample before, a few metres back in the same
@@ -197,6 +218,7 @@ void main() {
                            R, iv);
     float jitter = pixelHash(id, params.frameIndex, 0u) * params.jitter;
     int maxSteps = int(params.maxSteps);
+    CloudLight light = CloudLight(vec2(0.0), -1, false);
     for (int k = 0; k < n && samples < maxSteps; ++k) {
       float t = iv[k].x;
       float stepLen = params.stepM + params.stepGrowth * t;
@@ -204,12 +226,14 @@ void main() {
       // Through clear air the step stretches (up to 4x) and shrinks back at the first cloud.
       float stretch = 1.0;
       float tauView = 0.0;
+      // The longest step the density of the sample before allows (CLOUD_STEP_MAX_TAU).
+      float depthLimit = CLOUD_NO_DEPTH_LIMIT;
       while (t < iv[k].y && samples < maxSteps && transmittance > params.transmittanceCutoff) {
         stepLen = (params.stepM + params.stepGrowth * t) * stretch;  // Lu: grows with distance
         // A stretched step's length is random (mean unchanged): what strides still skip turns
         // into fine grain instead of lines where the strides of neighbouring rays line up.
         if (stretch > 1.0) stepLen *= 0.5 + pixelHash(id, params.frameIndex, uint(samples) + 1u);
-        float dt = min(stepLen, iv[k].y - t);
+        float dt = min(min(stepLen, depthLimit), iv[k].y - t);
         vec3 p = o + d * (t + 0.5 * dt);
         // What one sample resolves: a pixel's width at this distance, or a quarter of the step
         // along the ray, the larger (top-down: full detail, the cover is measured there).
@@ -219,16 +243,29 @@ void main() {
         if (!cloudSampleAt(p, footprint, s)) {
           // Outside the region or far from any cover: nothing to sample; stride on (the coarse
           // map is dilated by a whole block, kilometres, so a double step cannot jump a cloud).
+          light.haveTau = false;
+          depthLimit = CLOUD_NO_DEPTH_LIMIT;
           t += 2.0 * dt;
           continue;
         }
         ++samples;
-        if (s.density > 0.0 && stretch > 1.0) {
-          // A cloud begins somewhere inside this long step: march it again from its start at
-          // the normal step, so cloud edges do not take the stretched step's coarse spacing.
+        // A step deeper than CLOUD_STEP_MAX_TAU optical depths would take the density and
+        // light of its middle, tens of metres inside, for the whole step, though what the eye
+        // sees of an opaque cloud lies within an optical depth or two of its face. So each
+        // step is no longer than that depth at the density of the sample before it; where the
+        // density rises within a step the next one is shorter.
+        float limit = s.density > 0.0
+                          ? max(CLOUD_STEP_MAX_TAU / (params.extinction * s.density), CLOUD_STEP_MIN_M)
+                          : CLOUD_NO_DEPTH_LIMIT;
+        if (s.density > 0.0 && (stretch > 1.0 || (tauView <= 0.0 && dt > 1.01 * limit))) {
+          // A cloud begins somewhere inside this step, a stretched one or one too deep for it:
+          // march it again from its start at the normal step no deeper than that, so cloud
+          // edges take neither the stretched step's coarse spacing nor a deep first sample.
           stretch = 1.0;
+          depthLimit = limit;
           continue;
         }
+        depthLimit = limit;
         // Stride only as far as the clearance says no cloud is near: a stretched step samples
         // its middle alone and skips what lies between. Striding up to 4x right beside the
         // clouds missed their thin fringes in the same way along whole rows of the view, whose
@@ -236,32 +273,30 @@ void main() {
         float strideCap = s.density > 0.0 ? 1.0
                           : clamp(1.0 + 3.0 * s.clearance / CLOUD_STRIDE_CLEARANCE, 1.0, 4.0);
         stretch = min(stretch * 1.5, strideCap);
-        if (s.density > 0.0 && params.extinction * s.density * dt > CLOUD_STEP_MAX_TAU &&
-            dt > CLOUD_STEP_MIN_M) {
-          // A step deeper than CLOUD_STEP_MAX_TAU optical depths would take the density and
-          // light of its middle, tens of metres inside, for the whole step, though what the
-          // eye sees of an opaque cloud lies within an optical depth or two of its face.
-          // Shorten it to that depth and sample its new middle.
-          dt = max(CLOUD_STEP_MAX_TAU / (params.extinction * s.density), CLOUD_STEP_MIN_M);
-          p = o + d * (t + 0.5 * dt);
-          footprint = CLOUD_TOPDOWN != 0 ? 0.0 : max((t + 0.5 * dt) * params.view.forward.w, 0.25 * dt);
-          cloudSampleAt(p, footprint, s);
-          ++samples;
-        }
         if (s.density > 0.0) {
           float sigmaT = params.extinction * s.density;
-          gFootprintM = footprint;
-          gLightOffset = fract(jitter + 0.6180339887 * float(samples));  // golden-ratio sequence
-          gReuseLight =
-              tauView > 0.0 && transmittance < CLOUD_LIGHT_REUSE_T && s.layer == gLightLayer;
-          vec3 S = cloudScattering(p, d, s, tauView + 0.5 * sigmaT * dt);
           float stepT = exp(-sigmaT * dt);  // Lu (19)(20) over one step
-          vec3 integrated = CLOUD_ENERGY_CONSERVING != 0 ? integrateStep(S, sigmaT, dt) : S * dt;
-          radiance += transmittance * integrated;
+          // The step's integral of the in-scattered light S is weight x (S per unit of
+          // extinction): integrateStep is linear in S.
+          float weight = transmittance * (CLOUD_ENERGY_CONSERVING != 0
+                                              ? integrateStep(vec3(sigmaT), sigmaT, dt).x
+                                              : sigmaT * dt);
+          radiance += weight * cloudAmbientScattering(d, s, tauView + 0.5 * sigmaT * dt);
+          if (tauView > 0.0 && light.haveTau && s.layer == light.layer &&
+              transmittance < CLOUD_LIGHT_REUSE_T) {
+            // The tail: the light march of the sample before.
+            radiance += weight * cloudKeyLightScattering(d, s.layer, s.type, light.tau);
+          } else {
+            gFootprintM = footprint;
+            gLightOffset = fract(jitter + 0.6180339887 * float(samples));  // golden-ratio sequence
+            light = CloudLight(marchKeyLights(p, s), s.layer, true);
+            radiance += weight * cloudKeyLightScattering(d, s.layer, s.type, light.tau);
+          }
           depthSum += transmittance * (1.0 - stepT) * (t + 0.5 * dt);
           transmittance *= stepT;
           tauView += sigmaT * dt;
         } else {
+          light.haveTau = false;
           tauView = 0.0;  // out of this cloud: the next one is entered afresh
         }
         t += dt;

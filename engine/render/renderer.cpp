@@ -236,7 +236,8 @@ RenderedFrame Renderer::render(const Scene& scene, const IsoTime& time,
     out.cloudNoise = mClouds.noiseActivity();
     VolumetricCloudsPass::Inputs in;
     in.params = cloudParams(setup.volumetric, out.lighting, time, view, cloudFrame.maxCover,
-                            cloudFrame.weatherSize, cloudFrame.coverage, cloudFrame.noiseMeans);
+                            cloudFrame.weatherSize, cloudFrame.coverage, cloudFrame.noiseMeans,
+                            cloudFrame.lowRolls);
     in.lighting = out.lighting.gpu;
     in.textures = cloudFrame.textures;
     clouds = graph.add(mVolumetric, in);
@@ -338,7 +339,8 @@ CloudVolume Renderer::exportCloudVolume(const Scene& scene, const IsoTime& time,
   // The raymarch's own parameters, so the grid holds the very field it marches through.
   CloudVolumeExportPass::Inputs in;
   in.params = cloudParams(setup.volumetric, setup.lighting, time, view, cloudFrame.maxCover,
-                          cloudFrame.weatherSize, cloudFrame.coverage, cloudFrame.noiseMeans);
+                          cloudFrame.weatherSize, cloudFrame.coverage, cloudFrame.noiseMeans,
+                          cloudFrame.lowRolls);
   in.box = grid.params;
   in.textures = cloudFrame.textures;
   graph.requestOutput(graph.add(mVolumeExport, in).grid, "cloud_volume");

@@ -53,18 +53,19 @@ CloudPipelines::CloudPipelines(const Context& ctx, ShaderCompiler& compiler, con
     : mCtx(ctx), mCompiler(compiler), mFile(file), mName(name) {}
 
 const ComputePipeline& CloudPipelines::get(const shared::CloudParams& p) {
-  const std::array<uint32_t, 7> key = {p.frameKind == CLOUD_FRAME_TOPDOWN ? 1u : 0u,
+  const std::array<uint32_t, 8> key = {p.frameKind == CLOUD_FRAME_TOPDOWN ? 1u : 0u,
                                        p.lightSteps,
                                        p.octaves,
                                        p.phaseKind,
                                        p.energyConserving,
                                        p.calibratedCoverage,
-                                       p.model};
+                                       p.model,
+                                       p.rolls};
   std::unique_ptr<ComputePipeline>& pipeline = mPipelines[key];
   if (!pipeline) {
-    const char* names[7] = {"CLOUD_TOPDOWN",   "CLOUD_LIGHT_STEPS",       "CLOUD_OCTAVES",
+    const char* names[8] = {"CLOUD_TOPDOWN",   "CLOUD_LIGHT_STEPS",       "CLOUD_OCTAVES",
                             "CLOUD_DUAL_LOBE", "CLOUD_ENERGY_CONSERVING", "CLOUD_CALIBRATED",
-                            "CLOUD_TANG"};
+                            "CLOUD_TANG",      "CLOUD_ROLLS"};
     std::vector<ShaderDefine> defines;
     for (size_t i = 0; i < key.size(); ++i) defines.push_back({names[i], std::to_string(key[i])});
     CompiledShader shader = compileForDevice(mCtx, mCompiler, mFile, defines);
@@ -86,7 +87,7 @@ shared::CloudParams cloudParams(const VolumetricCloudsSettings& settings,
                                 const LightingState& lighting, const IsoTime& time,
                                 const shared::ViewState& view, const glm::vec2& maxCover,
                                 const glm::uvec2& weatherSize, const CoverageTables& coverage,
-                                const NoiseMeans& noiseMeans) {
+                                const NoiseMeans& noiseMeans, bool lowRolls) {
   const CloudSettings& c = settings.clouds;
   const WeatherRegion& region = settings.region;
   const CloudFrameGeometry g = cloudFrameGeometry(settings);
@@ -142,6 +143,7 @@ shared::CloudParams cloudParams(const VolumetricCloudsSettings& settings,
   p.rollOrigin = glm::vec4(glm::vec3(glm::mod(rolled, shapeM)), 0.0f);
   p.rollAxis = glm::vec4(glm::vec3(axis), 0.0f);
   p.rollCompression = static_cast<float>(compression);
+  p.rolls = lowRolls ? 1u : 0u;
   p.shapeRepeatsPerM = static_cast<float>(1.0 / shapeM);
   p.detailRepeatsPerM = static_cast<float>(1.0 / detailM);
   p.curlRepeatsPerM = static_cast<float>(1.0 / shapeM);

@@ -52,7 +52,7 @@ private:
   ShaderCompiler& mCompiler;
   const char* mFile;
   const char* mName;
-  std::map<std::array<uint32_t, 7>, std::unique_ptr<ComputePipeline>> mPipelines;
+  std::map<std::array<uint32_t, 8>, std::unique_ptr<ComputePipeline>> mPipelines;
 };
 
 class VolumetricCloudsPass {
@@ -138,11 +138,12 @@ struct NoiseMeans {
 // The pass's uniforms for one frame at `time`: the layers and shells, the frame, the wind's
 // drift of the noise since settings.timeStart, the key light and its illuminance at each
 // layer's altitude, the ambient light, the coverage tables and the noise means. `maxCover` is
-// the map's largest (low, mid) cover; `weatherSize` its texel counts.
+// the map's largest (low, mid) cover; `weatherSize` its texel counts; `lowRolls` whether any
+// of its low cloud has rolls (cloudRollWeight, CloudLayers::Frame::lowRolls).
 shared::CloudParams cloudParams(const VolumetricCloudsSettings& settings,
                                 const LightingState& lighting, const IsoTime& time,
                                 const shared::ViewState& view, const glm::vec2& maxCover,
                                 const glm::uvec2& weatherSize, const CoverageTables& coverage,
-                                const NoiseMeans& noiseMeans);
+                                const NoiseMeans& noiseMeans, bool lowRolls);
 
 }  // namespace sky

@@ -14,11 +14,11 @@
 
 // The scene's fixed choices are compile-time constants, one pipeline per combination
 // (passes/volumetric_clouds, CloudPipelines): CLOUD_TOPDOWN, CLOUD_LIGHT_STEPS, CLOUD_OCTAVES,
-// CLOUD_DUAL_LOBE, CLOUD_ENERGY_CONSERVING, CLOUD_CALIBRATED and CLOUD_TANG mirror
-// CloudParams.frame and .options. The compiler then drops the unused model and unrolls the
+// CLOUD_DUAL_LOBE, CLOUD_ENERGY_CONSERVING, CLOUD_CALIBRATED, CLOUD_TANG and CLOUD_ROLLS
+// mirror CloudParams' variant fields. The compiler then drops the unused model and unrolls the
 // light march, which a uniform cannot give (lavapipe did it by recompiling every frame).
 // Standing alone (the shader tests compile every file on its own) the file takes the default
-// scene's choices; the pass always defines all seven.
+// scene's choices; the pass always defines all eight.
 #ifndef CLOUD_TOPDOWN
 #define CLOUD_TOPDOWN 0
 #endif
@@ -39,6 +39,9 @@
 #endif
 #ifndef CLOUD_TANG
 #define CLOUD_TANG 0
+#endif
+#ifndef CLOUD_ROLLS
+#define CLOUD_ROLLS 1
 #endif
 
 layout(std140, binding = VOLUMETRIC_CLOUDS_BINDING_PARAMS) uniform CloudParamsBlock {
@@ -196,7 +199,7 @@ bool cloudSampleAtLla(vec3 p, vec3 lla, float footprintM, bool coarseCheck, out 
   vec3 offset = ecefOffset(p);
   // Stratocumulus runs in rolls along the wind (cloudRollWeight): the shape noise stretched
   // along params.rollAxis. Between cells and rolls the two lookups are blended.
-  float roll = cloudRollWeight(layer, type);
+  float roll = CLOUD_ROLLS != 0 ? cloudRollWeight(layer, type) : 0.0;
   vec4 shape = vec4(0.0);
   if (roll < 1.0)
     shape = textureLod(shapeNoise, (params.shapeOrigin.xyz + offset) * params.shapeRepeatsPerM, 0.0);

@@ -98,7 +98,10 @@ struct CloudParams {
   // Stratocumulus rolls (cloudRollWeight): the shape noise is looked up with a point's
   // coordinate along rollAxis shortened by this share, 1 - 1 / (how much longer than wide).
   float rollCompression;
-  float rollUnused0;  // std140: the rest of the row
+  // 1: some low cloud of the map has rolls: the shader variant with their second shape
+  // lookup (CLOUD_ROLLS; CloudPipelines), which costs a fifth of the pass on lavapipe even
+  // where no sample reads it (its branches run masked).
+  uint rolls;
   float rollUnused1;
   float rollUnused2;
 

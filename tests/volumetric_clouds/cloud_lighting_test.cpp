@@ -99,7 +99,7 @@ TEST_F(CloudLightingTest, AtNightTheMoonIsTheKeyLight) {
   const shared::ViewState view = makeViewState(scene.camera, 64, 36);
   const shared::CloudParams night =
       cloudParams(volumetricCloudsSettings(scene), lighting, scene.time.start, view,
-                  glm::vec2(0.0f, 0.5f), glm::uvec2(256), {}, {});
+                  glm::vec2(0.0f, 0.5f), glm::uvec2(256), {}, {}, false);
   EXPECT_EQ(night.keyIsSun, 0.0f) << "the moon";
   EXPECT_NEAR(glm::dot(glm::vec3(night.keyDirection), glm::vec3(lighting.moon.direction)), 1.0f,
               1e-6f);
@@ -110,7 +110,7 @@ TEST_F(CloudLightingTest, AtNightTheMoonIsTheKeyLight) {
   const Scene noon = cloudScene("cumulus_noon");
   const LightingState day = computeLighting(noon, noon.time.start);
   const shared::CloudParams p = cloudParams(volumetricCloudsSettings(noon), day, noon.time.start,
-                                            view, glm::vec2(0.5f, 0.0f), glm::uvec2(256), {}, {});
+                                            view, glm::vec2(0.5f, 0.0f), glm::uvec2(256), {}, {}, false);
   EXPECT_EQ(p.keyIsSun, 1.0f) << "by day the sun";
 
   const RenderedFrame frame = render(scene);

@@ -394,7 +394,7 @@ TEST(CloudNoiseFrame, TheNoiseStaysWithTheGround) {
   const shared::ViewState view = makeViewState(a.camera, 8, 8);
   const auto params = [&](const Scene& s, const IsoTime& t) {
     return cloudParams(volumetricCloudsSettings(s), computeLighting(s, t), t, view,
-                       glm::vec2(0.5f, 0.0f), glm::uvec2(256), {}, {});
+                       glm::vec2(0.5f, 0.0f), glm::uvec2(256), {}, {}, false);
   };
   const double shapeM = a.clouds.shapeScaleKm * 1000.0, detailM = a.clouds.detailScaleKm * 1000.0;
   const glm::dvec3 point = ecefFromLatLonAltitude(47.38, 8.53, 1200.0);
