@@ -14,6 +14,15 @@
 #include "common/cloud_field.glsl"
 #include "common/cloud_lighting.glsl"
 
+// The light steps that may read the detail noise and the shape noise (CloudParams): all of
+// them when the file stands alone.
+#ifndef CLOUD_LIGHT_DETAIL_STEPS
+#define CLOUD_LIGHT_DETAIL_STEPS 17
+#endif
+#ifndef CLOUD_LIGHT_NOISE_STEPS
+#define CLOUD_LIGHT_NOISE_STEPS 17
+#endif
+
 layout(local_size_x = VOLUMETRIC_CLOUDS_GROUP_X, local_size_y = VOLUMETRIC_CLOUDS_GROUP_Y) in;
 
 layout(binding = VOLUMETRIC_CLOUDS_BINDING_CLOUDS, rgba16f) uniform writeonly image2D cloudImage;
@@ -44,10 +53,16 @@ LatLonLine gLightLine;
 // A light sample stands for a whole light step, tens to thousands of metres: it sees the
 // cloud filtered to a quarter of that (or to the view sample's footprint, the larger), so
 // the shadow of detail finer than the step does not alias into streaks across the cloud.
-float cloudDensityForLight(vec3 p, float lengthM) {
+// The steps from CLOUD_LIGHT_DETAIL_STEPS (CLOUD_LIGHT_NOISE_STEPS) on resolve no detail (no
+// noise) whatever the footprint, and do not read it.
+float cloudDensityForLight(vec3 p, float lengthM, int step) {
   ++gLightSamples;
   CloudSample s;
-  cloudSampleAtLla(p, latLonAltitudeOn(gLightLine, p), max(gFootprintM, 0.25 * lengthM), false, s);
+  int noise = step < CLOUD_LIGHT_DETAIL_STEPS  ? CLOUD_NOISE_ALL
+              : step < CLOUD_LIGHT_NOISE_STEPS ? CLOUD_NOISE_SHAPE
+                                               : CLOUD_NOISE_NONE;
+  cloudSampleAtLla(p, latLonAltitudeOn(gLightLine, p), max(gFootprintM, 0.25 * lengthM), false,
+                   noise, s);
   return s.density;
 }
 #include "common/cloud_light_march.glsl"

@@ -173,7 +173,7 @@ float lightLongStepDistance(float distance);
 float lightLongStepLength(float distance);
 float lightMarchReach(float distance);  // the march's whole length
 
-// Lu (24)'s ds toward the light: `density(glm::vec3 p, float lengthM)` plays
+// Lu (24)'s ds toward the light: `density(glm::vec3 p, float lengthM, int step)` plays
 // cloudDensityForLight.
 template <class DensityFn>
 float lightMarchDensity(glm::vec3 p, glm::vec3 L, float distance, int n, float offset,
@@ -182,9 +182,9 @@ float lightMarchDensity(glm::vec3 p, glm::vec3 L, float distance, int n, float o
   for (int i = 0; i < n; ++i) {
     const float start = lightStepStart(i, n, distance);
     const float len = lightStepLength(i, n, distance);
-    ds += density(p + L * (start + offset * len), len) * len;
+    ds += density(p + L * (start + offset * len), len, i) * len;
   }
-  ds += density(p + L * lightLongStepDistance(distance), lightLongStepLength(distance)) *
+  ds += density(p + L * lightLongStepDistance(distance), lightLongStepLength(distance), n) *
         lightLongStepLength(distance);
   return ds;
 }

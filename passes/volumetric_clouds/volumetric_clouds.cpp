@@ -5,6 +5,7 @@
 
 #include <glm/common.hpp>
 
+#include "engine/clouds/cloud_math.h"
 #include "engine/core/error.h"
 #include "engine/gpu/sampler.h"
 #include "engine/lighting/light_model.h"
@@ -53,19 +54,22 @@ CloudPipelines::CloudPipelines(const Context& ctx, ShaderCompiler& compiler, con
     : mCtx(ctx), mCompiler(compiler), mFile(file), mName(name) {}
 
 const ComputePipeline& CloudPipelines::get(const shared::CloudParams& p) {
-  const std::array<uint32_t, 8> key = {p.frameKind == CLOUD_FRAME_TOPDOWN ? 1u : 0u,
+  const std::array<uint32_t, 10> key = {p.frameKind == CLOUD_FRAME_TOPDOWN ? 1u : 0u,
                                        p.lightSteps,
                                        p.octaves,
                                        p.phaseKind,
                                        p.energyConserving,
                                        p.calibratedCoverage,
                                        p.model,
-                                       p.rolls};
+                                       p.rolls,
+                                       p.lightDetailSteps,
+                                       p.lightNoiseSteps};
   std::unique_ptr<ComputePipeline>& pipeline = mPipelines[key];
   if (!pipeline) {
-    const char* names[8] = {"CLOUD_TOPDOWN",   "CLOUD_LIGHT_STEPS",       "CLOUD_OCTAVES",
-                            "CLOUD_DUAL_LOBE", "CLOUD_ENERGY_CONSERVING", "CLOUD_CALIBRATED",
-                            "CLOUD_TANG",      "CLOUD_ROLLS"};
+    const char* names[10] = {"CLOUD_TOPDOWN",   "CLOUD_LIGHT_STEPS",       "CLOUD_OCTAVES",
+                             "CLOUD_DUAL_LOBE", "CLOUD_ENERGY_CONSERVING", "CLOUD_CALIBRATED",
+                             "CLOUD_TANG",      "CLOUD_ROLLS",             "CLOUD_LIGHT_DETAIL_STEPS",
+                             "CLOUD_LIGHT_NOISE_STEPS"};
     std::vector<ShaderDefine> defines;
     for (size_t i = 0; i < key.size(); ++i) defines.push_back({names[i], std::to_string(key[i])});
     CompiledShader shader = compileForDevice(mCtx, mCompiler, mFile, defines);
@@ -144,6 +148,24 @@ shared::CloudParams cloudParams(const VolumetricCloudsSettings& settings,
   p.rollAxis = glm::vec4(glm::vec3(axis), 0.0f);
   p.rollCompression = static_cast<float>(compression);
   p.rolls = lowRolls ? 1u : 0u;
+  // The light steps that may resolve each noise (CloudParams.lightDetailSteps): a prefix, as
+  // the steps grow (the long one is the longest). The 0.1 % spares float rounding.
+  const auto stepsResolving = [&](double cellM) {
+    const int n = c.lightSteps;
+    const float distance = static_cast<float>(c.lightDistanceM);
+    uint32_t k = 0;
+    for (int i = 0; i <= n; ++i) {
+      const double len = i < n ? clouds::lightStepLength(i, n, distance)
+                               : clouds::lightLongStepLength(distance);
+      if (0.25 * len >= 0.5 * cellM * 1.001) break;
+      k = static_cast<uint32_t>(i + 1);
+    }
+    return k;
+  };
+  // The cells cloudSampleAt fades first: the detail's R, the shape's outline R.
+  const double detailCellM = detailM / (c.model == CloudModel::Tang2019 ? 4.0 : 2.0);
+  p.lightDetailSteps = stepsResolving(detailCellM);
+  p.lightNoiseSteps = stepsResolving(shapeM / 4.0);
   p.shapeRepeatsPerM = static_cast<float>(1.0 / shapeM);
   p.detailRepeatsPerM = static_cast<float>(1.0 / detailM);
   p.curlRepeatsPerM = static_cast<float>(1.0 / shapeM);

@@ -15,7 +15,7 @@
 // The scene's fixed choices are compile-time constants, one pipeline per combination
 // (passes/volumetric_clouds, CloudPipelines): CLOUD_TOPDOWN, CLOUD_LIGHT_STEPS, CLOUD_OCTAVES,
 // CLOUD_DUAL_LOBE, CLOUD_ENERGY_CONSERVING, CLOUD_CALIBRATED, CLOUD_TANG and CLOUD_ROLLS
-// mirror CloudParams' variant fields. The compiler then drops the unused model and unrolls the
+// mirror CloudParams' variant fields (volumetric_clouds.comp adds the light march's two). The compiler then drops the unused model and unrolls the
 // light march, which a uniform cannot give (lavapipe did it by recompiling every frame).
 // Standing alone (the shader tests compile every file on its own) the file takes the default
 // scene's choices; the pass always defines all eight.
@@ -43,6 +43,13 @@
 #ifndef CLOUD_ROLLS
 #define CLOUD_ROLLS 1
 #endif
+
+// cloudSampleAtLla's `noise`: which noise textures a sample may read at all. Fewer only where
+// they would be faded out whatever the footprint; a constant argument lets the compiler drop
+// the lookups (lavapipe runs both sides of a branch that depends on a run-time value).
+#define CLOUD_NOISE_NONE 0   // the far field's mean alone
+#define CLOUD_NOISE_SHAPE 1  // the shape noise, not the detail or the curl
+#define CLOUD_NOISE_ALL 2
 
 layout(std140, binding = VOLUMETRIC_CLOUDS_BINDING_PARAMS) uniform CloudParamsBlock {
   CloudParams paramsBlock[1];
@@ -140,7 +147,9 @@ vec3 latLonAltitudeOn(LatLonLine line, vec3 p) {
 // both layers, outside the weather region, or, with `coarseCheck`, where the coarse map has
 // no cover nearby): the caller may step faster there. `s.density` is 0 then. A caller that
 // only wants the density skips the coarse check: the weather map's cover is 0 there too.
-bool cloudSampleAtLla(vec3 p, vec3 lla, float footprintM, bool coarseCheck, out CloudSample s) {
+// `noise` (CLOUD_NOISE_*): the textures it may read.
+bool cloudSampleAtLla(vec3 p, vec3 lla, float footprintM, bool coarseCheck, int noise,
+                      out CloudSample s) {
   s.density = 0.0;
   s.layer = -1;
   s.ph = 0.0;
@@ -194,7 +203,7 @@ bool cloudSampleAtLla(vec3 p, vec3 lla, float footprintM, bool coarseCheck, out 
   float profile = tang ? tangTypeGradient(s.ph, type) : luGD(s.ph, profileCover);
   float farDensity = cover * profile * CLOUD_FAR_DENSITY;
   s.density = farDensity * w.a;
-  if (keepOutline <= 0.0) return true;
+  if (keepOutline <= 0.0 || noise == CLOUD_NOISE_NONE) return true;
 
   vec3 offset = ecefOffset(p);
   // Stratocumulus runs in rolls along the wind (cloudRollWeight): the shape noise stretched
@@ -237,7 +246,7 @@ bool cloudSampleAtLla(vec3 p, vec3 lla, float footprintM, bool coarseCheck, out 
   if (shapeOnly <= 0.0) return true;
   // Detail finer than the sample resolves is its mean: when none of it is resolved (light
   // samples of the longer steps), nothing is read.
-  bool anyDetail = keepDetail.x > 0.0;
+  bool anyDetail = keepDetail.x > 0.0 && noise == CLOUD_NOISE_ALL;
   vec3 detail = params.detailMean.rgb;
   if (anyDetail) {
     // Curl noise bends the detail lookup, more toward the bottom, so the erosion swirls into
@@ -260,7 +269,7 @@ bool cloudSampleAtLla(vec3 p, vec3 lla, float footprintM, bool coarseCheck, out 
 
 // cloudSampleAtLla at p with its exact latitude, longitude and altitude.
 bool cloudSampleAt(vec3 p, float footprintM, out CloudSample s) {
-  return cloudSampleAtLla(p, latLonAltitude(params.geo, p), footprintM, true, s);
+  return cloudSampleAtLla(p, latLonAltitude(params.geo, p), footprintM, true, CLOUD_NOISE_ALL, s);
 }
 
 #endif

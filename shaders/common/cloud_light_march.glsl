@@ -1,14 +1,17 @@
 // The light march of the volumetric clouds, generic over the density: the includer defines
-//   float cloudDensityForLight(vec3 p, float lengthM);
+//   float cloudDensityForLight(vec3 p, float lengthM, int step);
 // (density at a world position, 0 outside the cloud, as seen by a sample standing for
-// `lengthM` of the march: it may filter away detail finer than that) before including this file.
+// `lengthM` of the march: it may filter away detail finer than that; `step` is the sample's
+// place in the march, 0 .. n - 1 for the short steps and n for the long one, a constant once
+// the march is unrolled, so the includer can leave out what a step never resolves) before
+// including this file.
 // Its C++ twin, lightMarchDensity in engine/clouds/cloud_math.h, takes the density as a callable.
 #ifndef SKY_CLOUD_LIGHT_MARCH_GLSL
 #define SKY_CLOUD_LIGHT_MARCH_GLSL
 #include "cloud_lighting.glsl"
 
 // Defined by the includer (declared here so this file stands on its own).
-float cloudDensityForLight(vec3 p, float lengthM);
+float cloudDensityForLight(vec3 p, float lengthM, int step);
 
 // Lu (24)'s ds: the density accumulated from p toward the light L (unit) in density x metres,
 // by the midpoint rule over the n short steps covering [0, distance] (lightStepLength) and the
@@ -21,9 +24,10 @@ float lightMarchDensity(vec3 p, vec3 L, float distance, int n, float offset) {
   for (int i = 0; i < n; ++i) {
     float start = lightStepStart(i, n, distance);
     float len = lightStepLength(i, n, distance);
-    ds += cloudDensityForLight(p + L * (start + offset * len), len) * len;
+    ds += cloudDensityForLight(p + L * (start + offset * len), len, i) * len;
   }
-  ds += cloudDensityForLight(p + L * lightLongStepDistance(distance), lightLongStepLength(distance)) *
+  ds += cloudDensityForLight(p + L * lightLongStepDistance(distance), lightLongStepLength(distance),
+                             n) *
         lightLongStepLength(distance);
   return ds;
 }

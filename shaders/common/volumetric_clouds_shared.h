@@ -102,8 +102,13 @@ struct CloudParams {
   // lookup (CLOUD_ROLLS; CloudPipelines), which costs a fifth of the pass on lavapipe even
   // where no sample reads it (its branches run masked).
   uint rolls;
-  float rollUnused1;
-  float rollUnused2;
+  // How many of the light march's steps (0 .. n - 1 short, n the long one) may resolve the
+  // detail noise, and the shape's outline: a light sample's footprint is at least a quarter
+  // of its step, and noiseKeep resolves nothing from half a cell. The shader variant leaves
+  // the noise out of the others (CLOUD_LIGHT_DETAIL_STEPS, CLOUD_LIGHT_NOISE_STEPS), which on
+  // lavapipe, running both sides of every branch, no test at run time can.
+  uint lightDetailSteps;
+  uint lightNoiseSteps;
 
   // The camera in each noise texture's Earth-fixed frame (ECEF axes, m, wind drift taken
   // off), reduced by whole repeats of that texture so floats keep their precision.

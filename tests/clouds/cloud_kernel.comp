@@ -11,7 +11,7 @@
 // gSlabTop and 0 above.
 int gDensityKind = 0;
 float gSlabTop = 0.0;
-float cloudDensityForLight(vec3 p, float lengthM) {
+float cloudDensityForLight(vec3 p, float lengthM, int step) {
   if (gDensityKind == 0) return 0.7;
   if (gDensityKind == 1) return 0.3 + 0.0005 * p.z;
   return p.z < gSlabTop ? 1.0 : 0.0;
