@@ -130,7 +130,7 @@ int weatherCommand(const std::vector<std::string>& argv) {
     rgba[i * 4 + 2] = map.coverHigh.empty() ? 0.0f : map.coverHigh[i];
     rgba[i * 4 + 3] = 1.0f;
   }
-  writePng8(pngPath, w, h, rgba);
+  writePng8(pngPath, w, h, rgba, PngQuantize::Nearest);  // a data image: exact codes
   folder.keep();
 
   std::printf("%s: %dx%d map over lat [%g, %g], lon [%g, %g], cover from %s\n",

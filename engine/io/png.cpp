@@ -16,10 +16,27 @@ namespace fs = std::filesystem;
 
 namespace {
 
-uint8_t toByte(float v) {
-  if (!(v > 0.0f)) return 0;  // also catches NaN
-  if (v >= 1.0f) return 255;
-  return static_cast<uint8_t>(std::lround(v * 255.0f));
+// An 8-bit code for v in [0, 1] plus `offset` codes before rounding (NaN -> 0).
+uint8_t toByte(float v, float offset) {
+  if (!(v == v)) return 0;
+  const float code = std::round(std::clamp(v, 0.0f, 1.0f) * 255.0f + offset);
+  return static_cast<uint8_t>(std::clamp(code, 0.0f, 255.0f));
+}
+
+// Uniform in [0, 1) from a hash of (x, y, channel) (PCG3D, Jarzynski & Olano 2020).
+float hashUniform(uint32_t x, uint32_t y, uint32_t z) {
+  uint32_t a = x * 1664525u + 1013904223u, b = y * 1664525u + 1013904223u,
+           c = z * 1664525u + 1013904223u;
+  a += b * c;
+  b += c * a;
+  c += a * b;
+  a ^= a >> 16u;
+  b ^= b >> 16u;
+  c ^= c >> 16u;
+  a += b * c;
+  b += c * a;
+  c += a * b;
+  return static_cast<float>(a >> 8u) * (1.0f / 16777216.0f);
 }
 
 void appendBytes(void* context, void* data, int size) {
@@ -28,7 +45,8 @@ void appendBytes(void* context, void* data, int size) {
 
 }  // namespace
 
-void writePng8(const fs::path& path, int width, int height, std::span<const float> displayRgba) {
+void writePng8(const fs::path& path, int width, int height, std::span<const float> displayRgba,
+               PngQuantize quantize) {
   if (width <= 0 || height <= 0)
     internalError("writePng8: " + path.string() + ": image size " + std::to_string(width) + "x" +
                   std::to_string(height) + " is empty");
@@ -39,7 +57,17 @@ void writePng8(const fs::path& path, int width, int height, std::span<const floa
                   " RGBA image (expected " + std::to_string(values) + ")");
 
   std::vector<uint8_t> bytes(values);
-  std::transform(displayRgba.begin(), displayRgba.end(), bytes.begin(), toByte);
+  for (size_t i = 0; i < values; ++i) {
+    float offset = 0.0f;
+    const uint32_t channel = static_cast<uint32_t>(i % 4);
+    if (quantize == PngQuantize::Dither && channel < 3) {
+      // Triangular in (-1, 1) codes: the sum of two uniforms.
+      const uint32_t pixel = static_cast<uint32_t>(i / 4);
+      const uint32_t x = pixel % static_cast<uint32_t>(width), y = pixel / static_cast<uint32_t>(width);
+      offset = hashUniform(x, y, 2u * channel) + hashUniform(x, y, 2u * channel + 1u) - 1.0f;
+    }
+    bytes[i] = toByte(displayRgba[i], offset);
+  }
 
   // Encoded in memory so the file itself goes through writeFileAtomic like every output.
   std::string encoded;

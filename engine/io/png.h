@@ -14,11 +14,18 @@ struct Image8 {
   std::vector<uint8_t> pixels;  // interleaved, row 0 = top
 };
 
+// How display values become 8-bit codes: rounded to the nearest, or with triangular dither of
+// one code's amplitude added first (Lipshitz, Wannamaker & Vanderkooy 1992: it makes the
+// rounding error independent of the signal, so a smooth gradient shows no bands or contour
+// rings, only a fine noise). The dither is a hash of the pixel and the channel, so the same
+// image always gives the same file. Alpha is never dithered.
+enum class PngQuantize { Nearest, Dither };
+
 // Writes interleaved RGBA display values (already through the view transform): each value
-// is clamped to [0, 1] and rounded to the nearest 8-bit code (NaN -> 0). Atomic; an
+// is clamped to [0, 1] and quantised to 8 bits as `quantize` says (NaN -> 0). Atomic; an
 // unwritable path is a BadInput error naming it.
 void writePng8(const std::filesystem::path& path, int width, int height,
-               std::span<const float> displayRgba);
+               std::span<const float> displayRgba, PngQuantize quantize);
 
 // Reads an 8-bit (16-bit is reduced to 8) PNG with the channels it has; a missing or corrupt
 // file is a BadInput error naming the file.

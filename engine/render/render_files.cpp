@@ -136,7 +136,8 @@ RenderFiles writeRenderFiles(const std::filesystem::path& dir, const std::string
   AtomicFileSet set;
   set.stage(files.exr, [&](const std::filesystem::path& tmp) { writeExr(tmp, exr); });
   set.stage(files.png, [&](const std::filesystem::path& tmp) {
-    writePng8(tmp, frame.image.width, frame.image.height, display);
+    writePng8(tmp, frame.image.width, frame.image.height, display,
+              scene.output.dither ? PngQuantize::Dither : PngQuantize::Nearest);
   });
   set.stage(files.report,
             [&](const std::filesystem::path& tmp) { writeFileAtomic(tmp, report.dump(2) + "\n"); });

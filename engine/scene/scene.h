@@ -29,6 +29,7 @@ struct OutputSettings {
   double exposureEv = 0.0;       // display exposure in stops, -20..20 (not applied to EXR)
   std::string display = "sRGB";  // OCIO display
   std::string view = "ACES 1.0 - SDR Video";  // OCIO view
+  bool dither = true;  // dither the 8-bit PNG (not the EXR) so smooth gradients do not band
 };
 
 // camera.projection: a pinhole, or the whole sphere (360 x 180 degrees centred on `heading`;

@@ -33,6 +33,8 @@ void describe(V& v, OutputSettings& s) {
           "display exposure in stops (not applied to EXR output)");
   v.field("display", s.display, TextRule{1}, "OCIO display");
   v.field("view", s.view, TextRule{1}, "OCIO view");
+  v.field("dither", s.dither,
+          "dither the 8-bit PNG before rounding, so smooth gradients show no bands (not the EXR)");
 }
 
 template <class V>

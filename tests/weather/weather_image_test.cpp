@@ -70,7 +70,7 @@ TEST_F(WeatherImage, PngCodesMapOverTheRegionRowZeroNorth) {
       const float v = y == 0 ? 0.0f : float(x + 1) * 51.0f / 255.0f;
       rgba.insert(rgba.end(), {v, 1.0f - v, float(y), 1.0f});
     }
-  writePng8(mDir / "map.png", 4, 2, rgba);
+  writePng8(mDir / "map.png", 4, 2, rgba, PngQuantize::Nearest);
   const WeatherMap map = makeWeatherMap(scene("map.png"));
   ASSERT_EQ(map.width, 4u);
   ASSERT_EQ(map.height, 2u);
