@@ -103,7 +103,8 @@ vec2 marchKeyLights(vec3 p, CloudSample s) {
 vec3 cloudKeyLightScattering(vec3 d, int layer, float type, vec2 tau) {
   vec3 S = vec3(0.0);
   // Lu (22): the attenuation is at most that of ac times the densest path toward the light.
-  float tauClamp = params.extinction * params.attenuationClamp * lightMarchReach(params.lightDistanceM);
+  float tauClamp =
+      params.extinction * params.attenuationClamp * lightMarchReach(params.lightDistanceM);
   for (int i = 0; i < 2; ++i) {
     if (!keyLightMarched(i, layer)) continue;
     vec3 E = keyLightAt(i, layer);
@@ -269,9 +270,10 @@ void main() {
         // sees of an opaque cloud lies within an optical depth or two of its face. So each
         // step is no longer than that depth at the density of the sample before it; where the
         // density rises within a step the next one is shorter.
-        float limit = s.density > 0.0
-                          ? max(CLOUD_STEP_MAX_TAU / (params.extinction * s.density), CLOUD_STEP_MIN_M)
-                          : CLOUD_NO_DEPTH_LIMIT;
+        float limit =
+            s.density > 0.0
+                ? max(CLOUD_STEP_MAX_TAU / (params.extinction * s.density), CLOUD_STEP_MIN_M)
+                : CLOUD_NO_DEPTH_LIMIT;
         if (s.density > 0.0 && (stretch > 1.0 || (tauView <= 0.0 && dt > 1.01 * limit))) {
           // A cloud begins somewhere inside this step, a stretched one or one too deep for it:
           // march it again from its start at the normal step no deeper than that, so cloud

@@ -63,7 +63,8 @@ void writePng8(const fs::path& path, int width, int height, std::span<const floa
     if (quantize == PngQuantize::Dither && channel < 3) {
       // Triangular in (-1, 1) codes: the sum of two uniforms.
       const uint32_t pixel = static_cast<uint32_t>(i / 4);
-      const uint32_t x = pixel % static_cast<uint32_t>(width), y = pixel / static_cast<uint32_t>(width);
+      const uint32_t x = pixel % static_cast<uint32_t>(width);
+      const uint32_t y = pixel / static_cast<uint32_t>(width);
       offset = hashUniform(x, y, 2u * channel) + hashUniform(x, y, 2u * channel + 1u) - 1.0f;
     }
     bytes[i] = toByte(displayRgba[i], offset);

@@ -66,10 +66,11 @@ const ComputePipeline& CloudPipelines::get(const shared::CloudParams& p) {
                                        p.lightNoiseSteps};
   std::unique_ptr<ComputePipeline>& pipeline = mPipelines[key];
   if (!pipeline) {
-    const char* names[10] = {"CLOUD_TOPDOWN",   "CLOUD_LIGHT_STEPS",       "CLOUD_OCTAVES",
-                             "CLOUD_DUAL_LOBE", "CLOUD_ENERGY_CONSERVING", "CLOUD_CALIBRATED",
-                             "CLOUD_TANG",      "CLOUD_ROLLS",             "CLOUD_LIGHT_DETAIL_STEPS",
-                             "CLOUD_LIGHT_NOISE_STEPS"};
+    const char* names[10] = {"CLOUD_TOPDOWN",           "CLOUD_LIGHT_STEPS",
+                             "CLOUD_OCTAVES",           "CLOUD_DUAL_LOBE",
+                             "CLOUD_ENERGY_CONSERVING", "CLOUD_CALIBRATED",
+                             "CLOUD_TANG",              "CLOUD_ROLLS",
+                             "CLOUD_LIGHT_DETAIL_STEPS", "CLOUD_LIGHT_NOISE_STEPS"};
     std::vector<ShaderDefine> defines;
     for (size_t i = 0; i < key.size(); ++i) defines.push_back({names[i], std::to_string(key[i])});
     CompiledShader shader = compileForDevice(mCtx, mCompiler, mFile, defines);

@@ -15,8 +15,9 @@
 // The scene's fixed choices are compile-time constants, one pipeline per combination
 // (passes/volumetric_clouds, CloudPipelines): CLOUD_TOPDOWN, CLOUD_LIGHT_STEPS, CLOUD_OCTAVES,
 // CLOUD_DUAL_LOBE, CLOUD_ENERGY_CONSERVING, CLOUD_CALIBRATED, CLOUD_TANG and CLOUD_ROLLS
-// mirror CloudParams' variant fields (volumetric_clouds.comp adds the light march's two). The compiler then drops the unused model and unrolls the
-// light march, which a uniform cannot give (lavapipe did it by recompiling every frame).
+// mirror CloudParams' variant fields (volumetric_clouds.comp adds the light march's two).
+// The compiler then drops the unused model and unrolls the light march, which a uniform
+// cannot give (lavapipe did it by recompiling every frame).
 // Standing alone (the shader tests compile every file on its own) the file takes the default
 // scene's choices; the pass always defines all eight.
 #ifndef CLOUD_TOPDOWN
@@ -211,7 +212,8 @@ bool cloudSampleAtLla(vec3 p, vec3 lla, float footprintM, bool coarseCheck, int 
   float roll = CLOUD_ROLLS != 0 ? cloudRollWeight(layer, type) : 0.0;
   vec4 shape = vec4(0.0);
   if (roll < 1.0)
-    shape = textureLod(shapeNoise, (params.shapeOrigin.xyz + offset) * params.shapeRepeatsPerM, 0.0);
+    shape =
+        textureLod(shapeNoise, (params.shapeOrigin.xyz + offset) * params.shapeRepeatsPerM, 0.0);
   if (roll > 0.0) {
     vec3 rolled = params.rollOrigin.xyz + offset -
                   params.rollCompression * dot(offset, params.rollAxis.xyz) * params.rollAxis.xyz;
