@@ -37,13 +37,12 @@ float gFootprintM = 0.0;
 // offset): a new value for every view sample, so the texel grid of the noise does not show
 // through the shadows as a regular pattern.
 float gLightOffset = 0.5;
-// The light of the view ray's current cloud: the optical depth toward the sun (x) and the
-// moon (y) that its last light march found, the layer it was marched in (each layer has its
-// own light), and whether a march in this cloud has run yet (CLOUD_LIGHT_REUSE_T).
+// The light of the view ray's current cloud (CLOUD_LIGHT_REUSE_T): the optical depth toward
+// the sun (x) and the moon (y) that its last light march found, and the layer it was marched
+// in (each layer has its own light). A cloud's first sample always marches.
 struct CloudLight {
   vec2 tau;
   int layer;
-  bool haveTau;
 };
 
 // The latitude and longitude along the light march being run (latLonLine through the view
@@ -234,7 +233,7 @@ void main() {
                            R, iv);
     float jitter = pixelHash(id, params.frameIndex, 0u) * params.jitter;
     int maxSteps = int(params.maxSteps);
-    CloudLight light = CloudLight(vec2(0.0), -1, false);
+    CloudLight light = CloudLight(vec2(0.0), -1);
     for (int k = 0; k < n && samples < maxSteps; ++k) {
       float t = iv[k].x;
       float stepLen = params.stepM + params.stepGrowth * t;
@@ -259,7 +258,7 @@ void main() {
         if (!cloudSampleAt(p, footprint, s)) {
           // Outside the region or far from any cover: nothing to sample; stride on (the coarse
           // map is dilated by a whole block, kilometres, so a double step cannot jump a cloud).
-          light.haveTau = false;
+          tauView = 0.0;  // out of the layers or the map: the next cloud is entered afresh
           depthLimit = CLOUD_NO_DEPTH_LIMIT;
           t += 2.0 * dt;
           continue;
@@ -299,21 +298,19 @@ void main() {
                                               ? integrateStep(vec3(sigmaT), sigmaT, dt).x
                                               : sigmaT * dt);
           radiance += weight * cloudAmbientScattering(d, s, tauView + 0.5 * sigmaT * dt);
-          if (tauView > 0.0 && light.haveTau && s.layer == light.layer &&
-              transmittance < CLOUD_LIGHT_REUSE_T) {
-            // The tail: the light march of the sample before.
-            radiance += weight * cloudKeyLightScattering(d, s.layer, s.type, light.tau);
-          } else {
+          // In the tail of this cloud the light march of the sample before serves.
+          bool tail =
+              tauView > 0.0 && s.layer == light.layer && transmittance < CLOUD_LIGHT_REUSE_T;
+          if (!tail) {
             gFootprintM = footprint;
             gLightOffset = fract(jitter + 0.6180339887 * float(samples));  // golden-ratio sequence
-            light = CloudLight(marchKeyLights(p, s), s.layer, true);
-            radiance += weight * cloudKeyLightScattering(d, s.layer, s.type, light.tau);
+            light = CloudLight(marchKeyLights(p, s), s.layer);
           }
+          radiance += weight * cloudKeyLightScattering(d, s.layer, s.type, light.tau);
           depthSum += transmittance * (1.0 - stepT) * (t + 0.5 * dt);
           transmittance *= stepT;
           tauView += sigmaT * dt;
         } else {
-          light.haveTau = false;
           tauView = 0.0;  // out of this cloud: the next one is entered afresh
         }
         t += dt;

@@ -19,7 +19,7 @@
 // The compiler then drops the unused model and unrolls the light march, which a uniform
 // cannot give (lavapipe did it by recompiling every frame).
 // Standing alone (the shader tests compile every file on its own) the file takes the default
-// scene's choices; the pass always defines all eight.
+// scene's choices, with the rolls' lookup compiled in; the pass always defines all eight.
 #ifndef CLOUD_TOPDOWN
 #define CLOUD_TOPDOWN 0
 #endif
