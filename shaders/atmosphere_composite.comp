@@ -1,8 +1,15 @@
 #version 460
 // The final image in scene-linear Rec.709: the clear sky and the high clouds (from
-// passes/sky_high_clouds), the star field and the sun and moon discs behind the clouds, and
-// the volumetric low and mid clouds (passes/volumetric_clouds) in front of them — or behind
-// the high clouds when the camera flies above those. Aerial perspective joins here later.
+// passes/sky_high_clouds), the star field and the sun and moon discs behind the clouds, the
+// ground below the horizon, and the volumetric low and mid clouds (passes/volumetric_clouds)
+// in front of them, or behind the high clouds when the camera flies above those.
+//
+// The ground is a Lambertian sphere lit by the sun and the moon, shadowed by the clouds
+// (passes/cloud_shadow), and by the sky. The ground and the volumetric clouds are seen
+// through the air in front of them (aerial perspective): the physical variant
+// (ATMOSPHERE_COMPOSITE_PHYSICAL) takes it from its aerial-perspective volume and
+// transmittance LUT (Hillaire 2020, section 5.4), the kozlov one from the haze of the
+// lighting model's atmosphere (Koschmieder's airlight). The high clouds carry their own.
 #include "common/params_block.glsl"
 #include "common/atmosphere_composite_shared.h"
 #include "common/view.glsl"
@@ -10,6 +17,10 @@
 #include "common/lighting.glsl"
 #define STAR_FLUX_BINDING ATMOSPHERE_COMPOSITE_BINDING_STARS
 #include "common/star_field.glsl"
+#include "common/cloud_shadow.glsl"
+#if ATMOSPHERE_COMPOSITE_PHYSICAL
+#include "common/atmosphere.glsl"
+#endif
 
 layout(local_size_x = ATMOSPHERE_COMPOSITE_GROUP_X, local_size_y = ATMOSPHERE_COMPOSITE_GROUP_Y) in;
 
@@ -21,7 +32,21 @@ layout(binding = ATMOSPHERE_COMPOSITE_BINDING_BEAUTY, rgba16f) uniform writeonly
 layout(binding = ATMOSPHERE_COMPOSITE_BINDING_SKY, rgba16f) uniform readonly image2D skyImage;
 layout(binding = ATMOSPHERE_COMPOSITE_BINDING_HIGH_CLOUDS, rgba16f) uniform readonly image2D
     highCloudImage;
+#if ATMOSPHERE_COMPOSITE_CLOUDS
 layout(binding = ATMOSPHERE_COMPOSITE_BINDING_CLOUDS, rgba16f) uniform readonly image2D cloudImage;
+layout(binding = ATMOSPHERE_COMPOSITE_BINDING_CLOUD_DEPTH, r32f) uniform readonly image2D
+    cloudDepthImage;
+layout(binding = ATMOSPHERE_COMPOSITE_BINDING_CLOUD_SHADOW) uniform sampler2D cloudShadow;
+#endif
+#if ATMOSPHERE_COMPOSITE_PHYSICAL
+layout(std140, binding = ATMOSPHERE_COMPOSITE_BINDING_ATMOSPHERE) uniform AtmosphereBlock {
+  AtmosphereParams atmosphereBlock[1];
+};
+#define atmosphere atmosphereBlock[SKY_PARAMS_INDEX]
+layout(binding = ATMOSPHERE_COMPOSITE_BINDING_TRANSMITTANCE) uniform sampler2D transmittanceLut;
+layout(binding = ATMOSPHERE_COMPOSITE_BINDING_AERIAL_PERSPECTIVE) uniform sampler3D
+    aerialPerspectiveLut;
+#endif
 
 // Fraction of a pixel of angular size `pixel` covered by a disc of angular radius `radius`
 // whose centre is `distance` away (a box-filtered edge). A disc smaller than a pixel is
@@ -31,6 +56,16 @@ float discCoverage(float distance, float radius, float pixel) {
   float spread = max(radius, pixel);
   float inside = clamp((spread - distance) / pixel + 0.5, 0.0, 1.0);
   return inside * (radius * radius) / (spread * spread);
+}
+
+// Limb darkening of the sun's disc at `r` of its radius from the centre, relative to the disc's
+// mean radiance, so the disc's flux is unchanged: the linear law I(mu) / I(1) = 1 - u (1 - mu),
+// mu = sqrt(1 - r^2), whose mean over the disc is 1 - u / 3. u per channel for 680, 550 and
+// 440 nm from Neckel & Labs (1994), rounded: the limb is darker and redder than the centre.
+vec3 sunLimbDarkening(float r) {
+  const vec3 u = vec3(0.50, 0.60, 0.75);
+  float mu = sqrt(max(1.0 - r * r, 0.0));
+  return (1.0 - u * (1.0 - mu)) / (1.0 - u / 3.0);
 }
 
 // Radiance of the moon's surface seen in direction V (inside the disc, |offset| < 1 in units
@@ -51,6 +86,111 @@ vec3 moonSurface(LightingState L, vec3 V) {
   return L.moonDisc.rgb * shade + L.moonEarthshine.rgb;
 }
 
+// Distance along unit V from the camera (cameraR from the centre, on the z axis) to the
+// ground sphere of radius planetR, or -1 where the ray misses it.
+float groundDistance(float cameraR, vec3 V, float planetR) {
+  float b = cameraR * V.z;
+  float c = (cameraR - planetR) * (cameraR + planetR);
+  float disc = b * b - c;
+  if (V.z >= 0.0 || disc < 0.0) return -1.0;
+  // The near root as (product of the roots) / (far root): no cancellation near the camera.
+  return c / (-b + sqrt(disc));
+}
+
+// What the air between the camera and a point does to the light from it: its transmittance,
+// and the light it scatters toward the camera on the way.
+struct Air {
+  vec3 transmittance;
+  vec3 inScattered;
+};
+
+#if ATMOSPHERE_COMPOSITE_PHYSICAL
+// Hillaire 2020's aerial perspective out to the froxel volume's last slice. Beyond it, the
+// sky-view LUT's in-scattering along the whole ray (`skyHere`, to the top of the atmosphere or
+// to the ground) is shared out by the transmittance lost from the last slice on: exact where
+// the light along the rest of the ray is uniform, and continuous at both ends.
+Air airTo(vec3 V, float distanceM, vec2 uv, vec3 skyHere) {
+  float d = distanceM * 1e-3;
+  float n = atmosphere.aerialPerspective.y;
+  float lastSlice = atmosphereApSliceDistance(atmosphere, (n - 0.5) / n);
+  Air a;
+  a.transmittance = transmittanceAlong(atmosphere, transmittanceLut, V, d);
+  vec3 nearS = aerialPerspective(atmosphere, aerialPerspectiveLut, uv, min(d, lastSlice)).rgb;
+  vec3 nearT = transmittanceAlong(atmosphere, transmittanceLut, V, lastSlice);
+  vec3 endT = transmittanceAlong(atmosphere, transmittanceLut, V, 1e9);
+  vec3 w = clamp((nearT - a.transmittance) / max(nearT - endT, vec3(1e-6)), 0.0, 1.0);
+  a.inScattered = (d <= lastSlice ? nearS : mix(nearS, max(skyHere, nearS), w)) * params.airLight;
+  return a;
+}
+#else
+// Optical depth of the lighting model's haze (light::hazeMedium) along a straight path of
+// length t from altitude h0 to h1 (m above sea level), the altitude taken as changing
+// linearly along it: the integral of beta exp(-h / H) is beta exp(-h0 / H) t (1 - e^-x) / x
+// with x = (h1 - h0) / H.
+vec3 hazeOpticalDepth(float h0, float h1, float t) {
+  vec3 tau = vec3(0.0);
+  for (int k = 0; k < 2; ++k) {
+    vec4 medium = k == 0 ? params.hazeRayleigh : params.hazeAerosol;
+    float x = (h1 - h0) / medium.w;
+    float f = abs(x) < 1e-3 ? 1.0 - 0.5 * x : (1.0 - exp(-x)) / x;
+    tau += medium.rgb * exp(-max(h0, 0.0) / medium.w) * t * f;
+  }
+  return tau;
+}
+
+// Koschmieder: a point at distance t seen through air of transmittance T takes on the
+// horizon sky's colour (`horizon`, the airlight of an endless path) by 1 - T.
+Air airTo(vec3 V, float distanceM, vec3 horizon) {
+  float cameraR = params.cameraRadiusM;
+  vec3 end = vec3(0.0, 0.0, cameraR) + distanceM * V;
+  float h0 = cameraR - params.planetRadiusM;
+  float h1 = length(end) - params.planetRadiusM;
+  Air a;
+  a.transmittance = exp(-hazeOpticalDepth(h0, h1, distanceM));
+  a.inScattered = horizon * (1.0 - a.transmittance) * params.airLight;
+  return a;
+}
+#endif
+
+// The light the ground sends toward the camera from the point at distance t along V:
+// albedo times the irradiance of the sun and the moon (each through its share of the cloud
+// shadow) and of the sky and the clouds (Kasten & Czeplak's overcast share).
+vec3 groundRadiance(LightingState L, vec3 V, float t) {
+  vec3 hit = vec3(0.0, 0.0, params.cameraRadiusM) + t * V;
+  vec3 up = normalize(hit);
+  float muS = max(dot(up, L.sun.direction.xyz), 0.0);
+  float muM = max(dot(up, L.moon.direction.xyz), 0.0);
+#if ATMOSPHERE_COMPOSITE_PHYSICAL
+  float Rg = atmosphere.radii.x;
+  vec3 sun = L.sunSpace.rgb * transmittanceToTop(atmosphere, transmittanceLut, Rg, muS);
+  vec3 moon = L.moonSpace.rgb * transmittanceToTop(atmosphere, transmittanceLut, Rg, muM);
+#else
+  vec3 sun = params.sunAtGround.rgb, moon = params.moonAtGround.rgb;
+#endif
+  float shadow = 1.0;
+#if ATMOSPHERE_COMPOSITE_CLOUDS
+  // The map is laid out by ground distance east and north of the point below the camera.
+  float across = length(hit.xy);
+  vec2 toward = across > 0.0 ? hit.xy / across : vec2(0.0);
+  vec2 metres = toward * atan(across, hit.z) * params.planetRadiusM;
+  vec2 u = cloudShadowU(params.shadow, metres);
+  shadow = texture(cloudShadow, clamp(u * 0.5 + 0.5, 0.0, 1.0)).r;
+  // Past the map's edge the ground takes the mean share of sunlight the cover lets through.
+  float outside = smoothstep(0.9, 1.0, max(abs(u.x), abs(u.y)));
+  shadow = mix(shadow, 1.0 - params.overcast, outside);
+#endif
+  float sunShadow = params.shadow.lightIsSun > 0.5 ? shadow : 1.0;
+  float moonShadow = params.shadow.lightIsSun > 0.5 ? 1.0 : shadow;
+  vec3 clearDirect = sun * muS + moon * muM;
+  vec3 direct = sun * muS * sunShadow + moon * muM * moonShadow;
+  // The sky light (radiance of the upper hemisphere; as irradiance the same number in the
+  // renderer's units) through the gaps, and the light the cloud cover passes on.
+  vec3 skyLight = L.palette.ambientTop.rgb + L.moonPalette.ambientTop.rgb;
+  float N = params.overcast;
+  vec3 diffuse = skyLight * (1.0 - N) + N * CLOUD_DIFFUSE_TRANSMISSION * (clearDirect + skyLight);
+  return params.groundAlbedo.rgb * (direct + diffuse);
+}
+
 void main() {
   uvec2 p = gl_GlobalInvocationID.xy;
   if (any(greaterThanEqual(p, params.view.size.xy))) return;
@@ -62,17 +202,25 @@ void main() {
   vec4 highClouds = imageLoad(highCloudImage, ivec2(p));  // premultiplied, a = coverage
 
   float pixelAngle = viewPixelAngle(params.view, V);
-  // The ground hides what lies below the horizon, pixel by pixel.
-  float aboveHorizon = clamp(V.z / pixelAngle + 0.5, 0.0, 1.0);
+  // The ground hides what lies below the horizon, pixel by pixel. Seen from above the ground
+  // the horizon dips below the horizontal, to where rays graze the ground sphere.
+  float planetR = params.planetRadiusM, cameraR = params.cameraRadiusM;
+  float h = cameraR - planetR;
+  float horizonZ = params.observer != 0u ? -sqrt(max(h * (2.0 * planetR + h), 0.0)) / cameraR : 0.0;
+  float aboveHorizon = clamp((V.z - horizonZ) / pixelAngle + 0.5, 0.0, 1.0);
 
   // A disc spread over a pixel wider than itself (see discCoverage) would leak past the
   // horizon; there the share of the disc above the horizon (illuminance.w) hides it instead.
   // Resolved discs are cut pixel by pixel. The two blend as the disc grows past a pixel.
   vec3 S = L.sun.direction.xyz;
   float sunR = L.sun.direction.w;
-  float sunCover = discCoverage(acos(clamp(dot(V, S), -1.0, 1.0)), sunR, pixelAngle);
+  float sunDist = acos(clamp(dot(V, S), -1.0, 1.0));
+  float sunCover = discCoverage(sunDist, sunR, pixelAngle);
   float sunResolved = smoothstep(1.0, 2.0, sunR / pixelAngle);
-  vec3 sunDisc = L.sunDisc.rgb * sunCover * aboveHorizon * mix(L.sun.illuminance.w, 1.0, sunResolved);
+  // A resolved disc shows its limb darkening; one a pixel or less across, its mean.
+  vec3 limb = mix(vec3(1.0), sunLimbDarkening(min(sunDist / sunR, 1.0)), sunResolved);
+  vec3 sunDisc = L.sunDisc.rgb * limb * sunCover * aboveHorizon *
+                 mix(L.sun.illuminance.w, 1.0, sunResolved);
 
   // The moon: resolved discs are shaded per pixel with an anti-aliased edge; discs near or
   // below a pixel in size carry their mean radiance with the sun's coverage rule, so the
@@ -91,11 +239,46 @@ void main() {
   vec3 stars = vec3(starFlux(ivec2(p)) * L.night.z / pixelSolidAngle(params.view, pixelCentre));
   stars *= (1.0 - moonCover) * aboveHorizon;
 
-  // Premultiplied "over": what lies beyond each cloud layer shows through its clear share.
   vec3 beyond = sky + stars + sunDisc + moonDisc;
-  vec4 clouds = params.layers.x != 0u ? imageLoad(cloudImage, ivec2(p)) : vec4(0.0);
+  vec2 uv = pixelCentre / vec2(params.view.size.xy);
+  // The air toward the horizon below this direction: Kozlov's sky there is the airlight.
+  vec3 level = vec3(length(V.xy) > 1e-6 ? normalize(V.xy) : vec2(0.0, 1.0), 0.0);
+  vec3 horizon = clearSky(L, level);
+  if (params.observer != 0u && aboveHorizon < 1.0) {
+    // The part of the pixel below the horizon sees the ground: along V, or where V passes
+    // above it, just under the horizon.
+    float z = horizonZ - 1e-5;
+    vec3 Vg = V.z < z ? V : vec3(level.xy * sqrt(max(1.0 - z * z, 0.0)), z);
+    float t = max(groundDistance(cameraR, Vg, planetR), 0.0);
+#if ATMOSPHERE_COMPOSITE_PHYSICAL
+    // The sky-view LUT below the horizon is just the air in front of the ground.
+    Air air;
+    air.transmittance = transmittanceAlong(atmosphere, transmittanceLut, Vg, t * 1e-3);
+    air.inScattered = sky * params.airLight;
+#else
+    Air air = airTo(Vg, t, horizon);
+#endif
+    vec3 ground = groundRadiance(L, Vg, t) * air.transmittance + air.inScattered;
+    beyond = mix(ground, beyond, aboveHorizon);
+  }
+
+  // Premultiplied "over": what lies beyond each cloud layer shows through its clear share.
+  vec4 clouds = vec4(0.0);
+#if ATMOSPHERE_COMPOSITE_CLOUDS
+  clouds = imageLoad(cloudImage, ivec2(p));
+  if (params.observer != 0u && clouds.a > 0.0) {
+    // At the clouds' transmittance-weighted depth.
+    float depth = imageLoad(cloudDepthImage, ivec2(p)).r;
+#if ATMOSPHERE_COMPOSITE_PHYSICAL
+    Air air = airTo(V, depth, uv, sky);
+#else
+    Air air = airTo(V, depth, horizon);
+#endif
+    clouds.rgb = clouds.rgb * air.transmittance + clouds.a * air.inScattered;
+  }
+#endif
   vec4 nearer = highClouds, farther = clouds;
-  if (params.layers.y == 0u) {  // below the high clouds: the volumetric clouds are nearer
+  if (params.aboveHighClouds == 0u) {  // below the high clouds: the volumetric clouds are nearer
     nearer = clouds;
     farther = highClouds;
   }

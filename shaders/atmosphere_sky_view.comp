@@ -2,8 +2,10 @@
 // Sky-view LUTs (Hillaire 2020, section 5.3): the sky's radiance around the camera at its
 // altitude, single and multiple scattering, in the latitude/longitude parametrisation of
 // shaders/common/atmosphere.glsl, once lit by the sun (z = 0) and once by the moon (z = 1),
-// each light's illuminance applied. Below the horizon: the atmosphere in front of the lit
-// ground, and the ground. Made every frame.
+// each light's illuminance applied. Below the horizon: the light the air in front of the
+// ground scatters toward the camera, without the ground itself, which the composite draws
+// lit, shadowed by the clouds and dimmed by this same air (passes/atmosphere_composite).
+// Made every frame.
 #include "common/params_block.glsl"
 #include "common/atmosphere.glsl"
 
@@ -22,7 +24,6 @@ layout(binding = ATMOSPHERE_SKY_VIEW_BINDING_MOON, rgba32f) uniform writeonly im
 vec3 skyRadiance(AtmosphereParams p, vec3 V, vec3 L) {
   float r0 = p.radii.z, mu = V.z, Rg = p.radii.x;
   vec3 origin = vec3(0.0, 0.0, r0);
-  bool ground = atmosphereRayHitsGround(p, r0, mu);
   float tMax = atmosphereRayLength(p, r0, mu);
   int warp = atmosphereMarchWarp(p, r0, mu);
   float nu = dot(V, L);
@@ -39,13 +40,6 @@ vec3 skyRadiance(AtmosphereParams p, vec3 V, vec3 L) {
     vec3 S = atmosphereInScattering(p, transmittanceLut, multiScatteringLut, m, pos, r, nu, L);
     radiance += T * atmosphereIntegrateStep(S, m.extinction, stepT, dt);
     T *= stepT;
-  }
-  if (ground) {
-    // Lambertian ground under the light through the atmosphere (Hillaire's ground term).
-    vec3 pos = origin + tMax * V;
-    float muG = max(dot(pos, L) / length(pos), 0.0);
-    radiance += T * p.groundAlbedo.rgb / ATMOSPHERE_PI * muG *
-                atmosphereTransmittanceLut(p, transmittanceLut, Rg, muG);
   }
   return radiance;
 }

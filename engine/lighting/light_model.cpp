@@ -38,17 +38,30 @@ double airMass(double apparentElevationDeg) {
   return 1.0 / (std::sin(h * kDeg) + 0.50572 * std::pow(h + 6.07995, -1.6364));
 }
 
+HazeMedium hazeMedium(double turbidity) {
+  HazeMedium h;
+  for (int c = 0; c < 3; ++c) {
+    const double lambda = kChannelWavelengthsNm[c];
+    // A column of optical depth tau with scale height H has tau / H at its base.
+    h.rayleighPerM[c] = rayleighDepth(lambda) / h.rayleighHeightM;
+    h.aerosolPerM[c] = turbidity * std::pow(lambda / 550.0, -kAerosolAngstrom) / h.aerosolHeightM;
+  }
+  return h;
+}
+
 glm::dvec3 atmosphereTransmittance(double apparentElevationDeg, double altitudeM,
                                    double turbidity) {
-  double m = airMass(apparentElevationDeg);
+  const double m = airMass(apparentElevationDeg);
+  const HazeMedium haze = hazeMedium(turbidity);
   // Standard atmosphere: pressure scale height 8.434 km; aerosols mostly below 1.2 km.
-  double pressureRatio = std::exp(-altitudeM / 8434.0);
-  double aerosolRatio = std::exp(-std::max(altitudeM, 0.0) / 1200.0);
+  const double h = std::max(altitudeM, 0.0);
+  const glm::dvec3 rayleigh =
+      haze.rayleighPerM * haze.rayleighHeightM * std::exp(-altitudeM / haze.rayleighHeightM);
+  const glm::dvec3 aerosol =
+      haze.aerosolPerM * haze.aerosolHeightM * std::exp(-h / haze.aerosolHeightM);
   glm::dvec3 t;
   for (int c = 0; c < 3; ++c) {
-    double lambda = kChannelWavelengthsNm[c];
-    double tau = rayleighDepth(lambda) * pressureRatio + ozoneDepth(lambda) +
-                 turbidity * aerosolRatio * std::pow(lambda / 550.0, -1.3);
+    const double tau = rayleigh[c] + ozoneDepth(kChannelWavelengthsNm[c]) + aerosol[c];
     t[c] = std::exp(-tau * m);  // Beer-Lambert along the slant path
   }
   return t;

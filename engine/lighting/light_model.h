@@ -14,12 +14,28 @@ constexpr double kSolarIlluminanceLux = 127500.0;
 constexpr double kVegaIlluminanceLux = 2.54e-6;
 constexpr double kMoonRadiusKm = 1737.4;
 
+// Angstrom exponent of the aerosols: their optical depth goes as (lambda / 550 nm)^-1.3.
+constexpr double kAerosolAngstrom = 1.3;
+
 // Wavelengths (nm) that stand for the R, G, B channels in the extinction model.
 constexpr glm::dvec3 kChannelWavelengthsNm{680.0, 550.0, 440.0};
 
 // Kasten & Young (1989) relative air mass for an apparent elevation in degrees. Clamped at
 // -1 degree, below which the formula turns back; a body that low is hidden anyway.
 double airMass(double apparentElevationDeg);
+
+// The lower atmosphere of the lighting model as a medium: per-channel extinction at sea level
+// (1/m) of the air molecules (Rayleigh) and the aerosols, each falling off exponentially with
+// its scale height. Its vertical optical depths are those of atmosphereTransmittance, so the
+// haze a view ray crosses (the composite's aerial perspective for sky.model kozlov) is the
+// same air that reddens the sun and the moon.
+struct HazeMedium {
+  glm::dvec3 rayleighPerM{0.0};  // Rayleigh extinction at sea level, 1/m
+  glm::dvec3 aerosolPerM{0.0};   // aerosol extinction at sea level, 1/m
+  double rayleighHeightM = 8434.0;
+  double aerosolHeightM = 1200.0;
+};
+HazeMedium hazeMedium(double turbidity);
 
 // Direct-beam transmittance of the atmosphere per channel: Rayleigh (Hansen & Travis 1974
 // optical depth, scaled by the standard-atmosphere pressure at the observer's altitude),

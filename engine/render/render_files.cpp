@@ -105,6 +105,9 @@ RenderFiles writeRenderFiles(const std::filesystem::path& dir, const std::string
   if (!frame.cloudNoise.cacheFile.empty() &&
       (frame.cloudNoise.loadedCache || frame.cloudNoise.wroteCache))
     clouds["noise_cache_file"] = frame.cloudNoise.cacheFile.string();
+  if (frame.cloudShadow.valid > 0.0f)
+    clouds["cloud_shadow"] = {{"radius_m", frame.cloudShadow.radiusM},
+                              {"light", frame.cloudShadow.lightIsSun > 0.5f ? "sun" : "moon"}};
   report["volumetric_clouds"] = clouds;
   const LocalWeather& local = frame.localWeather;
   report["local_weather"] = {{"radius_km", scene.weather.localRadiusKm},

@@ -5,6 +5,7 @@
 #include "engine/core/error.h"
 #include "engine/core/paths.h"
 #include "engine/gpu/context.h"
+#include "engine/lighting/light_model.h"
 #include "engine/render/camera.h"
 
 namespace sky {
@@ -29,6 +30,7 @@ ImageLayer toLayer(const ReadbackImage& img, std::string name, std::vector<std::
 const std::vector<std::string> kRgb = {"R", "G", "B"};
 const std::vector<std::string> kRgba = {"R", "G", "B", "A"};
 const std::vector<std::string> kSteps = {"view", "light"};
+const std::vector<std::string> kShadow = {"transmittance"};
 
 // The "clouds" layer: premultiplied radiance, opacity and the transmittance-weighted depth
 // (m); all zero when the scene has no volumetric clouds.
@@ -67,6 +69,20 @@ ImageLayer weatherCoverLayer(const WeatherMap& map, const WeatherRegion& region,
 
 }  // namespace
 
+AtmosphereSettings physicalAtmosphere(const Scene& scene) {
+  AtmosphereSettings a = scene.atmosphere;
+  a.groundAlbedo = scene.ground.albedo;  // one ground for the sky and the composite
+  if (a.aerosols == AerosolSource::Turbidity) {
+    // Hillaire 2020's Earth: 3.996 of 4.4 /Mm scatters, the rest is absorbed.
+    constexpr double kMieSingleScatteringAlbedo = 3.996 / 4.4;
+    // tau = beta H for an exponential profile; 1/km to 1/Mm.
+    a.mieExtinction = scene.lighting.turbidity / a.mieScaleHeightKm * 1000.0;
+    a.mieScattering = a.mieExtinction * kMieSingleScatteringAlbedo;
+    a.mieAngstrom = light::kAerosolAngstrom;
+  }
+  return a;
+}
+
 const std::vector<DebugOutputInfo>& debugOutputs() {
   static const std::vector<DebugOutputInfo> outputs = {
       {"coefficients", "high-cloud coefficient texture (R thin lit, G dense, B clear, A edges)",
@@ -90,6 +106,11 @@ const std::vector<DebugOutputInfo>& debugOutputs() {
        false, true},
       {"weather_map",
        "the weather map over its region: R low cover, G mid cover, B type, A density", false, true},
+      {"cloud_shadow",
+       "volumetric clouds: transmittance toward the key light from the ground, 384x384 around "
+       "the point below the camera (east right, north up; ground distance r u|u| from the "
+       "centre, r in the report's cloud_shadow.radius_m)",
+       false, true},
   };
   return outputs;
 }
@@ -119,6 +140,7 @@ Renderer::Renderer(const Context& ctx, ShaderCompiler& compiler)
       mSky(ctx, compiler),
       mClouds(ctx, compiler, mRuntime),
       mVolumetric(ctx, compiler),
+      mShadow(ctx, compiler),
       mSlice(ctx, compiler),
       mVolumeExport(ctx, compiler),
       mComposite(ctx, compiler) {}
@@ -214,7 +236,7 @@ RenderedFrame Renderer::render(const Scene& scene, const IsoTime& time,
   AtmosphereLuts::Outputs luts{};
   if (physical) {
     AtmosphereLuts::Frame f;
-    f.atmosphere = scene.atmosphere;
+    f.atmosphere = physicalAtmosphere(scene);
     f.cameraAltitudeM = scene.camera.altitudeM;
     f.view = view;
     f.sunDirection = glm::vec3(out.lighting.sun.direction);
@@ -230,6 +252,8 @@ RenderedFrame Renderer::render(const Scene& scene, const IsoTime& time,
 
   // The volumetric clouds, when the map has any low or mid cover.
   VolumetricCloudsPass::Outputs clouds{};
+  CloudShadowPass::Outputs shadow{};
+  shared::CloudShadowMap shadowMap{};
   CloudLayers::Frame cloudFrame;
   if (out.clouds) {
     cloudFrame = mClouds.addTo(graph, cloudScene, time);
@@ -243,9 +267,15 @@ RenderedFrame Renderer::render(const Scene& scene, const IsoTime& time,
     clouds = graph.add(mVolumetric, in);
     graph.requestOutput(clouds.clouds, "clouds");
     graph.requestOutput(clouds.depth, "clouds_depth");
+    // The clouds' shadows on the ground around the observer (a top-down render draws no
+    // ground, but the composite's cloud variant binds a map all the same).
+    shadowMap = cloudShadowMap(in.params, geometry.altitudeM);
+    shadow = graph.add(mShadow, CloudShadowPass::Inputs{in.params, shadowMap, in.textures});
+    out.cloudShadow = shadowMap;
     for (const std::string& name : options.debugOutputs) {
       if (name == "cloud_steps") graph.requestOutput(clouds.steps, "debug:" + name);
       if (name == "weather_map") graph.requestOutput(cloudFrame.textures.weather, "debug:" + name);
+      if (name == "cloud_shadow") graph.requestOutput(shadow.shadow, "debug:" + name);
       if (name == "cloud_density_slice") {
         CloudDensitySlicePass::Inputs slice{in.params, in.textures};
         graph.requestOutput(graph.add(mSlice, slice).slice, "debug:" + name);
@@ -253,12 +283,25 @@ RenderedFrame Renderer::render(const Scene& scene, const IsoTime& time,
     }
   }
 
-  AtmosphereCompositePass::Inputs composite{};
-  composite.params.view = view;
+  AtmosphereCompositeSettings compositeSettings;
+  compositeSettings.ground = scene.ground;
+  compositeSettings.planetRadiusM = skyPlanetRadiusM(scene);
+  compositeSettings.cameraAltitudeM = scene.camera.altitudeM;
+  compositeSettings.turbidity = scene.lighting.turbidity;
+  compositeSettings.observer = !topDown;
   // High clouds lie in front of the volumetric ones when the camera flies above them.
-  composite.params.layers.y =
+  compositeSettings.aboveHighClouds =
       !topDown && scene.camera.altitudeM > highAltitudeM.value_or(scene.highClouds.altitudeM);
-  if (out.clouds) composite.clouds = clouds.clouds;
+  compositeSettings.belowClouds = scene.camera.altitudeM < setup.volumetric.clouds.low.baseM;
+  AtmosphereCompositePass::Inputs composite{};
+  composite.params = atmosphereCompositeParams(compositeSettings, out.lighting, view);
+  if (out.clouds)
+    composite.clouds = AtmosphereCompositePass::Clouds{clouds.clouds, clouds.depth, shadow.shadow,
+                                                       shadowMap,
+                                                       cloudFrame.textures.weatherSampler};
+  if (physical)
+    composite.atmosphere = AtmosphereCompositePass::Atmosphere{
+        mAtmosphere.params(), luts.transmittance, luts.aerialPerspective, &mAtmosphere.sampler()};
   composite.lighting = out.lighting.gpu;
   composite.starFlux = starOut.flux;
   composite.sky = skyOut.sky;
@@ -286,6 +329,7 @@ RenderedFrame Renderer::render(const Scene& scene, const IsoTime& time,
       {"cloud_steps", clouds.steps, &kSteps, true},
       {"cloud_density_slice", ImageId{}, &kRgba, true},
       {"weather_map", cloudFrame.textures.weather, &kRgba, true},
+      {"cloud_shadow", shadow.shadow, &kShadow, true},
   };
   for (const std::string& name : options.debugOutputs)
     for (const DebugSource& s : sources)

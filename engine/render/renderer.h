@@ -19,6 +19,7 @@
 #include "engine/render/cloud_layers.h"
 #include "engine/render/cloud_volume.h"
 #include "passes/atmosphere_luts/atmosphere_luts.h"
+#include "passes/cloud_shadow/cloud_shadow.h"
 #include "passes/cloud_volume_export/cloud_volume_export.h"
 #include "passes/high_cloud_textures/high_cloud_textures.h"
 #include "passes/high_cloud_textures/regional_cover_texture.h"
@@ -63,6 +64,8 @@ struct RenderedFrame {
   HighCloudTextures::Activity highClouds;  // whether the textures were baked, loaded or kept
   bool clouds = false;                     // the weather map has low or mid cover
   CloudNoise::Activity cloudNoise;         // whether the cloud noise was baked, loaded or kept
+  // The cloud shadow map's ground square (passes/cloud_shadow), valid 0 without clouds.
+  shared::CloudShadowMap cloudShadow{};
   // The weather around the camera (Kozlov section 5), already applied to `lighting`.
   LocalWeather localWeather;
   // Where the weather map lay (weather.region, or the square around the camera) and its size.
@@ -70,6 +73,13 @@ struct RenderedFrame {
   glm::uvec2 weatherTexels{0};
   std::vector<DebugImage> debug;  // as requested in RenderOptions
 };
+
+// The physical sky's atmosphere for `scene`: its atmosphere settings with the ground's albedo
+// and, with atmosphere.aerosols turbidity, the Mie coefficients of lighting.turbidity: the
+// aerosol optical depth at 550 nm spread over the Mie scale height, Hillaire's single-
+// scattering albedo and the lighting model's Angstrom exponent, so the sky and the sunlight
+// cross the same aerosols.
+AtmosphereSettings physicalAtmosphere(const Scene& scene);
 
 class Renderer {
 public:
@@ -112,6 +122,7 @@ private:
   SkyHighCloudsPass mSky;
   CloudLayers mClouds;
   VolumetricCloudsPass mVolumetric;
+  CloudShadowPass mShadow;
   CloudDensitySlicePass mSlice;
   CloudVolumeExportPass mVolumeExport;
   AtmosphereCompositePass mComposite;

@@ -112,6 +112,15 @@ struct SkySettings {
   double hazeHeight = 0.20;  // hmax as a fraction of the dome height, 0.001..1 (kozlov)
 };
 
+// atmosphere.aerosols: the Mie coefficients from lighting.turbidity (one atmosphere for the
+// sky and for the light the sun, the moon, the clouds and the ground receive), or the
+// atmosphere's own mie_scattering and mie_extinction.
+enum class AerosolSource { Turbidity, Settings };
+constexpr auto enumNames(AerosolSource) {
+  return std::to_array<EnumName<AerosolSource>>(
+      {{AerosolSource::Turbidity, "turbidity"}, {AerosolSource::Settings, "settings"}});
+}
+
 // The planet's atmosphere for sky.model "physical" (Hillaire 2020, Earth defaults from his
 // Table 1). Coefficients are in 1/Mm (10^-6 per metre), heights in km.
 struct AtmosphereSettings {
@@ -123,12 +132,29 @@ struct AtmosphereSettings {
   double mieExtinction = 4.40;                           // 1/Mm, >= mie_scattering
   double mieScaleHeightKm = 1.2;                         // 0.01..100
   double mieAnisotropy = 0.8;                            // g of Cornette-Shanks, -0.99..0.99
+  AerosolSource aerosols = AerosolSource::Turbidity;
   glm::vec3 ozoneAbsorption{0.650f, 1.881f, 0.085f};     // 1/Mm at the tent's peak
   double ozoneCenterKm = 25.0;                           // tent centre altitude
   double ozoneHalfWidthKm = 15.0;                        // tent half width, 0.01..100
-  glm::vec3 groundAlbedo{0.3f};                          // 0..1
+  // Not a scene key: the renderer copies ground.albedo here, so the ground the composite
+  // draws and the ground bounce in the multiple-scattering LUT are one surface.
+  glm::vec3 groundAlbedo{0.3f};  // 0..1
+  // Not a scene key either: the Angstrom exponent of the Mie coefficients, which stand for
+  // 550 nm (0: grey, Hillaire's). aerosols: turbidity sets the lighting model's.
+  double mieAngstrom = 0.0;
 
   bool operator==(const AtmosphereSettings&) const = default;
+};
+
+// The ground below the horizon (passes/atmosphere_composite): a Lambertian sphere at sea
+// level lit by the sun and the moon through the clouds' shadows and by the sky, seen through
+// the aerial perspective. Its albedo is also the physical atmosphere's ground bounce.
+struct GroundSettings {
+  // Linear Rec.709 reflectance: summer farmland and forest seen from afar (green vegetation
+  // reflects 5-15 % in the visible, soil and fields 10-25 %).
+  glm::vec3 albedo{0.10f, 0.12f, 0.07f};  // 0..1
+
+  bool operator==(const GroundSettings&) const = default;
 };
 
 // high_clouds.source: the coefficient texture baked from noise and cover (cached on disk), or
@@ -392,6 +418,7 @@ struct Scene {
   MoonSettings moon;
   SkySettings sky;
   AtmosphereSettings atmosphere;
+  GroundSettings ground;
   HighCloudSettings highClouds;
   CloudSettings clouds;
   WeatherSettings weather;

@@ -107,9 +107,14 @@ void describe(V& v, AtmosphereSettings& s) {
           "Rayleigh scattering at sea level per channel, 1/Mm (10^-6 per metre)");
   v.field("rayleigh_scale_height_km", s.rayleighScaleHeightKm, kScaleHeight,
           "Rayleigh density scale height, km");
-  v.field("mie_scattering", s.mieScattering, kCoefficient, "Mie scattering at sea level, 1/Mm");
+  v.field("aerosols", s.aerosols,
+          "where the Mie (aerosol) coefficients come from: turbidity (lighting.turbidity, the "
+          "aerosol optical depth the sun's light crosses, spread over mie_scale_height_km) or "
+          "settings (mie_scattering and mie_extinction below)");
+  v.field("mie_scattering", s.mieScattering, kCoefficient,
+          "Mie scattering at sea level, 1/Mm (aerosols: settings)");
   v.field("mie_extinction", s.mieExtinction, kCoefficient,
-          "Mie extinction at sea level, 1/Mm (at least mie_scattering)");
+          "Mie extinction at sea level, 1/Mm (at least mie_scattering; aerosols: settings)");
   v.field("mie_scale_height_km", s.mieScaleHeightKm, kScaleHeight, "Mie density scale height, km");
   v.field("mie_anisotropy", s.mieAnisotropy, NumberRange{-0.99, 0.99},
           "Mie phase asymmetry g (Cornette-Shanks)");
@@ -119,11 +124,17 @@ void describe(V& v, AtmosphereSettings& s) {
           "altitude of the ozone peak, km");
   v.field("ozone_half_width_km", s.ozoneHalfWidthKm, NumberRange{0.01, 100},
           "half width of the ozone tent profile, km");
-  v.field("ground_albedo", s.groundAlbedo, NumberRange{0, 1}, "ground albedo per channel");
   v.check("mie_extinction", s.mieExtinction >= s.mieScattering,
           "must be at least mie_scattering (extinction = scattering + absorption)");
   v.check("ozone_center_km", s.ozoneCenterKm < s.thicknessKm,
           "must lie below the top of the atmosphere (thickness_km)");
+}
+
+template <class V>
+void describe(V& v, GroundSettings& s) {
+  v.field("albedo", s.albedo, NumberRange{0, 1},
+          "Lambertian reflectance per channel (linear Rec.709); also the physical sky's ground "
+          "bounce");
 }
 
 template <class V>
@@ -363,6 +374,7 @@ void describe(V& v, Scene& s) {
   v.section("sky", s.sky, "clear-sky model and Kozlov 3.1 geometry");
   v.section("atmosphere", s.atmosphere,
             "the planet's atmosphere for sky.model physical (Hillaire 2020)");
+  v.section("ground", s.ground, "the ground below the horizon, lit and shadowed by the clouds");
   v.section("high_clouds", s.highClouds,
             "high-cloud layer: coefficient texture, normal map, altitude and wind (Kozlov)");
   v.section("clouds", s.clouds,

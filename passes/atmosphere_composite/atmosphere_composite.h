@@ -1,42 +1,82 @@
 #pragma once
 // The atmosphere composite: the final scene-linear image. The clear sky and high clouds of
-// passes/sky_high_clouds, the star field, and the sun and moon discs from the frame's
-// LightingState, seen through the high clouds and the volumetric clouds.
+// passes/sky_high_clouds, the star field, the sun and moon discs from the frame's
+// LightingState, the lit ground in the clouds' shadows (passes/cloud_shadow), and the
+// volumetric clouds, the ground and the clouds seen through the aerial perspective.
 #include <optional>
 
 #include "engine/gpu/compute_pipeline.h"
 #include "engine/graph/frame_graph.h"
 #include "engine/graph/pass_context.h"
+#include "engine/lighting/lighting_state.h"
+#include "engine/scene/scene.h"
 #include "shaders/common/atmosphere_composite_shared.h"
+#include "shaders/common/atmosphere_shared.h"
 #include "shaders/common/lighting_shared.h"
 
 namespace sky {
 
 class Context;
+class Sampler;
 class ShaderCompiler;
+
+// What the composite takes from the scene (built by engine/render, not the whole Scene).
+struct AtmosphereCompositeSettings {
+  GroundSettings ground;
+  double planetRadiusM = 0.0;    // the sky model's planet (kozlov: the geographic Earth)
+  double cameraAltitudeM = 0.0;  // above sea level
+  double turbidity = 0.1;        // lighting.turbidity: the kozlov haze (light::hazeMedium)
+  bool observer = true;          // false for a top-down render: no ground, no aerial perspective
+  bool aboveHighClouds = false;  // the camera flies above the high-cloud layer
+  bool belowClouds = true;       // the camera is below the volumetric clouds' lowest base
+};
+
+// The pass's uniforms for one frame (the shadow map's part stays invalid until
+// AtmosphereCompositePass::Inputs::clouds sets it).
+shared::AtmosphereCompositeParams atmosphereCompositeParams(
+    const AtmosphereCompositeSettings& settings, const LightingState& lighting,
+    const shared::ViewState& view);
 
 class AtmosphereCompositePass {
 public:
   static constexpr const char* kName = "atmosphere_composite";
+  // The volumetric clouds and their shadow map.
+  struct Clouds {
+    ImageId clouds;                          // from VolumetricCloudsPass
+    ImageId depth;                           // from VolumetricCloudsPass
+    ImageId shadow;                          // from CloudShadowPass
+    shared::CloudShadowMap shadowMap{};      // how the shadow map lies on the ground
+    const Sampler* shadowSampler = nullptr;  // linear, clamp to edge
+  };
+  // sky.model physical: the atmosphere's LUTs (passes/atmosphere_luts).
+  struct Atmosphere {
+    shared::AtmosphereParams params{};
+    ImageId transmittance, aerialPerspective;
+    const Sampler* sampler = nullptr;
+  };
   struct Inputs {
-    shared::AtmosphereCompositeParams params;  // the view; layers.y: camera above high clouds
+    shared::AtmosphereCompositeParams params;  // atmosphereCompositeParams
     shared::LightingState lighting;            // this frame's lights and palette
     BufferId starFlux;                         // from StarFieldPass
     ImageId sky;                               // from SkyHighCloudsPass
     ImageId highClouds;                        // from SkyHighCloudsPass
-    std::optional<ImageId> clouds;             // from VolumetricCloudsPass (none: clear)
+    std::optional<Clouds> clouds;              // none: no volumetric clouds
+    std::optional<Atmosphere> atmosphere;      // none: sky.model kozlov
   };
   struct Outputs {
     ImageId beauty;  // RGBA16F scene-linear, alpha 1
   };
 
-  // Compiles the shader and builds the pipeline (once, at renderer start-up).
+  // Compiles the four variants (clouds or not, physical or kozlov) and builds their
+  // pipelines (once, at renderer start-up).
   AtmosphereCompositePass(const Context& ctx, ShaderCompiler& compiler);
   Outputs setup(GraphBuilder& builder, const Inputs& inputs);
   void execute(PassContext& ctx) const;
 
 private:
-  ComputePipeline mPipeline;
+  const ComputePipeline& pipeline() const;
+
+  ComputePipeline mKozlov, mPhysical, mKozlovClouds, mPhysicalClouds;
   Inputs mInputs{};
   Outputs mOutputs;
 };

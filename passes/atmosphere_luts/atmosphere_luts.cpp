@@ -6,6 +6,7 @@
 #include <string>
 
 #include "engine/core/error.h"
+#include "engine/lighting/light_model.h"
 #include "engine/graph/pass_context.h"
 #include "engine/shader/shader_compiler.h"
 
@@ -72,8 +73,13 @@ shared::AtmosphereParams atmosphereParams(const AtmosphereSettings& s) {
   shared::AtmosphereParams p{};
   p.radii = glm::vec4(s.groundRadiusKm, s.groundRadiusKm + s.thicknessKm, 0.0f, 0.0f);
   p.rayleighScattering = perKm(s.rayleighScattering, s.rayleighScaleHeightKm);
-  p.mieScattering = perKm(glm::vec3(s.mieScattering), s.mieScaleHeightKm);
-  p.mieExtinction = perKm(glm::vec3(s.mieExtinction), s.mieAnisotropy);
+  // The coefficients stand for 550 nm; each channel's wavelength scales them by Angstrom's law.
+  glm::vec3 angstrom(1.0f);
+  for (int c = 0; c < 3; ++c)
+    angstrom[c] =
+        static_cast<float>(std::pow(light::kChannelWavelengthsNm[c] / 550.0, -s.mieAngstrom));
+  p.mieScattering = perKm(glm::vec3(s.mieScattering) * angstrom, s.mieScaleHeightKm);
+  p.mieExtinction = perKm(glm::vec3(s.mieExtinction) * angstrom, s.mieAnisotropy);
   p.ozoneAbsorption = perKm(s.ozoneAbsorption, 0.0);
   p.ozoneProfile = glm::vec4(s.ozoneCenterKm, s.ozoneHalfWidthKm, 0.0f, 0.0f);
   p.groundAlbedo = glm::vec4(s.groundAlbedo, 0.0f);

@@ -15,8 +15,6 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kDeg = kPi / 180.0;
-// The kozlov model has no planet of its own: it uses the geographic Earth (kEarthRadiusM).
-
 ComputePipeline buildPipeline(const Context& ctx, ShaderCompiler& compiler, bool physical,
                               bool regional) {
   CompiledShader shader = compileForDevice(ctx, compiler, "sky_high_clouds.comp",
@@ -25,13 +23,12 @@ ComputePipeline buildPipeline(const Context& ctx, ShaderCompiler& compiler, bool
   return ComputePipeline(ctx, SkyHighCloudsPass::kName, shader.spirv, shader.reflection);
 }
 
-// The sphere the pass puts the ground on: the physical atmosphere's ground, or the Earth.
-double planetRadiusM(const Scene& scene) {
+}  // namespace
+
+double skyPlanetRadiusM(const Scene& scene) {
   return scene.sky.model == SkyModel::Physical ? scene.atmosphere.groundRadiusKm * 1000.0
                                                : kEarthRadiusM;
 }
-
-}  // namespace
 
 shared::SkyHighCloudsParams skyHighCloudsParams(const Scene& scene, const LightingState& lighting,
                                                 const IsoTime& time, const shared::ViewState& view,
@@ -45,7 +42,7 @@ shared::SkyHighCloudsParams skyHighCloudsParams(const Scene& scene, const Lighti
   p.view = view;
   // Altitudes are above sea level; the camera may not sit below the ground sphere (setRegionalCover
   // places it the same way).
-  const double planetR = planetRadiusM(scene);
+  const double planetR = skyPlanetRadiusM(scene);
   p.layer = glm::vec4(static_cast<float>(planetR),
                       static_cast<float>(planetR + std::max(scene.camera.altitudeM, 1.0)),
                       static_cast<float>(planetR + altitudeM), cloudsPresent ? 1.0f : 0.0f);
@@ -89,7 +86,7 @@ void setRegionalCover(shared::SkyHighCloudsParams& params, const Scene& scene,
   // sphere maps t V to the latitude and longitude below it.
   shared::GeoFrame geo = geoFrame(
       {scene.camera.latitude, scene.camera.longitude, std::max(scene.camera.altitudeM, 1.0)});
-  geo.origin.w = static_cast<float>(planetRadiusM(scene));
+  geo.origin.w = static_cast<float>(skyPlanetRadiusM(scene));
   params.geo = geo;
   params.region = geoRegion(region);
   params.regional = glm::vec4(1.0f, textures.rampWidth, 0.0f, 0.0f);

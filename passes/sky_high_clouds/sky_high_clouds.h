@@ -78,6 +78,10 @@ private:
   Outputs mOutputs;
 };
 
+// The sphere the sky passes put the ground on: the physical atmosphere's ground, or for the
+// kozlov model, which has no planet of its own, the geographic Earth.
+double skyPlanetRadiusM(const Scene& scene);
+
 // The layer's uniforms for one frame: geometry from the scene and camera, the wind's drift
 // since the start of the scene's time, and each light's illuminance at the layer's altitude.
 // `textureSize`/`coarseSize` are the texel counts across the fine and coarse textures.

@@ -54,7 +54,8 @@ TEST_F(SkyrenderCli, RendersTheDefaultSceneIntoExrPngAndReport) {
   }
   EXPECT_THAT(passNames,
               ::testing::ElementsAre("star_clear", "star_field", "sky_high_clouds",
-                                     "volumetric_clouds", "atmosphere_composite", "readback"));
+                                     "volumetric_clouds", "cloud_shadow", "atmosphere_composite",
+                                     "readback"));
   EXPECT_EQ(report["light"]["key"], "sun");
   EXPECT_EQ(report["time"], "2024-06-21T19:00:00+02:00");
   EXPECT_TRUE(report.contains("gpu_ms_total"));

@@ -129,10 +129,10 @@ double psnr(const std::vector<double>& got, const std::vector<double>& ref) {
 }
 
 TEST_F(AtmosphereTest, SkyMatchesTheDirectReferenceWithin35dB) {
-  // A 64x32 equirectangular probe of the whole sphere (ground included) against the direct
-  // reference (atmosphere_reference.h), for the sun at 30 and at 2 degrees. The sun sits on
-  // the azimuth of column 16's centre, so the sky is mirror-symmetric about it and the
-  // reference computes columns 16..48 only. PSNR over rgb with the reference's maximum as
+  // A 64x32 equirectangular probe of the whole sphere (the air in front of the ground
+  // included) against the direct reference (atmosphere_reference.h), for the sun at 30 and
+  // at 2 degrees. The sun sits on the azimuth of column 16's centre, so the sky is
+  // mirror-symmetric about it and the reference computes columns 16..48 only. PSNR over rgb with the reference's maximum as
   // the peak: at least 35 dB (56 and 68 dB measured on lavapipe).
   constexpr int kW = 64, kH = 32, kSunColumn = 16;
   const double sunAzimuth = 360.0 * (kSunColumn + 0.5) / kW;

@@ -200,7 +200,7 @@ glm::dvec3 AtmosphereReference::psiMs(double r, double muS) const {
 }
 
 glm::dvec3 AtmosphereReference::march(double r0, glm::dvec3 V, glm::dvec3 L, double length,
-                                      bool withGround, glm::dvec3* transmittance) const {
+                                      glm::dvec3* transmittance) const {
   const glm::dvec3 origin(0.0, 0.0, r0);
   const Warp warp = warpFor(mA, r0, V.z);
   const double nu = glm::dot(V, L);
@@ -233,23 +233,16 @@ glm::dvec3 AtmosphereReference::march(double r0, glm::dvec3 V, glm::dvec3 L, dou
     tau += m.extinction * dt;
   }
   if (transmittance) *transmittance = glm::exp(-tau);
-
-  glm::dvec3 ground(0.0);
-  if (withGround && hitsGround(mA, r0, V.z)) {
-    const glm::dvec3 p = origin + length * V;
-    const double muG = std::max(glm::dot(glm::normalize(p), L), 0.0);
-    ground = glm::exp(-tau) * mA.albedo / kPi * muG * transmittanceToLight(p, L);
-  }
-  return radiance + ground;
+  return radiance;
 }
 
 glm::dvec3 AtmosphereReference::skyRadiance(double r0, glm::dvec3 V, glm::dvec3 L) const {
-  return march(r0, V, L, rayLength(r0, V.z), true, nullptr);
+  return march(r0, V, L, rayLength(r0, V.z), nullptr);
 }
 
 glm::dvec3 AtmosphereReference::inScattered(double r0, glm::dvec3 V, glm::dvec3 L, double distance,
                                             glm::dvec3* transmittance) const {
-  return march(r0, V, L, std::min(distance, rayLength(r0, V.z)), false, transmittance);
+  return march(r0, V, L, std::min(distance, rayLength(r0, V.z)), transmittance);
 }
 
 }  // namespace sky::test

@@ -54,8 +54,9 @@ public:
   glm::dvec3 transmittanceToLight(glm::dvec3 pos, glm::dvec3 L) const;
   // Hillaire's Psi_ms at radius r for a light at cos(zenith) muS, evaluated directly.
   glm::dvec3 psiMs(double r, double muS) const;
-  // Radiance reaching the camera at radius r0 along V, light L: single + multiple scattering
-  // and, below the horizon, the lit ground.
+  // Radiance the air scatters toward the camera at radius r0 along V, light L: single +
+  // multiple scattering to the top of the atmosphere or the ground (the ground itself is the
+  // composite's, as in the sky-view LUT).
   glm::dvec3 skyRadiance(double r0, glm::dvec3 V, glm::dvec3 L) const;
   // The light in-scattered between the camera and `distance` km along V (no ground), and the
   // transmittance over that segment.
@@ -63,8 +64,8 @@ public:
                          glm::dvec3* transmittance = nullptr) const;
 
 private:
-  // Integrates along a ray; `withGround` adds the lit ground where the ray ends on it.
-  glm::dvec3 march(double r0, glm::dvec3 V, glm::dvec3 L, double length, bool withGround,
+  // Integrates the in-scattered light along a ray.
+  glm::dvec3 march(double r0, glm::dvec3 V, glm::dvec3 L, double length,
                    glm::dvec3* transmittance) const;
 
   ReferenceAtmosphere mA;

@@ -99,11 +99,49 @@ TEST_F(AtmosphereCompositeTest, SunDiscKeepsItsEnergyAndHidesBelowTheHorizon) {
   // angle is pi r^2 to 1e-5 at this size).
   EXPECT_NEAR(expected, frame.lighting.gpu.sun.illuminance.g, 1e-3 * expected);
 
+  // Set, it leaves the sky above the horizon as it is: the camera's 80-degree view 30 degrees
+  // up meets the horizon at row 30, and rows 0-25 lie above it across the whole width.
   scene.sun.elevation = -2.0;
   frame = render(scene);
   const ImageLayer* beauty = frame.image.find("");
   const ImageLayer* sky = frame.image.find("sky");
-  for (size_t i = 0; i < 64 * 36; ++i) ASSERT_FLOAT_EQ(beauty->pixels[i * 4], sky->pixels[i * 3]);
+  for (size_t i = 0; i < 64 * 26; ++i) ASSERT_FLOAT_EQ(beauty->pixels[i * 4], sky->pixels[i * 3]);
+}
+
+TEST_F(AtmosphereCompositeTest, ResolvedSunDiscIsDarkerAndRedderAtTheLimbWithItsEnergy) {
+  // The sun placed at 180/45 degrees and looked at with a 1.5-degree field of view: the disc
+  // (0.53 degrees) spans about 13 of the 36 rows. Its centre against a pixel at 85 % of the
+  // radius: the linear limb-darkening law (Neckel & Labs' coefficients) gives 0.79 in green
+  // and a redder limb. The disc's flux stays pi r^2 times its mean radiance.
+  Scene scene = loadSceneFile(configDir() / "tests" / "clear_sky_high.yaml");
+  scene.sun.azimuth = 180.0;
+  scene.sun.elevation = 45.0;
+  scene.camera.heading = 180.0;
+  scene.camera.pitch = 45.0;
+  scene.camera.verticalFov = 1.5;
+  const RenderedFrame frame = render(scene);
+  const ImageLayer* beauty = frame.image.find("");
+  const ImageLayer* sky = frame.image.find("sky");
+  const int w = frame.image.width;
+  auto disc = [&](int x, int y) {
+    const size_t i = static_cast<size_t>(y) * w + x;
+    return glm::dvec3(beauty->pixels[i * 4] - sky->pixels[i * 3],
+                      beauty->pixels[i * 4 + 1] - sky->pixels[i * 3 + 1],
+                      beauty->pixels[i * 4 + 2] - sky->pixels[i * 3 + 2]);
+  };
+  // Pixel centres: the sun lies on the image centre (32, 18), between pixels 31/32 and 17/18.
+  const double pixelDeg = scene.camera.verticalFov / 36.0;
+  const double radiusPx = 0.5 * scene.sun.angularDiameter / pixelDeg;
+  const int limbX = 32 + static_cast<int>(std::lround(0.85 * radiusPx - 0.5));
+  const glm::dvec3 centre = disc(32, 18), limb = disc(limbX, 18);
+  std::cout << "sun disc: centre " << centre.g << ", limb (x " << limbX << ") " << limb.g
+            << ", R/B " << centre.r / centre.b << " -> " << limb.r / limb.b << "\n";
+  EXPECT_LT(limb.g, 0.9 * centre.g);
+  EXPECT_GT(limb.g, 0.6 * centre.g);
+  EXPECT_GT(limb.r / limb.b, 1.05 * centre.r / centre.b);
+  const double r = 0.5 * scene.sun.angularDiameter * 3.14159265358979 / 180;
+  const double expected = 3.14159265358979 * r * r * frame.lighting.gpu.sunDisc.g;
+  EXPECT_NEAR(addedIlluminance(frame, scene.camera).g, expected, 0.05 * expected);
 }
 
 // The moon seen from Zurich with a 1-degree field of view, so the disc spans about 19 pixels.

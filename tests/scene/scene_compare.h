@@ -93,7 +93,8 @@ inline void expectSameScene(const Scene& a, const Scene& b) {
   expectSameColor(aa.ozoneAbsorption, ba.ozoneAbsorption, "ozone_absorption");
   EXPECT_EQ(aa.ozoneCenterKm, ba.ozoneCenterKm);
   EXPECT_EQ(aa.ozoneHalfWidthKm, ba.ozoneHalfWidthKm);
-  expectSameColor(aa.groundAlbedo, ba.groundAlbedo, "ground_albedo");
+  EXPECT_EQ(aa.aerosols, ba.aerosols);
+  expectSameColor(a.ground.albedo, b.ground.albedo, "ground.albedo");
   const HighCloudSettings &ah = a.highClouds, &bh = b.highClouds;
   EXPECT_EQ(ah.source, bh.source);
   EXPECT_EQ(ah.style, bh.style);
@@ -213,7 +214,8 @@ inline Scene unusualScene() {
   s.atmosphere.ozoneAbsorption = {1e-30f, 2.0f / 3.0f, 9999.999f};
   s.atmosphere.ozoneCenterKm = 999.9999999999999;
   s.atmosphere.ozoneHalfWidthKm = 0.01;
-  s.atmosphere.groundAlbedo = {0.0f, 1.0f, 0.1f};
+  s.atmosphere.aerosols = AerosolSource::Settings;
+  s.ground.albedo = {0.0f, 1.0f, 0.1f};
   s.highClouds.source = HighCloudSource::Image;
   s.highClouds.style = HighCloudStyle::Cirrocumulus;
   s.highClouds.cover = 1.0 / 3.0;

@@ -37,7 +37,7 @@ TEST(SceneErrors, UnknownKeys) {
             "x.yaml:2:3: unknown key 'sky.cloudiness' (known keys: model, glow_size, haze_height)");
   EXPECT_EQ(jsonError("{\"output\": {}, \"fog\": {}}"),
             "x.json:1:16: unknown key 'fog' (known keys: output, camera, time, sun, moon, sky, "
-            "atmosphere, high_clouds, clouds, weather, lighting)");
+            "atmosphere, ground, high_clouds, clouds, weather, lighting)");
   EXPECT_EQ(fileError("unknown_key.yaml"),
             badPath("unknown_key.yaml") +
                 ":5:3: unknown key 'sky.haze_hieght' (did you mean 'haze_height'?)");

@@ -194,7 +194,7 @@ TEST(SceneOverrides, PaletteItemsCannotBeSetOneByOne) {
   // An index at the front names no list: an unknown key.
   EXPECT_EQ(overrideError("", {"0.width=3"}),
             "--set 0.width=3: unknown key '0' (known keys: output, camera, time, sun, moon, sky, "
-            "atmosphere, high_clouds, clouds, weather, lighting)");
+            "atmosphere, ground, high_clouds, clouds, weather, lighting)");
   // The whole list can be replaced, in YAML flow style, and is validated like a file's.
   Scene s = loadSceneFile(
       defaultScene,

@@ -151,9 +151,10 @@ TEST(SceneRoundTrip, UnusualSceneDiffersFromTheDefaultEverywhere) {
   // length (3 against 8). 66 before the clouds: + camera mode, 24 cloud and 13 + 2 + 9 + 2
   // weather values; then high_clouds.cover_source and weather time, local radius, evolution
   // and automaton. The weather region counts once (given against absent) where its four
-  // numbers counted before, and camera_region_km once.
+  // numbers counted before, and camera_region_km once; then atmosphere.aerosols (the ground
+  // albedo moved from atmosphere to ground with its three channels).
   EXPECT_EQ(failuresOf([] { expectSameScene(test::unusualScene(), Scene()); }),
-            66 + 1 + 24 + 13 + 2 + 9 + 2 + 1 + 4 - 4 + 1 + 1);
+            66 + 1 + 24 + 13 + 2 + 9 + 2 + 1 + 4 - 4 + 1 + 1 + 1);
   const std::vector<PaletteKey> palette = test::unusualScene().lighting.palette;
   for (size_t i = 0; i < palette.size(); ++i) {
     const PaletteKey& k = palette[i];
@@ -272,6 +273,7 @@ TEST(SceneRoundTrip, PrintedYamlLooksLikeAScene) {
             "  thickness_km: 100\n"
             "  rayleigh_scattering: [5.802, 13.558, 33.1]\n"
             "  rayleigh_scale_height_km: 8\n"
+            "  aerosols: \"turbidity\"\n"
             "  mie_scattering: 3.996\n"
             "  mie_extinction: 4.4\n"
             "  mie_scale_height_km: 1.2\n"
@@ -279,7 +281,8 @@ TEST(SceneRoundTrip, PrintedYamlLooksLikeAScene) {
             "  ozone_absorption: [0.65, 1.881, 0.085]\n"
             "  ozone_center_km: 25\n"
             "  ozone_half_width_km: 15\n"
-            "  ground_albedo: [0.3, 0.3, 0.3]\n"
+            "ground:\n"
+            "  albedo: [0.1, 0.12, 0.07]\n"
             "high_clouds:\n"
             "  source: \"procedural\"\n"
             "  style: \"cirrus\"\n"
@@ -440,14 +443,17 @@ TEST(SceneRoundTrip, PrintedJsonLooksLikeAScene) {
             "    \"thickness_km\": 100,\n"
             "    \"rayleigh_scattering\": [5.802, 13.558, 33.1],\n"
             "    \"rayleigh_scale_height_km\": 8,\n"
+            "    \"aerosols\": \"turbidity\",\n"
             "    \"mie_scattering\": 3.996,\n"
             "    \"mie_extinction\": 4.4,\n"
             "    \"mie_scale_height_km\": 1.2,\n"
             "    \"mie_anisotropy\": 0.8,\n"
             "    \"ozone_absorption\": [0.65, 1.881, 0.085],\n"
             "    \"ozone_center_km\": 25,\n"
-            "    \"ozone_half_width_km\": 15,\n"
-            "    \"ground_albedo\": [0.3, 0.3, 0.3]\n"
+            "    \"ozone_half_width_km\": 15\n"
+            "  },\n"
+            "  \"ground\": {\n"
+            "    \"albedo\": [0.1, 0.12, 0.07]\n"
             "  },\n"
             "  \"high_clouds\": {\n"
             "    \"source\": \"procedural\",\n"

@@ -1,0 +1,59 @@
+#include "passes/cloud_shadow/cloud_shadow.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace sky {
+namespace {
+
+// The map reaches this far past the ground horizon, and at least kMinRadiusM: the ground near
+// the horizon is seen at a grazing angle through a lot of haze, so it only needs to be there.
+constexpr double kHorizonMarginM = 10000.0;
+constexpr double kMinRadiusM = 40000.0;
+constexpr double kMaxRadiusM = 400000.0;
+// The light's path through the shells is cut after this distance: with the sun 5 degrees up it
+// crosses a 2 km layer in 23 km.
+constexpr double kMaxPathM = 60000.0;
+
+}  // namespace
+
+shared::CloudShadowMap cloudShadowMap(const shared::CloudParams& params, double cameraAltitudeM) {
+  const double R = params.geo.origin.w, h = std::max(cameraAltitudeM, 1.0);
+  // Ground distance to the horizon seen from height h: R acos(R / (R + h)).
+  const double horizon = R * std::acos(R / (R + h));
+  shared::CloudShadowMap map{};
+  map.lightDirection = glm::vec4(glm::vec3(params.keyDirection), 0.0f);
+  map.radiusM = static_cast<float>(std::clamp(horizon + kHorizonMarginM, kMinRadiusM, kMaxRadiusM));
+  map.lightIsSun = params.keyIsSun;
+  map.maxPathM = static_cast<float>(kMaxPathM);
+  map.valid = 1.0f;
+  return map;
+}
+
+CloudShadowPass::CloudShadowPass(const Context& ctx, ShaderCompiler& compiler)
+    : mPipelines(ctx, compiler, "cloud_shadow.comp", kName) {}
+
+CloudShadowPass::Outputs CloudShadowPass::setup(GraphBuilder& b, const Inputs& in) {
+  mInputs = in;
+  mPipeline = &mPipelines.get(in.params);
+  readCloudTextures(b, in.textures);
+  ImageDesc desc;
+  desc.width = CLOUD_SHADOW_SIZE;
+  desc.height = CLOUD_SHADOW_SIZE;
+  desc.format = VK_FORMAT_R16_SFLOAT;
+  desc.name = "cloud_shadow";
+  mOutputs.shadow = b.write(b.create(desc), Access::StorageWriteCompute);
+  return mOutputs;
+}
+
+void CloudShadowPass::execute(PassContext& ctx) const {
+  std::vector<Binding> bindings = cloudTextureBindings(mInputs.textures);
+  bindings.insert(bindings.end(),
+                  {Binding::of(VOLUMETRIC_CLOUDS_BINDING_PARAMS, ctx.uniform(mInputs.params)),
+                   Binding::of(CLOUD_SHADOW_BINDING_MAP_PARAMS, ctx.uniform(mInputs.map)),
+                   Binding::of(CLOUD_SHADOW_BINDING_IMAGE, mOutputs.shadow)});
+  ctx.dispatch(*mPipeline, bindings, mPipeline->groupsX(CLOUD_SHADOW_SIZE),
+               mPipeline->groupsY(CLOUD_SHADOW_SIZE));
+}
+
+}  // namespace sky

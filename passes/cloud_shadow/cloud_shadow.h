@@ -1,0 +1,44 @@
+#pragma once
+// The cloud shadow map (shaders/cloud_shadow.comp): the transmittance of the volumetric
+// clouds toward the key light from every point of a square of ground around the camera, so
+// the composite's ground lies in the shadows of the clouds above it. It marches the cloud
+// pass's own density field with the same parameters and textures.
+#include "engine/gpu/compute_pipeline.h"
+#include "engine/graph/frame_graph.h"
+#include "engine/graph/pass_context.h"
+#include "passes/volumetric_clouds/volumetric_clouds.h"
+#include "shaders/common/cloud_shadow_shared.h"
+
+namespace sky {
+
+class Context;
+class ShaderCompiler;
+
+// The map for a frame: the key light of the cloud parameters (their keyDirection) and a
+// square reaching past the ground horizon seen from `cameraAltitudeM` (m above sea level).
+shared::CloudShadowMap cloudShadowMap(const shared::CloudParams& params, double cameraAltitudeM);
+
+class CloudShadowPass {
+public:
+  static constexpr const char* kName = "cloud_shadow";
+  struct Inputs {
+    shared::CloudParams params{};  // the volumetric clouds' parameters (cloudParams)
+    shared::CloudShadowMap map{};  // cloudShadowMap
+    CloudTextures textures;
+  };
+  struct Outputs {
+    ImageId shadow;  // R16F CLOUD_SHADOW_SIZE^2: transmittance toward the light
+  };
+
+  CloudShadowPass(const Context& ctx, ShaderCompiler& compiler);
+  Outputs setup(GraphBuilder& builder, const Inputs& inputs);
+  void execute(PassContext& ctx) const;
+
+private:
+  CloudPipelines mPipelines;
+  const ComputePipeline* mPipeline = nullptr;  // this frame's variant, chosen in setup()
+  Inputs mInputs{};
+  Outputs mOutputs;
+};
+
+}  // namespace sky
