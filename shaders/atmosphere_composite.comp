@@ -239,7 +239,11 @@ void main() {
   vec3 stars = vec3(starFlux(ivec2(p)) * L.night.z / pixelSolidAngle(params.view, pixelCentre));
   stars *= (1.0 - moonCover) * aboveHorizon;
 
-  vec3 beyond = sky + stars + sunDisc + moonDisc;
+  // Seen from below the clouds the sky within a few degrees of the horizon is the air under
+  // them, lit like it (airLight): under an overcast the distant horizon is no bright band of
+  // clear sky. Higher up the sky shows through the gaps as it is.
+  float underClouds = params.observer != 0u ? smoothstep(0.0, 0.05, V.z - horizonZ) : 1.0;
+  vec3 beyond = sky * mix(params.airLight, 1.0, underClouds) + stars + sunDisc + moonDisc;
   vec2 uv = pixelCentre / vec2(params.view.size.xy);
   // The air toward the horizon below this direction: Kozlov's sky there is the airlight.
   vec3 level = vec3(length(V.xy) > 1e-6 ? normalize(V.xy) : vec2(0.0, 1.0), 0.0);
