@@ -28,12 +28,12 @@ layout(std140, binding = ATMOSPHERE_COMPOSITE_BINDING_PARAMS) uniform Params {
   AtmosphereCompositeParams paramsBlock[1];
 };
 #define params paramsBlock[SKY_PARAMS_INDEX]
-layout(binding = ATMOSPHERE_COMPOSITE_BINDING_BEAUTY, rgba16f) uniform writeonly image2D beautyImage;
-layout(binding = ATMOSPHERE_COMPOSITE_BINDING_SKY, rgba16f) uniform readonly image2D skyImage;
-layout(binding = ATMOSPHERE_COMPOSITE_BINDING_HIGH_CLOUDS, rgba16f) uniform readonly image2D
+layout(binding = ATMOSPHERE_COMPOSITE_BINDING_BEAUTY, rgba32f) uniform writeonly image2D beautyImage;
+layout(binding = ATMOSPHERE_COMPOSITE_BINDING_SKY, rgba32f) uniform readonly image2D skyImage;
+layout(binding = ATMOSPHERE_COMPOSITE_BINDING_HIGH_CLOUDS, rgba32f) uniform readonly image2D
     highCloudImage;
 #if ATMOSPHERE_COMPOSITE_CLOUDS
-layout(binding = ATMOSPHERE_COMPOSITE_BINDING_CLOUDS, rgba16f) uniform readonly image2D cloudImage;
+layout(binding = ATMOSPHERE_COMPOSITE_BINDING_CLOUDS, rgba32f) uniform readonly image2D cloudImage;
 layout(binding = ATMOSPHERE_COMPOSITE_BINDING_CLOUD_DEPTH, r32f) uniform readonly image2D
     cloudDepthImage;
 layout(binding = ATMOSPHERE_COMPOSITE_BINDING_CLOUD_SHADOW) uniform sampler2D cloudShadow;

@@ -25,8 +25,8 @@ layout(std140, binding = SKY_HIGH_CLOUDS_BINDING_PARAMS) uniform Params {
   SkyHighCloudsParams paramsBlock[1];
 };
 #define params paramsBlock[SKY_PARAMS_INDEX]
-layout(binding = SKY_HIGH_CLOUDS_BINDING_SKY, rgba16f) uniform writeonly image2D skyImage;
-layout(binding = SKY_HIGH_CLOUDS_BINDING_CLOUDS, rgba16f) uniform writeonly image2D cloudImage;
+layout(binding = SKY_HIGH_CLOUDS_BINDING_SKY, rgba32f) uniform writeonly image2D skyImage;
+layout(binding = SKY_HIGH_CLOUDS_BINDING_CLOUDS, rgba32f) uniform writeonly image2D cloudImage;
 layout(binding = SKY_HIGH_CLOUDS_BINDING_NORMALS) uniform sampler2D normalTexture;
 #if SKY_HIGH_CLOUDS_REGIONAL
 // The weather map's high cover over its region (linear, clamp to edge).

@@ -25,7 +25,7 @@
 
 layout(local_size_x = VOLUMETRIC_CLOUDS_GROUP_X, local_size_y = VOLUMETRIC_CLOUDS_GROUP_Y) in;
 
-layout(binding = VOLUMETRIC_CLOUDS_BINDING_CLOUDS, rgba16f) uniform writeonly image2D cloudImage;
+layout(binding = VOLUMETRIC_CLOUDS_BINDING_CLOUDS, rgba32f) uniform writeonly image2D cloudImage;
 layout(binding = VOLUMETRIC_CLOUDS_BINDING_DEPTH, r32f) uniform writeonly image2D depthImage;
 layout(binding = VOLUMETRIC_CLOUDS_BINDING_STEPS, rgba16f) uniform writeonly image2D stepImage;
 

@@ -239,6 +239,7 @@ int renderCommand(const std::vector<std::string>& argv) {
   const int64_t count = scene.time.frameCount();
   Progress progress(count);
   RenderFiles first, last;
+  ExposureMeter exposure;  // carries a histogram exposure's adaptation from frame to frame
   double gpuMs = 0.0;
   int64_t written = 0;
   for (int64_t i = 0; i < count && !stop.signal(); ++i) {
@@ -247,8 +248,9 @@ int renderCommand(const std::vector<std::string>& argv) {
     RenderedFrame frame = renderer.render(scene, time, renderOptions);
     // The graph is the same every frame; the first one is written.
     RenderFiles files =
-        writeRenderFiles(outDir, frameStem(scene.output.name, i, count), scene, frame, ocio,
-                         ctx.deviceName(), i == 0 ? graphPath : std::nullopt);
+        writeRenderFiles(outDir, frameStem(scene.output.name, i, count), scene, frame,
+                         exposure.expose(scene, frame, time), ocio, ctx.deviceName(),
+                         i == 0 ? graphPath : std::nullopt);
     folder.keep();
     if (i == 0) first = files;
     last = files;

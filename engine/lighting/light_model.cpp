@@ -121,6 +121,10 @@ double nightLiftEv(double sunElevationDeg, double adaptation) {
          std::log2(twilightIlluminanceLux(0.0) / twilightIlluminanceLux(sunElevationDeg));
 }
 
+double paletteExposureEv(double sunElevationDeg) {
+  return nightLiftEv(sunElevationDeg, kPaletteNightAdaptation);
+}
+
 double dayFactor(double sunElevationDeg) {
   double full = std::log2(twilightIlluminanceLux(0.0) / twilightIlluminanceLux(-90.0));
   return std::clamp(1.0 - nightLiftEv(sunElevationDeg, 1.0) / full, 0.0, 1.0);

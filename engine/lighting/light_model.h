@@ -67,6 +67,15 @@ double twilightIlluminanceLux(double sunElevationDeg);
 // times the stops lost since sunset (0 while the sun is up).
 double nightLiftEv(double sunElevationDeg, double adaptation);
 
+// The night adaptation the palette is authored for: lighting.palette holds the sky as it
+// should look after paletteExposureEv stops of night lift, the standard night_adaptation's.
+constexpr double kPaletteNightAdaptation = 0.8;
+
+// The stops the palette at this sun elevation is authored above the physical sky:
+// nightLiftEv(sunElevationDeg, kPaletteNightAdaptation). The lighting divides them out, so
+// the scene-linear image is physical whatever output.exposure does with it.
+double paletteExposureEv(double sunElevationDeg);
+
 // 1 by day, 0 at full night, continuous: the share of the sunset-to-night darkening (in
 // stops) still ahead. 0.5 is where the key light hands over from sun to moon.
 double dayFactor(double sunElevationDeg);

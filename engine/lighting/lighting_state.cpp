@@ -118,11 +118,11 @@ LightingState computeLighting(const Scene& scene, const IsoTime& time) {
   st.moon.angularRadiusDeg =
       std::asin(light::kMoonRadiusKm / eph.moon.topocentricDistanceKm) / kDeg;
 
-  // Night: how far the exposure follows the light down (docs/lighting.md).
+  // Night: how far the display's automatic exposure follows the light down (docs/lighting.md).
+  // Nothing here applies it: the state is physical, the display path exposes it.
   st.dayFactor = light::dayFactor(st.sun.elevationDeg);
   st.nightLiftEv = light::nightLiftEv(st.sun.elevationDeg, ls.nightAdaptation);
   st.key = st.dayFactor >= 0.5 ? "sun" : "moon";
-  const double lift = std::exp2(st.nightLiftEv);
 
   // Sun: top-of-atmosphere illuminance at this distance, through the air mass.
   const double sunToaLux = light::kSolarIlluminanceLux / (eph.sun.distanceAu * eph.sun.distanceAu);
@@ -132,23 +132,27 @@ LightingState computeLighting(const Scene& scene, const IsoTime& time) {
   const glm::dvec3 sunUnhidden = sunToaLux / light::kLuxPerUnit * sunT;
   st.sun.illuminanceLux = sunToaLux * light::luminance(sunT) * sunAbove;
 
-  // Moon: Krisciunas & Schaefer by phase and distance, reddened, through the air mass, lifted.
+  // Moon: Krisciunas & Schaefer by phase and distance, reddened, through the air mass.
   const MoonEphemeris& m = eph.moon;
   const double moonToaLux = light::moonIlluminanceLux(m.phaseAngleDeg, m.topocentricDistanceKm);
   const glm::dvec3 moonT =
       light::atmosphereTransmittance(st.moon.elevationDeg, cam.altitudeM, ls.turbidity);
   const double moonAbove = light::discAboveHorizon(st.moon.elevationDeg, st.moon.angularRadiusDeg);
   const glm::dvec3 moonTint = light::moonColor();
-  const glm::dvec3 moonUnhidden = moonToaLux / light::kLuxPerUnit * lift * moonT * moonTint;
+  const glm::dvec3 moonUnhidden = moonToaLux / light::kLuxPerUnit * moonT * moonTint;
   st.moon.illuminanceLux = moonToaLux * light::luminance(moonT * moonTint) * moonAbove;
 
   // Palettes: the sky at the sun's elevation, and the moonlit sky, a copy of the daylit sky
   // at the moon's elevation dimmed by the moon-to-sun illuminance ratio (moonlight is
-  // sunlight, so the same atmosphere scatters it the same way).
-  st.palette = interpolatePalette(ls.palette, st.sun.elevationDeg);
-  const double moonSky = moonToaLux / light::kSolarIlluminanceLux * lift;
-  st.moonPalette =
-      scaled(interpolatePalette(ls.palette, st.moon.elevationDeg), static_cast<float>(moonSky));
+  // sunlight, so the same atmosphere scatters it the same way). The palette is authored as
+  // seen after the standard night lift; dividing that out makes both physical.
+  auto physical = [&](double elevationDeg) {
+    return scaled(interpolatePalette(ls.palette, elevationDeg),
+                  static_cast<float>(std::exp2(-light::paletteExposureEv(elevationDeg))));
+  };
+  st.palette = physical(st.sun.elevationDeg);
+  const double moonSky = moonToaLux / light::kSolarIlluminanceLux;
+  st.moonPalette = scaled(physical(st.moon.elevationDeg), static_cast<float>(moonSky));
 
   shared::LightingState& g = st.gpu;
   g.sun.direction = v4(st.sun.direction, st.sun.angularRadiusDeg * kDeg);
@@ -186,20 +190,21 @@ LightingState computeLighting(const Scene& scene, const IsoTime& time) {
   // Earthshine: the earthlit side is seen at "full" phase from Earth, so its radiance is the
   // full moon's mean radiance times the earthshine ratio.
   const glm::dvec3 fullMoon = light::moonIlluminanceLux(0.0, m.topocentricDistanceKm) /
-                              light::kLuxPerUnit * lift * moonT * moonTint / moonSolidAngle;
+                              light::kLuxPerUnit * moonT * moonTint / moonSolidAngle;
   g.moonEarthshine = v4(fullMoon * light::earthshineRatio(m.illuminatedFraction) *
                             scene.moon.earthshine * scene.moon.discScale,
                         meanShade);
 
-  g.night = glm::vec4(static_cast<float>(st.dayFactor), static_cast<float>(lift),
-                      static_cast<float>(light::kVegaIlluminanceLux / light::kLuxPerUnit * lift *
+  g.night = glm::vec4(static_cast<float>(st.dayFactor),
+                      static_cast<float>(std::exp2(st.nightLiftEv)),
+                      static_cast<float>(light::kVegaIlluminanceLux / light::kLuxPerUnit *
                                          ls.starBrightness),
                       0.0f);
   for (int c = 0; c < 3; ++c) g.equatorialToEnu[c] = v4(eph.equatorialJ2000ToEnu[c]);
   // Above the atmosphere: the sun is white in our Rec.709 units (its colour at the ground is
-  // all transmittance); the moon keeps its reddened albedo and the night lift.
+  // all transmittance); the moon keeps its reddened albedo.
   g.sunSpace = v4(glm::dvec3(sunToaLux / light::kLuxPerUnit));
-  g.moonSpace = v4(moonToaLux / light::kLuxPerUnit * lift * moonTint);
+  g.moonSpace = v4(moonToaLux / light::kLuxPerUnit * moonTint);
   return st;
 }
 

@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "engine/color/night_look.h"
 #include "engine/color/ocio_output.h"
 #include "engine/core/error.h"
 #include "engine/core/files.h"
@@ -18,12 +19,13 @@
 namespace sky {
 
 std::vector<float> displayPixels(const RenderedFrame& frame, const Scene& scene,
-                                 const OcioOutput& ocio) {
+                                 const FrameExposure& exposure, const OcioOutput& ocio) {
   const ImageLayer* beauty = frame.image.find("");
   if (!beauty || beauty->channels.size() != 4)
     internalError("rendered frame has no RGBA main layer");
   std::vector<float> rgba = beauty->pixels;
-  ocio.toDisplay(rgba, scene.output.display, scene.output.view, scene.output.exposureEv);
+  if (scene.output.nightLook) applyNightLook(rgba);
+  ocio.toDisplay(rgba, scene.output.display, scene.output.view, exposure.ev);
   return rgba;
 }
 
@@ -53,7 +55,8 @@ std::string frameStem(const std::string& name, int64_t index, int64_t count) {
 }
 
 RenderFiles writeRenderFiles(const std::filesystem::path& dir, const std::string& stem,
-                             const Scene& scene, const RenderedFrame& frame, const OcioOutput& ocio,
+                             const Scene& scene, const RenderedFrame& frame,
+                             const FrameExposure& exposure, const OcioOutput& ocio,
                              const std::string& deviceName,
                              const std::optional<std::filesystem::path>& graphPath) {
   RenderFiles files;
@@ -63,7 +66,7 @@ RenderFiles writeRenderFiles(const std::filesystem::path& dir, const std::string
   files.graph = graphPath;
 
   // Everything that can fail runs before the first rename.
-  std::vector<float> display = displayPixels(frame, scene, ocio);
+  std::vector<float> display = displayPixels(frame, scene, exposure, ocio);
 
   nlohmann::ordered_json report;
   report["skylayers_version"] = skylayersVersion();
@@ -78,6 +81,12 @@ RenderFiles writeRenderFiles(const std::filesystem::path& dir, const std::string
   report["passes"] = passes;
   report["gpu_ms_total"] = frame.frame.gpuMs;
   report["frame_wall_ms"] = frame.frame.wallMs;
+  nlohmann::ordered_json exposureJson = {{"mode", enumName(exposure.mode)}, {"ev", exposure.ev}};
+  if (exposure.mode == ExposureMode::Histogram) {
+    exposureJson["metered_luminance"] = exposure.meteredLuminance;
+    exposureJson["target_ev"] = exposure.targetEv;
+  }
+  report["exposure"] = exposureJson;
   report["ocio"] = {{"config", ocio.configPath().string()},
                     {"display", scene.output.display},
                     {"view", scene.output.view}};
@@ -135,6 +144,8 @@ RenderFiles writeRenderFiles(const std::filesystem::path& dir, const std::string
 
   LayeredImage exr = frame.image;
   exr.attributes["skylayers:device"] = deviceName;
+  // The stops the PNG was exposed by: the EXR itself is physical (docs/outputs.md).
+  exr.attributes["skylayers:exposure_ev"] = std::to_string(exposure.ev);
 
   AtomicFileSet set;
   set.stage(files.exr, [&](const std::filesystem::path& tmp) { writeExr(tmp, exr); });

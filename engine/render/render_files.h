@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/render/exposure.h"
 #include "engine/render/renderer.h"
 
 namespace sky {
@@ -25,14 +26,18 @@ struct RenderFiles {
 // four digits, more when the count needs them) for a sequence.
 std::string frameStem(const std::string& name, int64_t index, int64_t count);
 
-// `dir` must exist. `graphPath`, when given, also receives the compiled graph (Graphviz).
+// `dir` must exist. `exposure` is the frame's (ExposureMeter): the PNG is exposed by it, the
+// report and the EXR's "skylayers:exposure_ev" attribute say what it was. `graphPath`, when
+// given, also receives the compiled graph (Graphviz).
 RenderFiles writeRenderFiles(const std::filesystem::path& dir, const std::string& stem,
-                             const Scene& scene, const RenderedFrame& frame, const OcioOutput& ocio,
+                             const Scene& scene, const RenderedFrame& frame,
+                             const FrameExposure& exposure, const OcioOutput& ocio,
                              const std::string& deviceName,
                              const std::optional<std::filesystem::path>& graphPath = std::nullopt);
 
-// The display-referred RGBA pixels of the main layer (exposure and OCIO view applied).
+// The display-referred RGBA pixels of the main layer: the night look (output.night_look) on
+// the physical values, then the exposure and the OCIO view.
 std::vector<float> displayPixels(const RenderedFrame& frame, const Scene& scene,
-                                 const OcioOutput& ocio);
+                                 const FrameExposure& exposure, const OcioOutput& ocio);
 
 }  // namespace sky

@@ -13,8 +13,9 @@ namespace {
 
 // Splits interleaved read-back into a layer with the first `channels` channels. A 3D image
 // is laid out with its depth slices side by side (width * depth across).
-ImageLayer toLayer(const ReadbackImage& img, std::string name, std::vector<std::string> channels) {
-  ImageLayer layer{std::move(name), std::move(channels), {}};
+ImageLayer toLayer(const ReadbackImage& img, std::string name, std::vector<std::string> channels,
+                   bool fullFloat = false) {
+  ImageLayer layer{std::move(name), std::move(channels), {}, fullFloat};
   const size_t w = img.width, h = img.height, d = img.depth, c = layer.channels.size();
   layer.pixels.resize(w * h * d * c);
   for (size_t z = 0; z < d; ++z)
@@ -36,7 +37,8 @@ const std::vector<std::string> kShadow = {"transmittance"};
 // (m); all zero when the scene has no volumetric clouds.
 ImageLayer cloudLayer(const ReadbackImage* clouds, const ReadbackImage* depth, uint32_t width,
                       uint32_t height) {
-  // FLOAT: the depth of horizon clouds (up to ~200 km) is past half's 65504.
+  // FLOAT: the depth of horizon clouds (up to ~200 km) is past half's 65504, and moonlit
+  // clouds' radiance (1e-7) below its normal range.
   ImageLayer layer{"clouds", {"R", "G", "B", "A", "depth"}, {}, true};
   const size_t n = size_t(width) * height;
   layer.pixels.assign(n * 5, 0.0f);
@@ -340,9 +342,12 @@ RenderedFrame Renderer::render(const Scene& scene, const IsoTime& time,
 
   out.image.width = static_cast<int>(width);
   out.image.height = static_cast<int>(height);
-  out.image.layers.push_back(toLayer(out.frame.output("beauty"), "", kRgba));
-  out.image.layers.push_back(toLayer(out.frame.output("sky"), "sky", kRgb));
-  out.image.layers.push_back(toLayer(out.frame.output("high_clouds"), "high_clouds", kRgba));
+  // FLOAT: physical values span from a moonless night (1e-8) to the sun's disc (1e5), past
+  // both ends of half's range.
+  out.image.layers.push_back(toLayer(out.frame.output("beauty"), "", kRgba, true));
+  out.image.layers.push_back(toLayer(out.frame.output("sky"), "sky", kRgb, true));
+  out.image.layers.push_back(
+      toLayer(out.frame.output("high_clouds"), "high_clouds", kRgba, true));
   out.image.layers.push_back(cloudLayer(out.clouds ? &out.frame.output("clouds") : nullptr,
                                         out.clouds ? &out.frame.output("clouds_depth") : nullptr,
                                         width, height));

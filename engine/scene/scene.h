@@ -22,11 +22,25 @@
 
 namespace sky {
 
+// output.exposure: how the display path exposes the physical scene-linear image (never the
+// EXR). auto: the lighting model's night lift (lighting.night_adaptation of the stops the
+// twilight has lost since sunset); histogram: metered from the frame's own luminance, adapting
+// over a sequence's frames (exposure_adaptation_s); fixed: exposure_ev alone.
+enum class ExposureMode { Auto, Histogram, Fixed };
+constexpr auto enumNames(ExposureMode) {
+  return std::to_array<EnumName<ExposureMode>>({{ExposureMode::Auto, "auto"},
+                                                {ExposureMode::Histogram, "histogram"},
+                                                {ExposureMode::Fixed, "fixed"}});
+}
+
 struct OutputSettings {
   int width = 1280;              // pixels, 1..16384
   int height = 720;              // pixels, 1..16384
   std::string name = "sky";      // file stem: [A-Za-z0-9._-], not starting with '.'
-  double exposureEv = 0.0;       // display exposure in stops, -20..20 (not applied to EXR)
+  ExposureMode exposure = ExposureMode::Auto;
+  double exposureEv = 0.0;       // stops added to the exposure, -20..20 (not applied to EXR)
+  double exposureAdaptationS = 0.0;  // histogram: time constant of the adaptation, s, 0..3600
+  bool nightLook = true;         // the display's mesopic/scotopic look for dim scenes
   std::string display = "sRGB";  // OCIO display
   std::string view = "ACES 1.0 - SDR Video";  // OCIO view
   bool dither = true;  // dither the 8-bit PNG (not the EXR) so smooth gradients do not band

@@ -29,8 +29,18 @@ void describe(V& v, OutputSettings& s) {
           TextRule{1, 200, "^[A-Za-z0-9_-][A-Za-z0-9._-]*$",
                    "letters, digits, '.', '_' and '-', not starting with '.'"},
           "output file stem (no folder, no extension)");
+  v.field("exposure", s.exposure,
+          "how the display exposes the physical image: auto (the lighting model's night lift), "
+          "histogram (metered from the frame, adapting over a sequence) or fixed (exposure_ev "
+          "alone); never applied to the EXR");
   v.field("exposure_ev", s.exposureEv, NumberRange{-20, 20},
-          "display exposure in stops (not applied to EXR output)");
+          "stops added to the display exposure (not applied to EXR output)");
+  v.field("exposure_adaptation_s", s.exposureAdaptationS, NumberRange{0, 3600},
+          "exposure histogram: time constant in scene seconds with which a sequence's "
+          "exposure follows the metered one (0: at once)");
+  v.field("night_look", s.nightLook,
+          "the display's night look: dim scenes lose colour and shift toward blue as the eye's "
+          "rods take over (Purkinje), by their physical luminance (not the EXR)");
   v.field("display", s.display, TextRule{1}, "OCIO display");
   v.field("view", s.view, TextRule{1}, "OCIO view");
   v.field("dither", s.dither,

@@ -92,7 +92,8 @@ AtmosphereCompositePass::Outputs AtmosphereCompositePass::setup(GraphBuilder& b,
     b.read(in.atmosphere->aerialPerspective, Access::SampledCompute);
   }
   ImageDesc desc;
-  desc.format = VK_FORMAT_R16G16B16A16_SFLOAT;
+  // 32-bit: physical radiance, from the sun's disc to a moonless night's 1e-8.
+  desc.format = VK_FORMAT_R32G32B32A32_SFLOAT;
   desc.width = in.params.view.size.x;
   desc.height = in.params.view.size.y;
   desc.name = "beauty";

@@ -144,7 +144,9 @@ SkyHighCloudsPass::Outputs SkyHighCloudsPass::setup(GraphBuilder& b, const Input
     b.read(in.atmosphere.skyViewMoon, Access::SampledCompute);
   }
   ImageDesc desc;
-  desc.format = VK_FORMAT_R16G16B16A16_SFLOAT;
+  // 32-bit: the images are physical, and a moonlit night's 1e-7 (renderer units) is below
+  // half float's normal range.
+  desc.format = VK_FORMAT_R32G32B32A32_SFLOAT;
   desc.width = in.params.view.size.x;
   desc.height = in.params.view.size.y;
   desc.name = "sky";

@@ -246,7 +246,8 @@ VolumetricCloudsPass::Outputs VolumetricCloudsPass::setup(GraphBuilder& b, const
   ImageDesc desc;
   desc.width = in.params.view.size.x;
   desc.height = in.params.view.size.y;
-  desc.format = VK_FORMAT_R16G16B16A16_SFLOAT;
+  // 32-bit: physical radiance, ~1e-7 by moonlight, below half float's normal range.
+  desc.format = VK_FORMAT_R32G32B32A32_SFLOAT;
   desc.name = "clouds";
   mOutputs.clouds = b.write(b.create(desc), Access::StorageWriteCompute);
   desc.format = VK_FORMAT_R32_SFLOAT;

@@ -1,8 +1,8 @@
 // LightingState: the one description of the lights that every pass reads (DESIGN "One
 // lighting API"). Computed once per frame on the CPU by engine/lighting/lighting_state.h.
 // Units: radiance 1 = 10^4 cd/m^2; illuminance 1 = pi * 10^4 lux, so a white Lambertian
-// surface under illuminance E has radiance E. Night lights (moon, stars, earthshine) are
-// already multiplied by the night lift; see docs/lighting.md.
+// surface under illuminance E has radiance E. Every value is physical: the night lift is an
+// exposure the display path applies (output.exposure); see docs/lighting.md.
 #ifndef SKY_LIGHTING_SHARED_H
 #define SKY_LIGHTING_SHARED_H
 #include "shared_prelude.h"
@@ -38,13 +38,14 @@ struct LightingState {
                           // part); w: illuminated fraction
   vec4 moonEarthshine;    // rgb: radiance of the earthlit dark part; w: mean shading over
                           // the disc (so rgb * w + earthshine is the disc's mean radiance)
-  vec4 night;             // x: day factor (1 day .. 0 night); y: night lift (linear);
+  vec4 night;             // x: day factor (1 day .. 0 night); y: the automatic exposure's
+                          // night lift (linear; the display applies it, no pass does);
                           // z: star irradiance per V=0 star above the atmosphere (the star
                           // pass applies the extinction); w: unused
   vec4 equatorialToEnu[3];  // columns of the J2000 equatorial -> east-north-up rotation
   vec4 sunSpace;            // rgb: sun illuminance above the atmosphere (for models that apply
                             // their own transmittance, e.g. the physical sky); w: unused
-  vec4 moonSpace;           // rgb: the same for the moon, night lift included; w: unused
+  vec4 moonSpace;           // rgb: the same for the moon; w: unused
 };
 
 SKY_SHARED_END

@@ -54,7 +54,10 @@ inline void expectSameScene(const Scene& a, const Scene& b) {
   EXPECT_EQ(a.output.width, b.output.width);
   EXPECT_EQ(a.output.height, b.output.height);
   EXPECT_EQ(a.output.name, b.output.name);
+  EXPECT_EQ(a.output.exposure, b.output.exposure);
   EXPECT_EQ(a.output.exposureEv, b.output.exposureEv);
+  EXPECT_EQ(a.output.exposureAdaptationS, b.output.exposureAdaptationS);
+  EXPECT_EQ(a.output.nightLook, b.output.nightLook);
   EXPECT_EQ(a.output.display, b.output.display);
   EXPECT_EQ(a.output.view, b.output.view);
   EXPECT_EQ(a.camera.latitude, b.camera.latitude);
@@ -178,7 +181,10 @@ inline Scene unusualScene() {
   s.output.width = 64;
   s.output.height = 36;
   s.output.name = "test-1.v2";
+  s.output.exposure = ExposureMode::Histogram;
   s.output.exposureEv = -0.1;
+  s.output.exposureAdaptationS = 0.25;
+  s.output.nightLook = false;
   s.output.display = "Display \"P3\"";
   s.output.view = "64";
   s.camera.latitude = -33.8688;

@@ -152,9 +152,10 @@ TEST(SceneRoundTrip, UnusualSceneDiffersFromTheDefaultEverywhere) {
   // weather values; then high_clouds.cover_source and weather time, local radius, evolution
   // and automaton. The weather region counts once (given against absent) where its four
   // numbers counted before, and camera_region_km once; then atmosphere.aerosols (the ground
-  // albedo moved from atmosphere to ground with its three channels).
+  // albedo moved from atmosphere to ground with its three channels) and output.exposure,
+  // exposure_adaptation_s and night_look.
   EXPECT_EQ(failuresOf([] { expectSameScene(test::unusualScene(), Scene()); }),
-            66 + 1 + 24 + 13 + 2 + 9 + 2 + 1 + 4 - 4 + 1 + 1 + 1);
+            66 + 1 + 24 + 13 + 2 + 9 + 2 + 1 + 4 - 4 + 1 + 1 + 1 + 3);
   const std::vector<PaletteKey> palette = test::unusualScene().lighting.palette;
   for (size_t i = 0; i < palette.size(); ++i) {
     const PaletteKey& k = palette[i];
@@ -242,7 +243,10 @@ TEST(SceneRoundTrip, PrintedYamlLooksLikeAScene) {
             "  width: 1280\n"
             "  height: 720\n"
             "  name: \"sky\"\n"
+            "  exposure: \"auto\"\n"
             "  exposure_ev: 0\n"
+            "  exposure_adaptation_s: 0\n"
+            "  night_look: true\n"
             "  display: \"sRGB\"\n"
             "  view: \"ACES 1.0 - SDR Video\"\n"
             "  dither: true\n"
@@ -403,7 +407,10 @@ TEST(SceneRoundTrip, PrintedJsonLooksLikeAScene) {
             "    \"width\": 1280,\n"
             "    \"height\": 720,\n"
             "    \"name\": \"sky\",\n"
+            "    \"exposure\": \"auto\",\n"
             "    \"exposure_ev\": 0,\n"
+            "    \"exposure_adaptation_s\": 0,\n"
+            "    \"night_look\": true,\n"
             "    \"display\": \"sRGB\",\n"
             "    \"view\": \"ACES 1.0 - SDR Video\",\n"
             "    \"dither\": true\n"
