@@ -1,6 +1,7 @@
 // Golden images of the volumetric clouds (the issue: "cumulus at noon, stratocumulus at dusk,
 // altocumulus under a full moon, both models"): the scenes of configs/tests/clouds/ at 64x36
-// with clouds.model lu2023 and tang2019. References in tests/golden/clouds/<scene>_<model>.exr
+// with clouds.model lu2023 and tang2019; and of the whole composite with its ground and haze
+// under a stratus overcast and from 5 km (lu2023). References in tests/golden/clouds/<scene>_<model>.exr
 // hold the beauty (R, G, B, A) and the clouds layer (R, G, B, A, depth); regenerate them with
 // SKY_UPDATE_GOLDEN=1 after a deliberate change, and look at them before committing.
 //
@@ -119,7 +120,11 @@ INSTANTIATE_TEST_SUITE_P(Scenes, CloudGolden,
                                            GoldenCase{"stratocumulus_dusk", "lu2023"},
                                            GoldenCase{"stratocumulus_dusk", "tang2019"},
                                            GoldenCase{"altocumulus_full_moon", "lu2023"},
-                                           GoldenCase{"altocumulus_full_moon", "tang2019"}),
+                                           GoldenCase{"altocumulus_full_moon", "tang2019"},
+                                           // The whole composite (issue 15): the ground and
+                                           // the air under an overcast, and from an aircraft.
+                                           GoldenCase{"overcast_stratus", "lu2023"},
+                                           GoldenCase{"from_5km", "lu2023"}),
                          [](const ::testing::TestParamInfo<GoldenCase>& param) {
                            return goldenName(param.param);
                          });
