@@ -8,6 +8,7 @@
 
 #include "engine/core/files.h"
 #include "engine/core/paths.h"
+#include "engine/io/png.h"
 #include "tests/color/ocio_test_util.h"
 
 namespace sky {
@@ -252,6 +253,34 @@ TEST_F(OcioOutputTest, BadBufferAndExposureAreRejected) {
             ErrorKind::BadInput);
   std::vector<float> none;
   EXPECT_NO_THROW(out.toDisplay(none, "sRGB", kAces, 0.0));
+}
+
+TEST_F(OcioOutputTest, ADarkGradientUsesEveryCodeItSpans) {
+  // A smooth scene-linear ramp from a dim twilight (0.002) to 0.03, 1024 x 8 px, through the
+  // shipped ACES view into a dithered 8-bit PNG (the path of skyrender's PNG): its histogram
+  // has no empty run between the darkest and the brightest code it uses. A view through a
+  // coarse LUT or an 8-bit step before the curve would skip codes there, which the eye sees
+  // as bands.
+  const int w = 1024, h = 8;
+  std::vector<float> rgba(size_t(w) * h * 4);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      for (int c = 0; c < 4; ++c)
+        rgba[(size_t(y) * w + x) * 4 + c] =
+            c < 3 ? 0.002f * std::pow(15.0f, (float(x) + 0.5f) / float(w)) : 1.0f;
+  OcioOutput::load().toDisplay(rgba, "sRGB", kAces, 0.0);
+  const std::filesystem::path png = dir() / "gradient.png";
+  writePng8(png, w, h, rgba, PngQuantize::Dither);
+  const Image8 back = readPng(png);
+  std::vector<int> histogram(256, 0);
+  for (size_t i = 0; i < back.pixels.size(); ++i)
+    if (i % 4 != 3) ++histogram[back.pixels[i]];
+  int lo = 0, hi = 255;
+  while (lo < 255 && histogram[lo] == 0) ++lo;
+  while (hi > 0 && histogram[hi] == 0) --hi;
+  std::cout << "dark gradient: codes " << lo << " to " << hi << "\n";
+  ASSERT_GT(hi - lo, 15) << "the ramp spans many codes";
+  for (int code = lo; code <= hi; ++code) EXPECT_GT(histogram[code], 0) << "code " << code;
 }
 
 }  // namespace

@@ -219,6 +219,61 @@ TEST_F(AtmosphereCompositeTest, StarsShineOnlyInTheDark) {
   EXPECT_LT(added.g, 1e-6 * noon.lighting.gpu.sun.illuminance.g) << "no stars by day";
 }
 
+TEST_F(AtmosphereCompositeTest, KozlovSkyTakesThePhysicalSkysHueAndPalesTowardTheHorizon) {
+  // The default palette against sky.model physical at the same sun elevations (10, 30 and 60
+  // degrees), 64x32 equirectangular: the zenith's chromaticity (r/g and b/g) within 15 % of
+  // the physical sky's; and 90 degrees from the sun, below its most saturated row the kozlov
+  // sky pales steadily to the horizon, which keeps at most 0.6 of that saturation. (That row
+  // lies just above the haze top, 15-20 degrees up, where Kozlov's glow has faded and the
+  // haze not begun: 0.85 against the physical sky's even 0.76 there; a known limit.) The old
+  // palette's peach glow over a deep blue mixed to lavender around the sun.
+  auto sky = [&](const char* model, double elevation) {
+    Scene scene = loadSceneFile(configDir() / "examples" / "clear_noon.json");
+    scene.output.width = 64;
+    scene.output.height = 32;
+    scene.camera.projection = CameraProjection::Equirectangular;
+    scene.camera.heading = 180.0;
+    scene.sun.azimuth = 180.0;
+    scene.sun.elevation = elevation;
+    scene.sky.model = std::string(model) == "physical" ? SkyModel::Physical : SkyModel::Kozlov;
+    scene.highClouds.cover = 0.0;
+    return render(scene);
+  };
+  auto rgb = [](const RenderedFrame& f, int x, int y) {
+    const ImageLayer* l = f.image.find("sky");
+    const float* p = &l->pixels[(static_cast<size_t>(y) * f.image.width + x) * 3];
+    return glm::dvec3(p[0], p[1], p[2]);
+  };
+  auto saturation = [](glm::dvec3 c) {
+    const double hi = std::max({c.r, c.g, c.b}), lo = std::min({c.r, c.g, c.b});
+    return (hi - lo) / hi;
+  };
+  for (double elevation : {10.0, 30.0, 60.0}) {
+    SCOPED_TRACE("sun at " + std::to_string(elevation));
+    const RenderedFrame kozlov = sky("kozlov", elevation), physical = sky("physical", elevation);
+    glm::dvec3 zk(0.0), zp(0.0);
+    for (int x = 0; x < 64; ++x) zk += rgb(kozlov, x, 0), zp += rgb(physical, x, 0);
+    std::cout << "sun " << elevation << ": zenith r/g, b/g kozlov " << zk.r / zk.g << ", "
+              << zk.b / zk.g << "; physical " << zp.r / zp.g << ", " << zp.b / zp.g << "\n";
+    EXPECT_NEAR(zk.r / zk.g, zp.r / zp.g, 0.15 * zp.r / zp.g);
+    EXPECT_NEAR(zk.b / zk.g, zp.b / zp.g, 0.15 * zp.b / zp.g);
+    // Column 16 looks 90 degrees from the sun; rows 0 (zenith) to 15 (the horizon).
+    int peak = 0;
+    for (int y = 1; y < 16; ++y)
+      if (saturation(rgb(kozlov, 16, y)) > saturation(rgb(kozlov, 16, peak))) peak = y;
+    double last = saturation(rgb(kozlov, 16, peak));
+    const double most = last;
+    for (int y = peak + 1; y < 16; ++y) {
+      const double s = saturation(rgb(kozlov, 16, y));
+      EXPECT_LE(s, last + 1e-3) << "row " << y;
+      last = s;
+    }
+    std::cout << "  saturation 90 degrees from the sun: most " << most << " (row " << peak
+              << "), horizon " << last << "\n";
+    EXPECT_LT(last, 0.6 * most);
+  }
+}
+
 // Golden images: 64x36 renders of configs/tests/clear_sky_*.yaml against tests/golden/*.exr.
 // Tolerance: PSNR >= 50 dB on RGB (peak = the reference's largest value) and max error
 // <= 2 % of the peak, room for GPU-to-GPU float differences but not for a changed sky.
