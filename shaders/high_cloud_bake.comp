@@ -48,17 +48,41 @@ vec2 warpField(vec2 uv, float frequency, uint seed, float n) {
               fbmGradient2(uv * frequency, period, noiseSeed(seed, 1u), oct, 0.5));
 }
 
-// Cirrus: fibrous streaks. The cloud body is fbm stretched 4:1 along u, so thresholding it by
-// cover leaves long streaks rather than round patches; fine fibres stretched 16:1 roughen its
-// edges and striate its inside. Two levels of domain warping bend the streaks and curl their
-// ends into hooks (cirrus uncinus). Returns (rank, shape); ramp width HIGH_CLOUD_RAMP_CIRRUS.
+// Cirrus: fibrous streaks. The cloud body is fbm stretched 4:1 along a direction, so
+// thresholding it by cover leaves long streaks rather than round patches; fine fibres
+// stretched 16:1 roughen its edges and striate its inside. The direction changes across the
+// tile: four streak fields, along u, along v and along both diagonals (directions on the
+// lattice, so each still tiles), blend by a slow periodic weight field, so the fibres run
+// different ways in different parts of the sky instead of all converging on one vanishing
+// point (a combed look). Two levels of domain warping bend the streaks and curl their ends
+// into hooks (cirrus uncinus). Returns (rank, shape); ramp width HIGH_CLOUD_RAMP_CIRRUS.
+vec2 cirrusStreaks(vec2 q, int k, uint seed, float n) {
+  // Coordinates along and across direction k; the diagonals' (u + v, u - v) keep integer
+  // periods, so the field still repeats over the tile.
+  vec2 a = k == 0 ? q : (k == 1 ? q.yx : (k == 2 ? vec2(q.x + q.y, q.x - q.y)
+                                                 : vec2(q.x - q.y, q.x + q.y)));
+  float body = fbmGradient2(a * vec2(2.0, 8.0), ivec2(2, 8), noiseSeed(seed, 40u + uint(k)),
+                            octavesFor(8.0, n), 0.55);
+  float fibres = fbmGradient2(a * vec2(3.0, 48.0), ivec2(3, 48), noiseSeed(seed, 50u + uint(k)),
+                              octavesFor(48.0, n), 0.5);
+  return vec2(body, fibres);
+}
+
 vec2 cirrusRankShape(vec2 uv, uint seed, float n) {
   vec2 q = uv + 0.08 * warpField(uv, 2.0, noiseSeed(seed, 11u), n);
   q += 0.03 * warpField(q, 6.0, noiseSeed(seed, 12u), n);
-  float body = fbmGradient2(q * vec2(2.0, 8.0), ivec2(2, 8), noiseSeed(seed, 10u),
-                            octavesFor(8.0, n), 0.55);
-  float fibres = fbmGradient2(q * vec2(3.0, 48.0), ivec2(3, 48), noiseSeed(seed, 13u),
-                              octavesFor(48.0, n), 0.5);
+  // Softmax weights of four slow fields (2 cycles a tile): one direction dominates each
+  // region, and they cross over within about a tenth of the tile.
+  vec4 w;
+  for (int k = 0; k < 4; ++k)
+    w[k] = exp(12.0 * fbmGradient2(uv * 2.0, ivec2(2), noiseSeed(seed, 60u + uint(k)), 2, 0.5));
+  w /= dot(w, vec4(1.0));
+  vec2 bf = vec2(0.0);
+  for (int k = 0; k < 4; ++k) bf += w[k] * cirrusStreaks(q, k, seed, n);
+  // A weighted sum of independent fields has the spread of one times |w|: undo that, so the
+  // rank (and so the cover) stays as calibrated where the directions cross over.
+  bf /= length(w);
+  float body = bf.x, fibres = bf.y;
   // body + 0.35 fibres has a spread of about 1.06 kFbmSigma.
   float rank = rankOf((body + 0.35 * fibres) / 1.06);
   float striation = 1.0 - abs(fibres) / 0.6;  // 1 along a fibre, lower between fibres
