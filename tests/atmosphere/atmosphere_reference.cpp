@@ -7,6 +7,8 @@
 
 #include <glm/geometric.hpp>
 
+#include "engine/lighting/light_model.h"
+
 namespace sky::test {
 namespace {
 
@@ -63,13 +65,25 @@ double cornetteShanks(double g, double c) {
 
 }  // namespace
 
+namespace {
+
+// The channels' share of the Mie coefficients, which stand for 550 nm: Angstrom's law at
+// the lighting model's wavelengths (1 for grey aerosols, mieAngstrom 0).
+glm::dvec3 angstrom(const AtmosphereSettings& s) {
+  glm::dvec3 f;
+  for (int c = 0; c < 3; ++c) f[c] = std::pow(light::kChannelWavelengthsNm[c] / 550.0, -s.mieAngstrom);
+  return f;
+}
+
+}  // namespace
+
 ReferenceAtmosphere::ReferenceAtmosphere(const AtmosphereSettings& s)
     : groundRadius(s.groundRadiusKm),
       topRadius(s.groundRadiusKm + s.thicknessKm),
       rayleigh(glm::dvec3(s.rayleighScattering) * 1e-3),
       rayleighHeight(s.rayleighScaleHeightKm),
-      mieScattering(s.mieScattering * 1e-3),
-      mieExtinction(s.mieExtinction * 1e-3),
+      mieScattering(angstrom(s) * s.mieScattering * 1e-3),
+      mieExtinction(angstrom(s) * s.mieExtinction * 1e-3),
       mieHeight(s.mieScaleHeightKm),
       mieG(s.mieAnisotropy),
       ozone(glm::dvec3(s.ozoneAbsorption) * 1e-3),
@@ -81,7 +95,7 @@ namespace {
 
 struct Medium {
   glm::dvec3 rayleigh;
-  double mie;
+  glm::dvec3 mie;
   glm::dvec3 extinction;
 };
 
@@ -91,7 +105,7 @@ Medium medium(const ReferenceAtmosphere& a, double altitude) {
   const double dm = std::exp(-h / a.mieHeight);
   const double dO = std::max(0.0, 1.0 - std::abs(h - a.ozoneCenter) / a.ozoneHalfWidth);
   return {a.rayleigh * dr, a.mieScattering * dm,
-          a.rayleigh * dr + glm::dvec3(a.mieExtinction * dm) + a.ozone * dO};
+          a.rayleigh * dr + a.mieExtinction * dm + a.ozone * dO};
 }
 
 bool hitsGround(const ReferenceAtmosphere& a, double r, double mu) {

@@ -15,7 +15,8 @@ struct ReferenceAtmosphere {
   double groundRadius = 0, topRadius = 0;
   glm::dvec3 rayleigh{0.0};  // 1/km at the ground
   double rayleighHeight = 0;
-  double mieScattering = 0, mieExtinction = 0, mieHeight = 0, mieG = 0;
+  glm::dvec3 mieScattering{0.0}, mieExtinction{0.0};  // 1/km at the ground, per channel
+  double mieHeight = 0, mieG = 0;
   glm::dvec3 ozone{0.0};  // 1/km at the tent's peak
   double ozoneCenter = 0, ozoneHalfWidth = 0;
   glm::dvec3 albedo{0.0};
