@@ -11,6 +11,7 @@
 #include "common/cloud_density.glsl"
 #include "common/cloud_field.glsl"
 #include "common/cloud_shadow.glsl"
+#include "common/noise.glsl"
 
 layout(local_size_x = CLOUD_SHADOW_GROUP_X, local_size_y = CLOUD_SHADOW_GROUP_Y) in;
 
@@ -55,12 +56,9 @@ void main() {
   // wider than a cloud takes the shadow at its centre instead (the distant ground it falls on
   // lies deep in the haze).
   float footprint = clamp(0.25 * dt, 10.0, 100.0);
-  // Sample offsets jittered per texel (an integer hash), so the steps leave no contour lines;
+  // Sample offsets jittered per texel (noise.glsl's hash), so the steps leave no contour lines;
   // the map is read bilinearly.
-  uint h = id.x * 1973u + id.y * 9277u + 26699u;
-  h = (h ^ (h >> 15)) * 0x2c1b3c6du;
-  h = (h ^ (h >> 12)) * 0x297a2d39u;
-  float jitter = float(h >> 8) / 16777216.0;
+  float jitter = noiseHashUnit3(uvec3(id, 0x73686477u)).x;
   float tau = 0.0;
   for (int i = 0; i < CLOUD_SHADOW_STEPS && tau < 12.0; ++i) {
     CloudSample s;

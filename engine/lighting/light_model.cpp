@@ -137,6 +137,10 @@ glm::dvec3 moonColor() {
   return c / luminance(c);
 }
 
+double overcastGlobalShare(double n) {
+  return 1.0 - 0.75 * std::pow(std::clamp(n, 0.0, 1.0), 3.4);
+}
+
 double luminance(const glm::dvec3& rgb) {
   return 0.2126 * rgb.r + 0.7152 * rgb.g + 0.0722 * rgb.b;
 }

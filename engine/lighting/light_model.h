@@ -84,6 +84,10 @@ double dayFactor(double sunElevationDeg);
 // against the sun's 0.65), normalised to unit Rec.709 luminance.
 glm::dvec3 moonColor();
 
+// Kasten & Czeplak (1980): the share of the clear sky's global irradiance that reaches the
+// ground under an overcast share n of the sky, 1 - 0.75 n^3.4 (n clamped to 0..1).
+double overcastGlobalShare(double n);
+
 // Rec.709 luminance of a linear colour.
 double luminance(const glm::dvec3& rgb);
 

@@ -195,8 +195,7 @@ LightingState computeLighting(const Scene& scene, const IsoTime& time) {
                             scene.moon.earthshine * scene.moon.discScale,
                         meanShade);
 
-  g.night = glm::vec4(static_cast<float>(st.dayFactor),
-                      static_cast<float>(std::exp2(st.nightLiftEv)),
+  g.night = glm::vec4(static_cast<float>(st.dayFactor), 0.0f,
                       static_cast<float>(light::kVegaIlluminanceLux / light::kLuxPerUnit *
                                          ls.starBrightness),
                       0.0f);
@@ -241,7 +240,7 @@ nlohmann::ordered_json lightingJson(const LightingState& st) {
 
 void applyOvercast(LightingState& st, const SkySettings& sky, double overcast) {
   const double n = std::clamp(overcast, 0.0, 1.0);
-  const auto ground = static_cast<float>(1.0 - 0.75 * std::pow(n, 3.4));  // Kasten-Czeplak
+  const auto ground = static_cast<float>(light::overcastGlobalShare(n));
   for (PaletteKey* k : {&st.palette, &st.moonPalette}) {
     k->ambientBottom *= ground;
     const auto grey = static_cast<float>(light::luminance(glm::dvec3(k->ambientTop)));

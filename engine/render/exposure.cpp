@@ -4,6 +4,8 @@
 #include <cmath>
 #include <vector>
 
+#include "engine/lighting/light_model.h"
+
 namespace sky {
 namespace {
 
@@ -24,8 +26,8 @@ double meteredLuminance(const RenderedFrame& frame) {
   std::vector<double> logs;
   logs.reserve(beauty->pixels.size() / c);
   for (size_t i = 0; i + 2 < beauty->pixels.size(); i += c) {
-    const double y = 0.2126 * beauty->pixels[i] + 0.7152 * beauty->pixels[i + 1] +
-                     0.0722 * beauty->pixels[i + 2];
+    const double y = light::luminance(
+        glm::dvec3(beauty->pixels[i], beauty->pixels[i + 1], beauty->pixels[i + 2]));
     if (std::isfinite(y) && y > 0.0) logs.push_back(std::log2(y));
   }
   if (logs.empty()) return 0.0;

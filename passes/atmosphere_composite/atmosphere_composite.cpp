@@ -1,7 +1,6 @@
 #include "passes/atmosphere_composite/atmosphere_composite.h"
 
 #include <algorithm>
-#include <cmath>
 
 #include "engine/core/error.h"
 #include "engine/lighting/light_model.h"
@@ -36,11 +35,10 @@ shared::AtmosphereCompositeParams atmosphereCompositeParams(const AtmosphereComp
   p.cameraRadiusM = static_cast<float>(s.planetRadiusM + std::max(s.cameraAltitudeM, 1.0));
   p.overcast = static_cast<float>(lighting.overcast);
   // Below the clouds the air, like the ground, gets the share of the clear sky's light that
-  // Kasten & Czeplak (1980) give for the overcast N, 1 - 0.75 N^3.4, where the sky models know
-  // only the clear sky: broken cumulus barely dim it, a full overcast takes three quarters.
-  const double n = std::clamp(lighting.overcast, 0.0, 1.0);
-  p.airLight = static_cast<float>(
-      s.belowClouds ? 1.0 - (1.0 - CLOUD_DIFFUSE_TRANSMISSION) * std::pow(n, 3.4) : 1.0);
+  // Kasten & Czeplak give for the overcast, where the sky models know only the clear sky:
+  // broken cumulus barely dim it, a full overcast takes three quarters.
+  p.airLight =
+      static_cast<float>(s.belowClouds ? light::overcastGlobalShare(lighting.overcast) : 1.0);
   p.groundAlbedo = glm::vec4(s.ground.albedo, 0.0f);
   // The kozlov ground's sunlight and moonlight: the lighting model's air down to sea level.
   const glm::vec3 sunSpace(lighting.gpu.sunSpace), moonSpace(lighting.gpu.moonSpace);

@@ -24,9 +24,8 @@
 #define ATMOSPHERE_COMPOSITE_BINDING_AERIAL_PERSPECTIVE 11
 
 // Kasten & Czeplak (1980): under full overcast the ground receives a quarter of the clear
-// sky's global irradiance, all of it diffuse light the clouds pass on (the ground's diffuse
-// light under its cover share, and the air's light below the clouds, AtmosphereCompositeParams
-// airLight).
+// sky's global irradiance (light::overcastGlobalShare(1)), all of it diffuse light the clouds
+// pass on: the ground's diffuse light under its cover share.
 #define CLOUD_DIFFUSE_TRANSMISSION 0.25
 
 SKY_SHARED_BEGIN

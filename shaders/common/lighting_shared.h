@@ -38,8 +38,8 @@ struct LightingState {
                           // part); w: illuminated fraction
   vec4 moonEarthshine;    // rgb: radiance of the earthlit dark part; w: mean shading over
                           // the disc (so rgb * w + earthshine is the disc's mean radiance)
-  vec4 night;             // x: day factor (1 day .. 0 night); y: the automatic exposure's
-                          // night lift (linear; the display applies it, no pass does);
+  vec4 night;             // x: day factor (1 day .. 0 night); y: unused (the night lift is
+                          // the display's exposure, LightingState::nightLiftEv);
                           // z: star irradiance per V=0 star above the atmosphere (the star
                           // pass applies the extinction); w: unused
   vec4 equatorialToEnu[3];  // columns of the J2000 equatorial -> east-north-up rotation

@@ -105,6 +105,38 @@ TEST_F(SkyrenderCli, ExposureModesChangeThePngNotTheExr) {
   EXPECT_EQ(sky[1], sky[2]);
 }
 
+TEST_F(SkyrenderCli, AHistogramExposureAdaptsOverASequence) {
+  // Dusk in 15-minute frames, the light falling fast. At once (exposure_adaptation_s 0) each
+  // frame gets the exposure it metres; with a 600 s time constant each frame's exposure lies
+  // between its own target and the frame before's, exp(-900 / 600) = 22 % of the way back.
+  const std::string dusk = " --width 16 --height 9 --time 2024-06-21T21:30+02:00/"
+                           "2024-06-21T22:00+02:00/15m --set output.exposure=histogram";
+  for (double tau : {0.0, 600.0}) {
+    SCOPED_TRACE("adaptation " + std::to_string(tau));
+    fs::remove_all(mDir / "out");
+    fs::create_directories(mDir / "out");
+    ASSERT_EQ(run("render --out " + out() + dusk +
+                  " --set output.exposure_adaptation_s=" + std::to_string(tau))
+                  .rc,
+              0);
+    double lastEv = 0.0;
+    for (int i = 1; i <= 3; ++i) {
+      char name[32];
+      std::snprintf(name, sizeof name, "sky_%04d.json", i);
+      const nlohmann::json e = nlohmann::json::parse(readTextFile(mDir / "out" / name))["exposure"];
+      const double ev = e["ev"].get<double>(), target = e["target_ev"].get<double>();
+      if (i == 1 || tau == 0.0) {
+        EXPECT_DOUBLE_EQ(ev, target) << "frame " << i;
+      } else {
+        EXPECT_GT(target, lastEv + 1.0) << "frame " << i << ": the light falls";
+        EXPECT_NEAR(ev, target + (lastEv - target) * std::exp(-900.0 / tau), 1e-6)
+            << "frame " << i;
+      }
+      lastEv = ev;
+    }
+  }
+}
+
 TEST_F(SkyrenderCli, TheTimelapseNeverDipsToBlackBetweenTwilightAndMoonlight) {
   // The README's 24 h time-lapse (configs/examples/timelapse_24h.yaml: histogram exposure
   // adapting over 10 minutes) at 32x18: no frame's mean display value falls below 85 % of
