@@ -81,6 +81,12 @@ AtmosphereSettings physicalAtmosphere(const Scene& scene) {
     a.mieExtinction = scene.lighting.turbidity / a.mieScaleHeightKm * 1000.0;
     a.mieScattering = a.mieExtinction * kMieSingleScatteringAlbedo;
     a.mieAngstrom = light::kAerosolAngstrom;
+    // Cornette-Shanks g 0.6 has the mean cosine 3g(4 + g^2) / (5(2 + g^2)) = 0.665, the
+    // asymmetry parameter of continental aerosol at 550 nm (AERONET: about 0.62-0.72,
+    // Dubovik et al. 2002). Hillaire's 0.8 (mean cosine 0.84) belongs to coarse maritime
+    // particles; it made the aureole several times too bright against the CIE standard
+    // clear sky (AtmosphereTest.PhysicalSkyAgainstCieAndPreetham, docs/atmosphere.md).
+    a.mieAnisotropy = kContinentalAerosolG;
   }
   return a;
 }

@@ -77,9 +77,12 @@ struct RenderedFrame {
 // The physical sky's atmosphere for `scene`: its atmosphere settings with the ground's albedo
 // and, with atmosphere.aerosols turbidity, the Mie coefficients of lighting.turbidity: the
 // aerosol optical depth at 550 nm spread over the Mie scale height, Hillaire's single-
-// scattering albedo and the lighting model's Angstrom exponent, so the sky and the sunlight
+// scattering albedo, the lighting model's Angstrom exponent and continental aerosol's phase
+// (kContinentalAerosolG, in place of atmosphere.mie_anisotropy), so the sky and the sunlight
 // cross the same aerosols.
 AtmosphereSettings physicalAtmosphere(const Scene& scene);
+// Cornette-Shanks g of the aerosol that atmosphere.aerosols turbidity stands for.
+inline constexpr double kContinentalAerosolG = 0.6;
 
 class Renderer {
 public:

@@ -127,7 +127,8 @@ void describe(V& v, AtmosphereSettings& s) {
           "Mie extinction at sea level, 1/Mm (at least mie_scattering; aerosols: settings)");
   v.field("mie_scale_height_km", s.mieScaleHeightKm, kScaleHeight, "Mie density scale height, km");
   v.field("mie_anisotropy", s.mieAnisotropy, NumberRange{-0.99, 0.99},
-          "Mie phase asymmetry g (Cornette-Shanks)");
+          "Mie phase asymmetry g (Cornette-Shanks; aerosols: settings, turbidity uses "
+          "continental aerosol's 0.6)");
   v.field("ozone_absorption", s.ozoneAbsorption, kCoefficient,
           "ozone absorption at the peak of its layer per channel, 1/Mm");
   v.field("ozone_center_km", s.ozoneCenterKm, NumberRange{0, 1000},
