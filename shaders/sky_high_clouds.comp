@@ -179,10 +179,10 @@ void main() {
 #if SKY_PHYSICAL_SKY
     vec3 through = transmittanceAlong(atmosphere, transmittanceLut, V, t * 1e-3);
 #else
-    // Kozlov 3.1's haze: h = min(z / hmax, 1) is how much of the sky colour is not fog. Seen
-    // from above the layer (an aircraft) the path to it runs downward, so z is measured down.
+    // Kozlov 3.1's haze h (kozlovHaze) is how much of the sky colour is not fog. Seen from
+    // above the layer (an aircraft) the path to it runs downward, so z is measured down.
     float z = cameraR > layerR ? -V.z : V.z;
-    vec3 through = vec3(min(max(z, 0.0) / L.palette.fog.w, 1.0));
+    vec3 through = vec3(kozlovHaze(z, L.palette.fog.w));
 #endif
     clouds = vec4(rgb * through + coverage * (1.0 - through) * sky, coverage);
   }

@@ -30,7 +30,7 @@ shared::Palette toGpu(const PaletteKey& k, const SkySettings& sky) {
   shared::Palette p{};
   p.sky = glm::vec4(k.skyColor, static_cast<float>(sky.glowSize));
   p.fog = glm::vec4(k.fogColor, static_cast<float>(sky.hazeHeight));
-  p.glow = glm::vec4(k.glowColor, 0.0f);
+  p.glow = glm::vec4(k.glowColor, static_cast<float>(sky.glowExponent));
   p.cloudLit = glm::vec4(k.cloudLit, 0.0f);
   p.cloudDark = glm::vec4(k.cloudDark, 0.0f);
   p.ambientTop = glm::vec4(k.ambientTop, 0.0f);

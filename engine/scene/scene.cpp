@@ -19,12 +19,13 @@ IsoTime TimeSettings::frame(int64_t index) const {
 std::vector<PaletteKey> defaultPalette() {
   // Authored against the physical twilight (docs/lighting.md): the sky's luminance after the
   // default night adaptation (0.8) falls about 1.6 stops by the end of civil twilight, 3.3 by
-  // nautical and 4 by astronomical night, relative to sunset. From sunset up, the sky's and
-  // the haze's colours take the physical sky's chromaticity at the same sun elevation
-  // (sky.model physical, turbidity 0.1: the zenith with Kozlov's glow mixed in, and the
-  // horizon 90 degrees from the sun) at the luminance the foundation shipped, and the day's
-  // glow is the white of the sun's aureole: the old peach glow over a deep blue mixed to
-  // lavender around the sun.
+  // nautical and 4 by astronomical night, relative to sunset. From sunset up the colours
+  // follow sky.model physical (turbidity 0.1) at the same sun elevation, with the default
+  // glow (s 0.5, n 8) and haze (hmax 0.7): the sky is its chromaticity 45 degrees up and 90
+  // degrees from the sun, at the luminance the foundation shipped; the haze makes the
+  // horizon there 3.5-4 times the zenith, as the physical sky's; the glow makes the sky 15
+  // degrees above the sun its colour and 5-9 times the zenith (sun 0-30 degrees). Derived in
+  // docs/lighting.md ("The default palette").
   using v = glm::vec3;
   return {
       // sun_elevation, sky, fog, glow, cloud_lit, cloud_dark, ambient_top, ambient_bottom
@@ -40,16 +41,16 @@ std::vector<PaletteKey> defaultPalette() {
       {-6, v{0.015f, 0.028f, 0.08f}, v{0.06f, 0.045f, 0.05f}, v{0.12f, 0.05f, 0.03f},
        v{0.15f, 0.08f, 0.08f}, v{0.03f, 0.03f, 0.05f}, v{0.02f, 0.03f, 0.06f},
        v{0.01f, 0.01f, 0.012f}},
-      {0, v{0.075f, 0.078f, 0.141f}, v{0.5f, 0.3f, 0.15f}, v{0.9f, 0.35f, 0.1f},
+      {0, v{0.075f, 0.078f, 0.141f}, v{0.5f, 0.3f, 0.15f}, v{2.0f, 1.0f, 0.8f},
        v{0.9f, 0.45f, 0.2f}, v{0.15f, 0.12f, 0.15f}, v{0.08f, 0.1f, 0.18f}, v{0.04f, 0.03f, 0.03f}},
-      {10, v{0.084f, 0.155f, 0.323f}, v{0.55f, 0.5f, 0.45f}, v{1.0f, 0.6f, 0.3f},
+      {10, v{0.096f, 0.155f, 0.290f}, v{0.68f, 0.76f, 0.72f}, v{3.4f, 3.2f, 2.9f},
        v{1.0f, 0.75f, 0.5f}, v{0.35f, 0.35f, 0.45f}, v{0.2f, 0.25f, 0.4f}, v{0.1f, 0.08f, 0.07f}},
       // By day the light from below, as a cloud base a kilometre up sees it, is the sunlit
       // ground (albedo 0.15-0.2) behind a kilometre of blue airlight: about a third of the sky's
       // luminance, and bluish. Grey-brown ground light alone made cloud bases brown.
-      {30, v{0.068f, 0.211f, 0.546f}, v{0.48f, 0.64f, 0.7f}, v{1.0f, 0.97f, 0.85f},
+      {30, v{0.115f, 0.209f, 0.418f}, v{0.66f, 0.94f, 1.08f}, v{1.8f, 2.1f, 2.6f},
        v{0.9f, 0.9f, 0.92f}, v{0.45f, 0.5f, 0.6f}, v{0.3f, 0.4f, 0.6f}, v{0.2f, 0.23f, 0.28f}},
-      {90, v{0.023f, 0.217f, 0.623f}, v{0.48f, 0.64f, 0.7f}, v{1.0f, 0.97f, 0.85f},
+      {90, v{0.120f, 0.211f, 0.397f}, v{0.66f, 0.94f, 1.08f}, v{0.95f, 1.2f, 1.6f},
        v{0.9f, 0.9f, 0.92f}, v{0.45f, 0.5f, 0.6f}, v{0.3f, 0.4f, 0.6f}, v{0.2f, 0.23f, 0.28f}},
   };
 }

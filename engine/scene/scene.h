@@ -122,8 +122,9 @@ constexpr auto enumNames(SkyModel) {
 // physically based Hillaire 2020 atmosphere (AtmosphereSettings).
 struct SkySettings {
   SkyModel model = SkyModel::Kozlov;
-  double glowSize = 0.30;    // s, 0..1 (kozlov)
-  double hazeHeight = 0.20;  // hmax as a fraction of the dome height, 0.001..1 (kozlov)
+  double glowSize = 0.50;      // s, 0..1 (kozlov)
+  double glowExponent = 8.0;   // n in l = s max(V.S, 0)^n, 1..64 (kozlov; Kozlov 3.1: 2)
+  double hazeHeight = 0.70;    // hmax as a fraction of the dome height, 0.001..1 (kozlov)
 };
 
 // atmosphere.aerosols: the Mie coefficients from lighting.turbidity (one atmosphere for the

@@ -102,6 +102,8 @@ void describe(V& v, SkySettings& s) {
           "clear-sky model: kozlov (palette colours, Kozlov 3.1) or physical (Hillaire 2020 "
           "atmosphere)");
   v.field("glow_size", s.glowSize, NumberRange{0, 1}, "size s of the glow around the sun and moon");
+  v.field("glow_exponent", s.glowExponent, NumberRange{1, 64},
+          "exponent n of the glow l = s max(V.S, 0)^n (Kozlov 3.1: 2; larger is tighter)");
   v.field("haze_height", s.hazeHeight, NumberRange{0.001, 1},
           "haze height hmax as a fraction of the dome height");
 }

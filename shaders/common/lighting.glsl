@@ -20,8 +20,10 @@ layout(std140, binding = LIGHTING_BINDING) uniform LightingBlock {
 vec3 clearSky(LightingState L, vec3 V) {
   Palette d = L.palette;
   Palette m = L.moonPalette;
-  return kozlovClearSky(V, L.sun.direction.xyz, d.sky.rgb, d.fog.rgb, d.glow.rgb, d.sky.w, d.fog.w) +
-         kozlovClearSky(V, L.moon.direction.xyz, m.sky.rgb, m.fog.rgb, m.glow.rgb, m.sky.w, m.fog.w);
+  return kozlovClearSky(V, L.sun.direction.xyz, d.sky.rgb, d.fog.rgb, d.glow.rgb, d.sky.w,
+                        d.glow.w, d.fog.w) +
+         kozlovClearSky(V, L.moon.direction.xyz, m.sky.rgb, m.fog.rgb, m.glow.rgb, m.sky.w,
+                        m.glow.w, m.fog.w);
 }
 
 #endif

@@ -19,7 +19,7 @@ struct DirectionalLight {
 struct Palette {
   vec4 sky;            // rgb: Csky; w: glow size s
   vec4 fog;            // rgb: Cfog; w: haze top hmax (fraction of the dome height)
-  vec4 glow;           // rgb: Csun (glow around the light)
+  vec4 glow;           // rgb: Csun (glow around the light); w: glow exponent n
   vec4 cloudLit;       // rgb: C1 (Kozlov 3.3)
   vec4 cloudDark;      // rgb: C2
   vec4 ambientTop;     // rgb

@@ -19,11 +19,18 @@ inline glm::vec3 referenceDirection(const CameraSettings& cam, int w, int h, int
                         ny * v.up.w * glm::vec3(v.up));
 }
 
+// Kozlov 3.1's haze with the eased ramp of shaders/common/kozlov_sky.glsl (kozlovHaze).
+inline float referenceHaze(float z, const SkySettings& sky) {
+  const float t = std::min(std::max(z, 0.0f) / static_cast<float>(sky.hazeHeight), 1.0f);
+  return 1.0f - (1.0f - t) * (1.0f - t);
+}
+
 // Kozlov 3.1, written independently of shaders/common/kozlov_sky.glsl.
 inline glm::vec3 referenceKozlov(glm::vec3 v, glm::vec3 s, const PaletteKey& p,
                                  const SkySettings& sky) {
-  const float l = static_cast<float>(sky.glowSize) * std::pow(std::max(glm::dot(v, s), 0.0f), 2.0f);
-  const float h = std::min(std::max(v.z, 0.0f) / static_cast<float>(sky.hazeHeight), 1.0f);
+  const float l = static_cast<float>(sky.glowSize) *
+                  std::pow(std::max(glm::dot(v, s), 0.0f), static_cast<float>(sky.glowExponent));
+  const float h = referenceHaze(v.z, sky);
   return (p.skyColor * h + p.fogColor * (1.0f - h)) * (1.0f - l) + p.glowColor * l;
 }
 

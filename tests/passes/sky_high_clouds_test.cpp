@@ -144,8 +144,7 @@ TEST_F(SkyHighCloudsTest, CloudTermsMatchTheReference) {
         rgb += coefficients.r * lit + coefficients.g * dense + coefficients.a * 0.3f * edge;
       }
       rgb *= 1.5f;
-      const float through =
-          std::min(std::max(V.z, 0.0f) / static_cast<float>(scene.sky.hazeHeight), 1.0f);
+      const float through = test::referenceHaze(V.z, scene.sky);
       const glm::vec3 sky = test::referenceClearSky(V, st, scene.sky);
       const float coverage = 1.0f - coefficients.b;
       glm::vec4 want = groundFirst

@@ -234,7 +234,7 @@ TEST(SceneSchema, PaletteIsAListOfCompleteKeys) {
   EXPECT_EQ(color["items"]["maximum"], 1000000);
   // The default is the built-in palette as `validate` prints it (floats as short text).
   EXPECT_EQ(palette["default"], sceneToJson(Scene())["lighting"]["palette"]);
-  EXPECT_EQ(palette["default"][6]["sky_color"][0], 0.068);
+  EXPECT_EQ(palette["default"][6]["sky_color"][0], 0.115);
 }
 
 TEST(SceneSchema, TimeIsAnInstantOrARange) {

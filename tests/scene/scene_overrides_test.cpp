@@ -78,7 +78,7 @@ TEST(SceneOverrides, ValuesAreValidatedLikeFileValues) {
             "--set camera.pitch=.nan: camera.pitch: .nan is out of range [-90, 90]");
   EXPECT_EQ(overrideError("", {"sky.sky_color=[0.1,0.2,0.3]"}),
             "--set sky.sky_color=[0.1,0.2,0.3]: unknown key 'sky.sky_color' (known keys: "
-            "model, glow_size, haze_height)");
+            "model, glow_size, glow_exponent, haze_height)");
   EXPECT_EQ(overrideError("", {"sun.disc_scale=1e4"}),
             "--set sun.disc_scale=1e4: sun.disc_scale: 1e4 is out of range [0, 1000]");
   EXPECT_EQ(overrideError("", {"time=2024-01-01T00:00:00"}),
