@@ -34,7 +34,8 @@ TEST(SceneErrors, UnknownKeys) {
   EXPECT_EQ(yamlError("camera:\n  pitch: 3\n  verticalFov: 50\n"),
             "x.yaml:3:3: unknown key 'camera.verticalFov' (did you mean 'vertical_fov'?)");
   EXPECT_EQ(yamlError("sky:\n  cloudiness: 3\n"),
-            "x.yaml:2:3: unknown key 'sky.cloudiness' (known keys: model, glow_size, glow_exponent, haze_height)");
+            "x.yaml:2:3: unknown key 'sky.cloudiness' (known keys: model, glow_size, glow_exponent, "
+            "haze_height)");
   EXPECT_EQ(jsonError("{\"output\": {}, \"fog\": {}}"),
             "x.json:1:16: unknown key 'fog' (known keys: output, camera, time, sun, moon, sky, "
             "atmosphere, ground, high_clouds, clouds, weather, lighting)");
@@ -46,7 +47,8 @@ TEST(SceneErrors, UnknownKeys) {
             "x.yaml:2:3: unknown key 'sun.disc_intensity' (known keys: azimuth, elevation, "
             "angular_diameter, disc_scale)");
   EXPECT_EQ(yamlError("sky:\n  sky_color: [0.1, 0.2, 0.3]\n"),
-            "x.yaml:2:3: unknown key 'sky.sky_color' (known keys: model, glow_size, glow_exponent, haze_height)");
+            "x.yaml:2:3: unknown key 'sky.sky_color' (known keys: model, glow_size, glow_exponent, "
+            "haze_height)");
   EXPECT_EQ(yamlError("moon:\n  earthshne: 2\n"),
             "x.yaml:2:3: unknown key 'moon.earthshne' (did you mean 'earthshine'?)");
   EXPECT_EQ(yamlError("lighting:\n  turbidty: 2\n"),
