@@ -14,7 +14,7 @@ const char* kindName(ResourceKind k) {
 
 }  // namespace
 
-FrameGraph::FrameGraph(GraphRuntime& runtime) : mRuntime(&runtime) {}
+FrameGraph::FrameGraph(GraphRuntime& runtime, GraphUse use) : mRuntime(&runtime), mUse(use) {}
 FrameGraph::FrameGraph() = default;
 FrameGraph::~FrameGraph() = default;
 
@@ -34,6 +34,32 @@ ImageId FrameGraph::importImage(PersistentImage& image) {
                     .image = d,
                     .initial = image.state};
   return {addResource(std::move(node), {&image, nullptr, -1}), 0};
+}
+
+void HistoryImage::ensure(const Context& ctx, const ImageDesc& wanted) {
+  ImageDesc desc = wanted;
+  desc.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
+               VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+  const ImageDesc& have = mImages[0].image.desc();
+  if (mImages[0].image && have.format == desc.format && have.width == desc.width &&
+      have.height == desc.height && have.depth == desc.depth && have.dim == desc.dim)
+    return;
+  for (int i = 0; i < 2; ++i) {
+    ImageDesc d = desc;
+    d.name = desc.name + (i == 0 ? " (history a)" : " (history b)");
+    mImages[i] = PersistentImage{Image(ctx, d), {}};
+  }
+  mWrite = 0;
+  mValid = false;
+}
+
+HistoryIds FrameGraph::importHistory(HistoryImage& history) {
+  if (!history.mImages[0].image) internalError("frame graph: importing a history never ensured");
+  if (std::find(mHistories.begin(), mHistories.end(), &history) != mHistories.end())
+    internalError("frame graph: a history imported twice into one frame");
+  mHistories.push_back(&history);
+  return {importImage(history.mImages[1 - history.mWrite]),
+          importImage(history.mImages[history.mWrite]), history.mValid};
 }
 
 BufferId FrameGraph::importBuffer(PersistentBuffer& buffer) {

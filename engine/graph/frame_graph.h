@@ -12,6 +12,7 @@
 
 #include "engine/graph/compile.h"
 #include "engine/graph/graph_desc.h"
+#include "engine/graph/graph_runtime.h"
 #include "engine/graph/handle.h"
 
 namespace sky {
@@ -30,6 +31,36 @@ struct PersistentImage {
 struct PersistentBuffer {
   Buffer buffer;
   ResourceState state;
+};
+
+// Two images that carry a pass's result from one frame into the next (temporal reuse): each
+// frame reads the one the frame before wrote and writes the other (FrameGraph::importHistory).
+// Its owner keeps it between frames; a frame's execute() flips it once the frame has run, so
+// a frame that fails leaves the last good history in place.
+class HistoryImage {
+public:
+  // (Re)creates both images when `desc` differs from theirs (a new size or format): the
+  // history is then empty. Usage: written as storage, sampled, read back.
+  void ensure(const Context& ctx, const ImageDesc& desc);
+  // Forgets what the images hold (a cut: the camera jumped, a setting changed).
+  void invalidate() { mValid = false; }
+  // Whether the image a frame reads was written by the frame before.
+  bool valid() const { return mValid; }
+
+private:
+  friend class FrameGraph;
+  PersistentImage mImages[2];
+  uint32_t mWrite = 0;  // the image this frame writes; the other one it reads
+  bool mValid = false;
+};
+
+// A history in one frame's graph: `previous` is last frame's result (undefined unless
+// `valid`), `next` the image this frame must write in full (a pass writing it is kept even
+// when nothing else reads it this frame: the next frame does).
+struct HistoryIds {
+  ImageId previous;
+  ImageId next;
+  bool valid = false;
 };
 
 // Handed to a pass's setup; every declaration is attributed to that pass.
@@ -85,13 +116,15 @@ struct CompiledGraph {
 
 class FrameGraph {
 public:
-  explicit FrameGraph(GraphRuntime& runtime);
+  explicit FrameGraph(GraphRuntime& runtime, GraphUse use = GraphUse::Frame);
   // A graph without a GPU: it can be built, compiled (memory sizes estimated from texel
   // counts) and dumped, but not executed. For tests and tools.
   FrameGraph();
   ~FrameGraph();
 
   ImageId importImage(PersistentImage& image);
+  // Imports both images of `history` (see HistoryImage); ensure() it first.
+  HistoryIds importHistory(HistoryImage& history);
   BufferId importBuffer(PersistentBuffer& buffer);
   // Adds a pass; declare its resources through the returned builder before adding the next.
   GraphBuilder addPass(std::string name, std::function<void(PassContext&)> execute);
@@ -129,10 +162,12 @@ private:
   uint32_t addResource(ResourceNode node, ResourceRecord record);
 
   GraphRuntime* mRuntime = nullptr;
+  GraphUse mUse = GraphUse::Frame;
   GraphDesc mDesc;
   std::vector<PassRecord> mPasses;
   std::vector<ResourceRecord> mResources;
   std::vector<std::pair<ImageId, std::string>> mOutputs;
+  std::vector<HistoryImage*> mHistories;  // flipped after execute
   std::optional<CompiledGraph> mCompiled;
   bool mExecuted = false;
 };

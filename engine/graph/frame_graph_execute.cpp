@@ -58,7 +58,7 @@ const CompiledGraph& FrameGraph::compile() {
         region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
         region.imageExtent = {d.width, d.height, d.dim == ImageDim::Tex3D ? d.depth : 1};
         vkCmdCopyImageToBuffer(ctx.cmd(), image.image(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                               mRuntime->mReadback[i].buffer(), 1, &region);
+                               mRuntime->readback(mUse)[i].buffer(), 1, &region);
       }
     });
     b.sideEffect();
@@ -89,7 +89,7 @@ FrameResult FrameGraph::execute() {
   const auto start = std::chrono::steady_clock::now();
   const CompiledGraph& c = compile();
   const Context& ctx = runtime.gpu();
-  GraphRuntime::Transients& t = runtime.mTransients;
+  GraphRuntime::Transients& t = runtime.transients(mUse);
 
   // Transient memory: reuse last frame's allocation while the graph keeps its shape.
   std::string key;
@@ -106,7 +106,8 @@ FrameResult FrameGraph::execute() {
     key += ";";
   }
   if (key != t.key || t.images.size() != mDesc.resources.size()) {
-    runtime.releaseTransients();
+    runtime.releaseTransients(mUse);
+    if (mUse == GraphUse::Frame) ++runtime.mTransientAllocations;
     for (const MemorySlot& slot : c.memory.slots) {
       VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
       alloc.allocationSize = slot.size;
@@ -139,12 +140,13 @@ FrameResult FrameGraph::execute() {
   }
 
   // Host-visible buffers for the requested outputs.
-  runtime.mReadback.resize(mOutputs.size());
+  std::vector<Buffer>& readback = runtime.readback(mUse);
+  readback.resize(mOutputs.size());
   for (size_t i = 0; i < mOutputs.size(); ++i) {
     const ImageDesc& d = mDesc.resources[mOutputs[i].first.id].image;
     VkDeviceSize bytes = texelBytes(d);
-    if (!runtime.mReadback[i] || runtime.mReadback[i].size() != bytes)
-      runtime.mReadback[i] =
+    if (!readback[i] || readback[i].size() != bytes)
+      readback[i] =
           Buffer(ctx, {"readback " + mOutputs[i].second, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                        BufferMemory::HostVisible});
   }
@@ -220,7 +222,7 @@ FrameResult FrameGraph::execute() {
   }
   for (size_t i = 0; i < mOutputs.size(); ++i) {
     const ImageDesc& d = mDesc.resources[mOutputs[i].first.id].image;
-    const Buffer& buf = runtime.mReadback[i];
+    const Buffer& buf = readback[i];
     buf.invalidate();
     ReadbackImage out;
     out.label = mOutputs[i].second;
@@ -236,6 +238,16 @@ FrameResult FrameGraph::execute() {
     if (!mDesc.resources[r].imported || !c.lifetimes[r].used()) continue;
     if (mResources[r].image) mResources[r].image->state = c.barriers.finalState[r];
     if (mResources[r].buffer) mResources[r].buffer->state = c.barriers.finalState[r];
+  }
+  // A bake's memory is freed at once (GraphUse).
+  if (mUse == GraphUse::Bake) {
+    runtime.releaseTransients(GraphUse::Bake);
+    readback.clear();
+  }
+  // This frame's results become the next frame's history.
+  for (HistoryImage* h : mHistories) {
+    h->mWrite = 1 - h->mWrite;
+    h->mValid = true;
   }
   result.wallMs =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

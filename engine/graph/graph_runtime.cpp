@@ -27,22 +27,24 @@ GraphRuntime::GraphRuntime(const Context& ctx) : mCtx(ctx), mDescriptors(ctx) {
 
 GraphRuntime::~GraphRuntime() {
   vkDeviceWaitIdle(mCtx.device());
-  releaseTransients();
+  releaseTransients(GraphUse::Frame);
+  releaseTransients(GraphUse::Bake);
   vkDestroyFence(mCtx.device(), mFence, nullptr);
   vkDestroyCommandPool(mCtx.device(), mPool, nullptr);
 }
 
 uint64_t GraphRuntime::transientBytes() const {
-  return mTransients.bytes;
+  return mTransients[static_cast<int>(GraphUse::Frame)].bytes;
 }
 
-void GraphRuntime::releaseTransients() {
-  mTransients.images.clear();
-  mTransients.buffers.clear();
-  for (VkDeviceMemory m : mTransients.memory) vkFreeMemory(mCtx.device(), m, nullptr);
-  mTransients.memory.clear();
-  mTransients.key.clear();
-  mTransients.bytes = 0;
+void GraphRuntime::releaseTransients(GraphUse use) {
+  Transients& t = transients(use);
+  t.images.clear();
+  t.buffers.clear();
+  for (VkDeviceMemory m : t.memory) vkFreeMemory(mCtx.device(), m, nullptr);
+  t.memory.clear();
+  t.key.clear();
+  t.bytes = 0;
 }
 
 VkCommandBuffer GraphRuntime::beginFrame() {

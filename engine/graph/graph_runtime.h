@@ -22,6 +22,12 @@ struct UniformRange {
   VkDeviceSize size = 0;
 };
 
+// What a graph is for, which decides where its transient memory and read-back buffers live.
+// A frame's stay allocated for the next frame of the same shape. A bake (noise, textures,
+// LUTs) runs once, often in the middle of building a frame, in its own memory, freed when it
+// is done: it never evicts the frames', so a frame never rebuilds what the last one had.
+enum class GraphUse : uint8_t { Frame, Bake };
+
 class GraphRuntime {
 public:
   explicit GraphRuntime(const Context& ctx);
@@ -30,8 +36,10 @@ public:
   GraphRuntime& operator=(const GraphRuntime&) = delete;
 
   const Context& gpu() const { return mCtx; }
-  // Bytes of device memory held for transient resources (for reports and tests).
+  // Bytes of device memory held for the frames' transient resources (reports and tests).
   uint64_t transientBytes() const;
+  // Times the frames' transient memory was (re)allocated: once while the graph keeps its shape.
+  uint64_t transientAllocations() const { return mTransientAllocations; }
 
 private:
   friend class FrameGraph;
@@ -49,7 +57,9 @@ private:
     std::vector<Buffer> buffers;  // by resource index
     uint64_t bytes = 0;
   };
-  void releaseTransients();
+  void releaseTransients(GraphUse use);
+  Transients& transients(GraphUse use) { return mTransients[static_cast<int>(use)]; }
+  std::vector<Buffer>& readback(GraphUse use) { return mReadback[static_cast<int>(use)]; }
 
   const Context& mCtx;
   VkCommandPool mPool = VK_NULL_HANDLE;
@@ -59,8 +69,9 @@ private:
   std::vector<Buffer> mUniformChunks;
   size_t mUniformChunk = 0;
   VkDeviceSize mUniformOffset = 0;
-  Transients mTransients;
-  std::vector<Buffer> mReadback;
+  Transients mTransients[2];        // by GraphUse
+  std::vector<Buffer> mReadback[2];  // by GraphUse
+  uint64_t mTransientAllocations = 0;
 };
 
 }  // namespace sky

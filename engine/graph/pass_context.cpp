@@ -26,13 +26,13 @@ const ResourceAccess* PassContext::declared(uint32_t resource) const {
 const Image& PassContext::image(ImageId h) const {
   declared(h.id);
   const auto& rec = mGraph.mResources[h.id];
-  return rec.image ? rec.image->image : mGraph.mRuntime->mTransients.images[h.id];
+  return rec.image ? rec.image->image : mGraph.mRuntime->transients(mGraph.mUse).images[h.id];
 }
 
 const Buffer& PassContext::buffer(BufferId h) const {
   declared(h.id);
   const auto& rec = mGraph.mResources[h.id];
-  return rec.buffer ? rec.buffer->buffer : mGraph.mRuntime->mTransients.buffers[h.id];
+  return rec.buffer ? rec.buffer->buffer : mGraph.mRuntime->transients(mGraph.mUse).buffers[h.id];
 }
 
 UniformRange PassContext::uniform(const void* data, VkDeviceSize size) const {

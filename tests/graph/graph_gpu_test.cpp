@@ -139,6 +139,83 @@ TEST_F(GraphGpuTest, PersistentImageCarriesDataAndStateAcrossFrames) {
   }
 }
 
+// Temporal reuse's history: each frame reads what the frame before wrote (a running sum),
+// the history is empty until a frame has run, and a frame that never executes leaves it.
+TEST_F(GraphGpuTest, HistoryCarriesEachFramesResultIntoTheNext) {
+  GraphRuntime runtime(ctx());
+  HistoryImage history;
+  history.ensure(ctx(), desc("sum"));
+  EXPECT_FALSE(history.valid());
+  for (int frame = 0; frame < 4; ++frame) {
+    FrameGraph g(runtime);
+    const HistoryIds ids = g.importHistory(history);
+    EXPECT_EQ(ids.valid, frame > 0);
+    ImageId out;
+    GraphBuilder pb = g.addPass("accumulate", [&](PassContext& pc) {
+      // The first frame starts from 0 (fill), the others add 1 to last frame's sum.
+      float v = ids.valid ? 1.0f : 0.0f;
+      if (ids.valid)
+        pc.dispatch(*mAdd, {Binding::of(0, ids.previous, mSampler.get()), Binding::of(1, out)}, 2,
+                    2, 1, &v, sizeof v);
+      else
+        pc.dispatch(*mFill, {Binding::of(0, out)}, 2, 2, 1, &v, sizeof v);
+    });
+    if (ids.valid) pb.read(ids.previous, Access::SampledCompute);
+    out = pb.write(ids.next, Access::StorageWriteCompute);
+    pb.sideEffect();
+    g.requestOutput(out, "sum");
+    const FrameResult r = g.execute();
+    EXPECT_FLOAT_EQ(r.output("sum").pixels[5], static_cast<float>(frame)) << "frame " << frame;
+    EXPECT_TRUE(history.valid());
+  }
+  {
+    FrameGraph unexecuted(runtime);
+    unexecuted.importHistory(history);
+  }
+  FrameGraph g(runtime);
+  const HistoryIds ids = g.importHistory(history);
+  ImageId out;
+  GraphBuilder pb = g.addPass("read", [&](PassContext& pc) {
+    float v = 0.0f;
+    pc.dispatch(*mAdd, {Binding::of(0, ids.previous, mSampler.get()), Binding::of(1, out)}, 2, 2,
+                1, &v, sizeof v);
+  });
+  pb.read(ids.previous, Access::SampledCompute);
+  out = pb.write(pb.create(desc("out")), Access::StorageWriteCompute);
+  g.requestOutput(out, "out");
+  EXPECT_FLOAT_EQ(g.execute().output("out").pixels[5], 3.0f)
+      << "a graph that never ran must not flip the history";
+  history.invalidate();
+  EXPECT_FALSE(history.valid());
+  history.ensure(ctx(), desc("sum"));
+  EXPECT_FALSE(history.valid()) << "ensure() with the same shape keeps the images, not validity";
+}
+
+// A bake (GraphUse::Bake) runs in its own memory and frees it: the frames around it keep
+// theirs, so the frame after a bake allocates nothing.
+TEST_F(GraphGpuTest, BakesDoNotEvictTheFramesTransientMemory) {
+  GraphRuntime runtime(ctx());
+  auto frame = [&](GraphUse use, float value, uint32_t size) {
+    FrameGraph g(runtime, use);
+    ImageId a;
+    GraphBuilder pb = g.addPass("fill", [&](PassContext& pc) {
+      pc.dispatch(*mFill, {Binding::of(0, a)}, size / 8, size / 8, 1, &value, sizeof value);
+    });
+    ImageDesc d = desc("a");
+    d.width = d.height = size;
+    a = pb.write(pb.create(d), Access::StorageWriteCompute);
+    g.requestOutput(a, "a");
+    return g.execute().output("a").pixels[3];
+  };
+  EXPECT_FLOAT_EQ(frame(GraphUse::Frame, 1.0f, 16), 1.0f);
+  const uint64_t bytes = runtime.transientBytes();
+  EXPECT_EQ(runtime.transientAllocations(), 1u);
+  EXPECT_FLOAT_EQ(frame(GraphUse::Bake, 2.0f, 64), 2.0f);  // another shape
+  EXPECT_FLOAT_EQ(frame(GraphUse::Frame, 3.0f, 16), 3.0f);
+  EXPECT_EQ(runtime.transientAllocations(), 1u) << "the bake evicted the frame's memory";
+  EXPECT_EQ(runtime.transientBytes(), bytes);
+}
+
 TEST_F(GraphGpuTest, UndeclaredResourceInExecuteIsAnError) {
   GraphRuntime runtime(ctx());
   FrameGraph g(runtime);
