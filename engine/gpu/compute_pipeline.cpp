@@ -12,6 +12,13 @@ CompiledShader compileForDevice(const Context& ctx, ShaderCompiler& compiler,
   return compiler.compile(file, defines);
 }
 
+ComputePipeline buildComputePipeline(const Context& ctx, ShaderCompiler& compiler,
+                                     const std::filesystem::path& file, const std::string& name,
+                                     std::vector<ShaderDefine> defines) {
+  CompiledShader shader = compileForDevice(ctx, compiler, file, std::move(defines));
+  return ComputePipeline(ctx, name, shader.spirv, shader.reflection);
+}
+
 ComputePipeline::ComputePipeline(const Context& ctx, const std::string& name,
                                  const std::vector<uint32_t>& spirv,
                                  const ShaderReflection& reflection)

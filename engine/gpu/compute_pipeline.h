@@ -21,6 +21,12 @@ CompiledShader compileForDevice(const Context& ctx, ShaderCompiler& compiler,
                                 const std::filesystem::path& file,
                                 std::vector<ShaderDefine> defines = {});
 
+class ComputePipeline;
+// compileForDevice, then the pipeline: the whole of what a pass with one shader builds.
+ComputePipeline buildComputePipeline(const Context& ctx, ShaderCompiler& compiler,
+                                     const std::filesystem::path& file, const std::string& name,
+                                     std::vector<ShaderDefine> defines = {});
+
 class ComputePipeline {
 public:
   // Creates module, set layout, pipeline layout and pipeline. `name` is for debug output.

@@ -20,9 +20,9 @@ constexpr double kPerMmToPerKm = 1e-3;
 // filter RGBA32F linearly).
 constexpr VkFormat kLutFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 
+// The pass's pipeline from shaders/NAME.comp.
 ComputePipeline buildPipeline(const Context& ctx, ShaderCompiler& compiler, const char* name) {
-  CompiledShader shader = compileForDevice(ctx, compiler, std::string(name) + ".comp");
-  return ComputePipeline(ctx, name, shader.spirv, shader.reflection);
+  return buildComputePipeline(ctx, compiler, std::string(name) + ".comp", name);
 }
 
 ImageDesc lutDesc(const char* name, uint32_t width, uint32_t height, uint32_t depth = 1) {

@@ -15,9 +15,9 @@ namespace {
 // (maxComputeWorkGroupCount[0]); the splat loops over any stars beyond.
 constexpr uint32_t kMaxGroups = 65535;
 
+// The pass's pipeline from shaders/NAME.comp.
 ComputePipeline buildPipeline(const Context& ctx, ShaderCompiler& compiler, const char* name) {
-  CompiledShader shader = compileForDevice(ctx, compiler, std::string(name) + ".comp");
-  return ComputePipeline(ctx, name, shader.spirv, shader.reflection);
+  return buildComputePipeline(ctx, compiler, std::string(name) + ".comp", name);
 }
 
 PersistentBuffer uploadStars(const Context& ctx, std::span<const Star> stars) {
