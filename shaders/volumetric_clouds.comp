@@ -22,6 +22,15 @@
 #ifndef CLOUD_LIGHT_NOISE_STEPS
 #define CLOUD_LIGHT_NOISE_STEPS 17
 #endif
+// clouds.quality reference (CloudParams.reference): small fixed steps, no early exit, no
+// empty-space skipping, no light reused along the ray, and a uniform light march.
+#ifndef CLOUD_REFERENCE
+#define CLOUD_REFERENCE 0
+#endif
+// The reference's light march: the standard one (lightMarchDensity) with each short step
+// split into this many and the long one into twice as many, so it is the same quadrature
+// refined and reaches as far (Lu (22)'s clamp sees the same path).
+#define CLOUD_REFERENCE_LIGHT_SPLIT 4
 
 layout(local_size_x = VOLUMETRIC_CLOUDS_GROUP_X, local_size_y = VOLUMETRIC_CLOUDS_GROUP_Y) in;
 
@@ -57,7 +66,7 @@ LatLonLine gLightLine;
 float cloudDensityForLight(vec3 p, float lengthM, int step) {
   ++gLightSamples;
   CloudSample s;
-  int noise = step < CLOUD_LIGHT_DETAIL_STEPS  ? CLOUD_NOISE_ALL
+  int noise = CLOUD_REFERENCE != 0 || step < CLOUD_LIGHT_DETAIL_STEPS ? CLOUD_NOISE_ALL
               : step < CLOUD_LIGHT_NOISE_STEPS ? CLOUD_NOISE_SHAPE
                                                : CLOUD_NOISE_NONE;
   cloudSampleAtLla(p, latLonAltitudeOn(gLightLine, p), max(gFootprintM, 0.25 * lengthM), false,
@@ -82,6 +91,22 @@ bool keyLightMarched(int i, int layer) {
   return (i == 0 ? params.sunMarched : params.moonMarched) != 0.0 && max(E.r, max(E.g, E.b)) > 0.0;
 }
 
+// The reference's light march (CLOUD_REFERENCE): Lu (24)'s ds by the midpoint rule over the
+// standard schedule's steps split CLOUD_REFERENCE_LIGHT_SPLIT ways (the long one twice as
+// many), every noise read at every step (each still filtered to a quarter of its step).
+float referenceLightMarchDensity(vec3 p, vec3 L, float distance, int n, float offset) {
+  float ds = 0.0;
+  for (int i = 0; i <= n; ++i) {
+    float start = i < n ? lightStepStart(i, n, distance) : distance;
+    int parts = i < n ? CLOUD_REFERENCE_LIGHT_SPLIT : 2 * CLOUD_REFERENCE_LIGHT_SPLIT;
+    float len = (i < n ? lightStepLength(i, n, distance) : lightLongStepLength(distance)) /
+                float(parts);
+    for (int k = 0; k < parts; ++k)
+      ds += cloudDensityForLight(p + L * (start + (float(k) + offset) * len), len, 0) * len;
+  }
+  return ds;
+}
+
 // Lu (24): the optical depth from the cloud sample s at p toward the sun (x) and the moon (y).
 vec2 marchKeyLights(vec3 p, CloudSample s) {
   vec2 tau = vec2(0.0);
@@ -90,7 +115,11 @@ vec2 marchKeyLights(vec3 p, CloudSample s) {
     vec3 L = i == 0 ? params.sunDirection.xyz : params.moonDirection.xyz;
     gLightLine = latLonLine(p, s.latLon, L, lightLongStepDistance(params.lightDistanceM));
     tau[i] = params.extinction *
-             lightMarchDensity(p, L, params.lightDistanceM, CLOUD_LIGHT_STEPS, gLightOffset);
+             (CLOUD_REFERENCE != 0
+                  ? referenceLightMarchDensity(p, L, params.lightDistanceM, CLOUD_LIGHT_STEPS,
+                                               gLightOffset)
+                  : lightMarchDensity(p, L, params.lightDistanceM, CLOUD_LIGHT_STEPS,
+                                      gLightOffset));
   }
   return tau;
 }
@@ -152,8 +181,8 @@ float pixelHash(uvec2 pixel, uint frame, uint n) {
 #define CLOUD_STRIDE_CLEARANCE 0.3
 
 // The view ray's steps inside a cloud are at most this many optical depths deep (and no
-// shorter than CLOUD_STEP_MIN_M metres).
-#define CLOUD_STEP_MAX_TAU 0.5
+// shorter than CLOUD_STEP_MIN_M metres); half that in the reference.
+#define CLOUD_STEP_MAX_TAU (CLOUD_REFERENCE != 0 ? 0.25 : 0.5)
 #define CLOUD_STEP_MIN_M 2.0
 #define CLOUD_NO_DEPTH_LIMIT 1e30
 
@@ -204,10 +233,15 @@ int shellIntervals(vec3 o, vec3 d, vec3 c, float rIn, float rOut, float rGround,
 }
 
 void main() {
-  uvec2 id = gl_GlobalInvocationID.xy;
-  if (any(greaterThanEqual(id, params.view.size.xy))) return;
+  // This invocation's texel of the pass's images, and the view's pixel it marches: every
+  // pixel, or with temporal reuse one of each marchBlock x marchBlock square (a square cut
+  // by the image's edge marches its nearest pixel).
+  ivec2 ip = ivec2(gl_GlobalInvocationID.xy);
+  if (any(greaterThanEqual(ip, imageSize(cloudImage)))) return;
+  uvec2 id = min(gl_GlobalInvocationID.xy * params.marchBlock +
+                     uvec2(params.marchOffsetX, params.marchOffsetY),
+                 params.view.size.xy - 1u);
   vec2 pixel = vec2(id) + 0.5;
-  ivec2 ip = ivec2(id);
 
   // Ray origin and direction in the frame's ENU coordinates.
   vec3 o = vec3(0.0);
@@ -255,12 +289,17 @@ void main() {
         float footprint =
             CLOUD_TOPDOWN != 0 ? 0.0 : max((t + 0.5 * dt) * params.view.forward.w, 0.25 * dt);
         CloudSample s;
-        if (!cloudSampleAt(p, footprint, s)) {
+        bool anyCloud = CLOUD_REFERENCE != 0
+                            ? cloudSampleAtLla(p, latLonAltitude(params.geo, p), footprint, false,
+                                               CLOUD_NOISE_ALL, s)
+                            : cloudSampleAt(p, footprint, s);
+        if (!anyCloud) {
           // Outside the region or far from any cover: nothing to sample; stride on (the coarse
           // map is dilated by a whole block, kilometres, so a double step cannot jump a cloud).
+          // The reference takes no coarse map and no double steps.
           tauView = 0.0;  // out of the layers or the map: the next cloud is entered afresh
           depthLimit = CLOUD_NO_DEPTH_LIMIT;
-          t += 2.0 * dt;
+          t += CLOUD_REFERENCE != 0 ? dt : 2.0 * dt;
           continue;
         }
         ++samples;
@@ -286,8 +325,9 @@ void main() {
         // its middle alone and skips what lies between. Striding up to 4x right beside the
         // clouds missed their thin fringes in the same way along whole rows of the view, whose
         // rays cross the gap below a cloud in nearly the same steps: horizontal striations.
-        float strideCap = s.density > 0.0 ? 1.0
-                          : clamp(1.0 + 3.0 * s.clearance / CLOUD_STRIDE_CLEARANCE, 1.0, 4.0);
+        float strideCap = s.density > 0.0 || CLOUD_REFERENCE != 0
+                              ? 1.0
+                              : clamp(1.0 + 3.0 * s.clearance / CLOUD_STRIDE_CLEARANCE, 1.0, 4.0);
         stretch = min(stretch * 1.5, strideCap);
         if (s.density > 0.0) {
           float sigmaT = params.extinction * s.density;
@@ -299,8 +339,8 @@ void main() {
                                               : sigmaT * dt);
           radiance += weight * cloudAmbientScattering(d, s, tauView + 0.5 * sigmaT * dt);
           // In the tail of this cloud the light march of the sample before serves.
-          bool tail =
-              tauView > 0.0 && s.layer == light.layer && transmittance < CLOUD_LIGHT_REUSE_T;
+          bool tail = CLOUD_REFERENCE == 0 && tauView > 0.0 && s.layer == light.layer &&
+                      transmittance < CLOUD_LIGHT_REUSE_T;
           if (!tail) {
             gFootprintM = footprint;
             gLightOffset = fract(jitter + 0.6180339887 * float(samples));  // golden-ratio sequence

@@ -250,9 +250,37 @@ constexpr auto enumNames(CloudPhase) {
       {{CloudPhase::Hg, "hg"}, {CloudPhase::DualLobe, "dual_lobe"}});
 }
 
+// clouds.quality: the raymarch as tuned for speed, or the reference every optimisation is
+// measured against (docs/clouds.md, "Reference"): small fixed steps, no early exit, no
+// empty-space skipping, a long uniform light march, full resolution, no temporal reuse.
+enum class CloudQuality { Standard, Reference };
+constexpr auto enumNames(CloudQuality) {
+  return std::to_array<EnumName<CloudQuality>>(
+      {{CloudQuality::Standard, "standard"}, {CloudQuality::Reference, "reference"}});
+}
+
+// clouds.temporal.mode: whether frames of a sequence reuse the clouds of the frames before
+// (passes/cloud_temporal).
+enum class CloudTemporalMode { Off, On };
+constexpr auto enumNames(CloudTemporalMode) {
+  return std::to_array<EnumName<CloudTemporalMode>>(
+      {{CloudTemporalMode::Off, "off"}, {CloudTemporalMode::On, "on"}});
+}
+
+// Temporal reuse of the volumetric clouds (Nubis-style): each frame marches one pixel of every
+// block x block square and reprojects the rest from the frames before, with the camera's
+// motion and the wind. A single frame (a still) is unchanged whatever these say: it marches
+// every pixel. docs/clouds.md, "Temporal reuse".
+struct CloudTemporalSettings {
+  CloudTemporalMode mode = CloudTemporalMode::Off;
+  int block = 4;  // 1..4: a frame marches 1 / block^2 of the pixels
+};
+
 // The volumetric low and mid clouds (Lu et al. 2023, Tang et al. 2019), raymarched through
 // the shells of `low` and `mid`, with cover and type from the weather map. See docs/clouds.md.
 struct CloudSettings {
+  CloudQuality quality = CloudQuality::Standard;  // the tuned march, or the reference
+  CloudTemporalSettings temporal;
   CloudModel model = CloudModel::Lu2023;                       // density and noise model
   CloudCoverageMode coverage = CloudCoverageMode::Calibrated;  // how cover sets the remap
   double extinction = 0.1;                  // sigma_t per metre at density 1, 1e-5..1

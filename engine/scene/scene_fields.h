@@ -199,7 +199,23 @@ void describe(V& v, CloudLayerSettings& s) {
 }
 
 template <class V>
+void describe(V& v, CloudTemporalSettings& s) {
+  v.field("mode", s.mode,
+          "on: each frame of a sequence (a time-lapse, a window, a benchmark pan) marches "
+          "1 / block^2 of the pixels and reprojects the rest from the frames before; a single "
+          "frame always marches them all");
+  v.field("block", s.block, NumberRange{1, 4},
+          "each frame marches one pixel of every block x block square (4: a sixteenth)");
+}
+
+template <class V>
 void describe(V& v, CloudSettings& s) {
+  v.field("quality", s.quality,
+          "standard: the raymarch tuned for speed; reference: the ground truth it is measured "
+          "against (small fixed steps, no early exit or empty-space skipping, a long light "
+          "march, no temporal reuse; many times slower)");
+  v.section("temporal", s.temporal,
+            "temporal reuse across the frames of a sequence (docs/clouds.md)");
   v.field("model", s.model,
           "density and noise model: lu2023 (Lu et al. 2023) or tang2019 (Tang et al. 2019)");
   v.field("coverage", s.coverage,

@@ -28,6 +28,13 @@ constexpr double kRollStretch = 4.0;
 constexpr float kLightShare = 1e-3f;
 // Top-down rays start this far above the highest layer.
 constexpr double kTopDownMarginM = 500.0;
+// clouds.quality reference: the longest first step and the most steps a view ray takes.
+constexpr double kReferenceStepM = 10.0;
+constexpr uint32_t kReferenceMaxSteps = 16384;
+// The reference stops a ray only where what is left of it (below 1e-4 of the pixel) is far
+// under one 8-bit code of any display: no exit to speak of, at a fraction of the cost of
+// marching every opaque cloud to the far end of the shells.
+constexpr float kReferenceCutoff = 1e-4f;
 
 float luminance(const glm::vec3& c) {
   return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b;
@@ -54,7 +61,7 @@ CloudPipelines::CloudPipelines(const Context& ctx, ShaderCompiler& compiler, con
     : mCtx(ctx), mCompiler(compiler), mFile(file), mName(name) {}
 
 const ComputePipeline& CloudPipelines::get(const shared::CloudParams& p) {
-  const std::array<uint32_t, 10> key = {p.frameKind == CLOUD_FRAME_TOPDOWN ? 1u : 0u,
+  const std::array<uint32_t, 11> key = {p.frameKind == CLOUD_FRAME_TOPDOWN ? 1u : 0u,
                                        p.lightSteps,
                                        p.octaves,
                                        p.phaseKind,
@@ -63,14 +70,16 @@ const ComputePipeline& CloudPipelines::get(const shared::CloudParams& p) {
                                        p.model,
                                        p.rolls,
                                        p.lightDetailSteps,
-                                       p.lightNoiseSteps};
+                                       p.lightNoiseSteps,
+                                       p.reference};
   std::unique_ptr<ComputePipeline>& pipeline = mPipelines[key];
   if (!pipeline) {
-    const char* names[10] = {"CLOUD_TOPDOWN",           "CLOUD_LIGHT_STEPS",
+    const char* names[11] = {"CLOUD_TOPDOWN",           "CLOUD_LIGHT_STEPS",
                              "CLOUD_OCTAVES",           "CLOUD_DUAL_LOBE",
                              "CLOUD_ENERGY_CONSERVING", "CLOUD_CALIBRATED",
                              "CLOUD_TANG",              "CLOUD_ROLLS",
-                             "CLOUD_LIGHT_DETAIL_STEPS", "CLOUD_LIGHT_NOISE_STEPS"};
+                             "CLOUD_LIGHT_DETAIL_STEPS", "CLOUD_LIGHT_NOISE_STEPS",
+                             "CLOUD_REFERENCE"};
     std::vector<ShaderDefine> defines;
     for (size_t i = 0; i < key.size(); ++i) defines.push_back({names[i], std::to_string(key[i])});
     CompiledShader shader = compileForDevice(mCtx, mCompiler, mFile, defines);
@@ -108,6 +117,8 @@ shared::CloudParams cloudParams(const VolumetricCloudsSettings& settings,
   p.calibratedCoverage = c.coverage == CloudCoverageMode::Calibrated ? 1u : 0u;
   p.model = c.model == CloudModel::Tang2019 ? CLOUD_MODEL_TANG2019 : CLOUD_MODEL_LU2023;
   p.maxSteps = static_cast<uint32_t>(c.maxSteps);
+  p.marchBlock = 1;
+  p.reference = c.quality == CloudQuality::Reference ? 1u : 0u;
   p.lowBaseM = static_cast<float>(c.low.baseM);
   p.lowTopM = static_cast<float>(c.low.topM);
   p.midBaseM = static_cast<float>(c.mid.baseM);
@@ -177,6 +188,14 @@ shared::CloudParams cloudParams(const VolumetricCloudsSettings& settings,
   p.stepM = static_cast<float>(c.stepM);
   p.stepGrowth = static_cast<float>(c.stepGrowth);
   p.transmittanceCutoff = static_cast<float>(c.transmittanceCutoff);
+  if (p.reference) {
+    // The reference: steps half as long (and never over kReferenceStepM near the camera),
+    // no early exit to speak of, and room for every step to the end of the shells.
+    p.stepM = static_cast<float>(std::min(0.5 * c.stepM, kReferenceStepM));
+    p.stepGrowth = static_cast<float>(0.5 * c.stepGrowth);
+    p.transmittanceCutoff = kReferenceCutoff;
+    p.maxSteps = kReferenceMaxSteps;
+  }
   p.lightDistanceM = static_cast<float>(c.lightDistanceM);
   p.attenuationClamp = static_cast<float>(c.attenuationClamp);
   p.weatherTexelsU = static_cast<float>(weatherSize.x);
@@ -243,9 +262,11 @@ VolumetricCloudsPass::Outputs VolumetricCloudsPass::setup(GraphBuilder& b, const
   mInputs = in;
   mPipeline = &mPipelines.get(in.params);
   readCloudTextures(b, in.textures);
+  // With temporal reuse the pass marches one pixel of every marchBlock x marchBlock square.
+  const uint32_t block = std::max(in.params.marchBlock, 1u);
   ImageDesc desc;
-  desc.width = in.params.view.size.x;
-  desc.height = in.params.view.size.y;
+  desc.width = (in.params.view.size.x + block - 1) / block;
+  desc.height = (in.params.view.size.y + block - 1) / block;
   // 32-bit: physical radiance, ~1e-7 by moonlight, below half float's normal range.
   desc.format = VK_FORMAT_R32G32B32A32_SFLOAT;
   desc.name = "clouds";
@@ -260,7 +281,7 @@ VolumetricCloudsPass::Outputs VolumetricCloudsPass::setup(GraphBuilder& b, const
 }
 
 void VolumetricCloudsPass::execute(PassContext& ctx) const {
-  const auto& size = mInputs.params.view.size;
+  const ImageDesc& size = ctx.image(mOutputs.clouds).desc();
   std::vector<Binding> bindings = cloudTextureBindings(mInputs.textures);
   bindings.insert(bindings.end(),
                   {Binding::of(VOLUMETRIC_CLOUDS_BINDING_PARAMS, ctx.uniform(mInputs.params)),
@@ -268,7 +289,8 @@ void VolumetricCloudsPass::execute(PassContext& ctx) const {
                    Binding::of(VOLUMETRIC_CLOUDS_BINDING_CLOUDS, mOutputs.clouds),
                    Binding::of(VOLUMETRIC_CLOUDS_BINDING_DEPTH, mOutputs.depth),
                    Binding::of(VOLUMETRIC_CLOUDS_BINDING_STEPS, mOutputs.steps)});
-  ctx.dispatch(*mPipeline, bindings, mPipeline->groupsX(size.x), mPipeline->groupsY(size.y));
+  ctx.dispatch(*mPipeline, bindings, mPipeline->groupsX(size.width),
+               mPipeline->groupsY(size.height));
 }
 
 CloudDensitySlicePass::CloudDensitySlicePass(const Context& ctx, ShaderCompiler& compiler)

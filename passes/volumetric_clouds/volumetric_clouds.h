@@ -52,7 +52,7 @@ private:
   ShaderCompiler& mCompiler;
   const char* mFile;
   const char* mName;
-  std::map<std::array<uint32_t, 10>, std::unique_ptr<ComputePipeline>> mPipelines;
+  std::map<std::array<uint32_t, 11>, std::unique_ptr<ComputePipeline>> mPipelines;
 };
 
 class VolumetricCloudsPass {

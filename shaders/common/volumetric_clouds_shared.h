@@ -110,6 +110,17 @@ struct CloudParams {
   uint lightDetailSteps;
   uint lightNoiseSteps;
 
+  // Which pixels this dispatch marches (temporal reuse, passes/cloud_temporal): invocation
+  // (x, y) marches pixel (x, y) * marchBlock + marchOffset of the view, and the pass's images
+  // are the view's size divided by marchBlock (rounded up). 1 and (0, 0): every pixel.
+  uint marchBlock;
+  uint marchOffsetX;
+  uint marchOffsetY;
+  // 1: clouds.quality reference, the shader variant CLOUD_REFERENCE (small fixed steps, no
+  // early exit, no empty-space skipping, a uniform light march of CLOUD_REFERENCE_LIGHT_*
+  // steps). The shader never reads it; CloudPipelines picks the pipeline from it.
+  uint reference;
+
   // The camera in each noise texture's Earth-fixed frame (ECEF axes, m, wind drift taken
   // off), reduced by whole repeats of that texture so floats keep their precision.
   vec4 shapeOrigin;   // xyz: for the shape noise (repeat 1 / shapeRepeatsPerM)
@@ -138,7 +149,7 @@ SKY_SHARED_END
 
 #ifdef __cplusplus
 static_assert(sizeof(sky::shared::CloudParams) ==
-                  64 + 64 + 16 + 11 * 16 + 16 * 16 + CLOUD_COVERAGE_LUT_VEC4S * 16,
+                  64 + 64 + 16 + 12 * 16 + 16 * 16 + CLOUD_COVERAGE_LUT_VEC4S * 16,
               "std140 layout of CloudParams");
 #endif
 #endif

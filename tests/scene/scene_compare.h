@@ -115,6 +115,9 @@ inline void expectSameScene(const Scene& a, const Scene& b) {
   EXPECT_EQ(ah.brightness, bh.brightness);
   EXPECT_EQ(ah.coverSource, bh.coverSource);
   const CloudSettings &ac = a.clouds, &bc = b.clouds;
+  EXPECT_EQ(ac.quality, bc.quality);
+  EXPECT_EQ(ac.temporal.mode, bc.temporal.mode);
+  EXPECT_EQ(ac.temporal.block, bc.temporal.block);
   EXPECT_EQ(ac.model, bc.model);
   EXPECT_EQ(ac.coverage, bc.coverage);
   EXPECT_EQ(ac.extinction, bc.extinction);
@@ -237,6 +240,9 @@ inline Scene unusualScene() {
   s.highClouds.edgeGlowDeg = 0.5;
   s.highClouds.brightness = 1e-3;
   s.highClouds.coverSource = HighCloudCoverSource::Weather;
+  s.clouds.quality = CloudQuality::Reference;
+  s.clouds.temporal.mode = CloudTemporalMode::On;
+  s.clouds.temporal.block = 3;
   s.clouds.model = CloudModel::Tang2019;
   s.clouds.coverage = CloudCoverageMode::Paper;
   s.clouds.extinction = 1e-5;

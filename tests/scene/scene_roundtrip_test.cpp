@@ -153,9 +153,9 @@ TEST(SceneRoundTrip, UnusualSceneDiffersFromTheDefaultEverywhere) {
   // and automaton. The weather region counts once (given against absent) where its four
   // numbers counted before, and camera_region_km once; then atmosphere.aerosols (the ground
   // albedo moved from atmosphere to ground with its three channels) and output.exposure,
-  // exposure_adaptation_s and night_look.
+  // exposure_adaptation_s and night_look; then clouds.quality and clouds.temporal's two.
   EXPECT_EQ(failuresOf([] { expectSameScene(test::unusualScene(), Scene()); }),
-            66 + 1 + 24 + 13 + 2 + 9 + 2 + 1 + 4 - 4 + 1 + 1 + 1 + 3);
+            66 + 1 + 24 + 13 + 2 + 9 + 2 + 1 + 4 - 4 + 1 + 1 + 1 + 3 + 3);
   const std::vector<PaletteKey> palette = test::unusualScene().lighting.palette;
   for (size_t i = 0; i < palette.size(); ++i) {
     const PaletteKey& k = palette[i];
@@ -305,6 +305,10 @@ TEST(SceneRoundTrip, PrintedYamlLooksLikeAScene) {
             "  brightness: 1\n"
             "  cover_source: \"auto\"\n"
             "clouds:\n"
+            "  quality: \"standard\"\n"
+            "  temporal:\n"
+            "    mode: \"off\"\n"
+            "    block: 4\n"
             "  model: \"lu2023\"\n"
             "  coverage: \"calibrated\"\n"
             "  extinction: 0.1\n"
@@ -482,6 +486,11 @@ TEST(SceneRoundTrip, PrintedJsonLooksLikeAScene) {
             "    \"cover_source\": \"auto\"\n"
             "  },\n"
             "  \"clouds\": {\n"
+            "    \"quality\": \"standard\",\n"
+            "    \"temporal\": {\n"
+            "      \"mode\": \"off\",\n"
+            "      \"block\": 4\n"
+            "    },\n"
             "    \"model\": \"lu2023\",\n"
             "    \"coverage\": \"calibrated\",\n"
             "    \"extinction\": 0.1,\n"
