@@ -7,6 +7,8 @@
 #include "engine/gpu/context.h"
 #include "engine/lighting/light_model.h"
 #include "engine/render/camera.h"
+#include "engine/scene/scene_io.h"
+#include "engine/weather/geo.h"
 
 namespace sky {
 namespace {
@@ -149,6 +151,8 @@ Renderer::Renderer(const Context& ctx, ShaderCompiler& compiler)
       mClouds(ctx, compiler, mRuntime),
       mVolumetric(ctx, compiler),
       mShadow(ctx, compiler),
+      mTemporal(ctx, compiler),
+      mHistorySampler(ctx, SamplerWrap::Clamp),
       mSlice(ctx, compiler),
       mVolumeExport(ctx, compiler),
       mComposite(ctx, compiler) {}
@@ -181,6 +185,70 @@ Renderer::CloudSetup Renderer::cloudSetup(const Scene& scene, const IsoTime& tim
       localWeather(weather, s.geometry.latDeg, s.geometry.lonDeg, scene.weather.localRadiusKm);
   applyOvercast(s.lighting, scene.sky, s.localWeather.overcast);
   return s;
+}
+
+namespace {
+
+// A history older than this, or a camera moved further, is a cut: the clouds have changed
+// too much for reprojection (a time-lapse's steps, a jump).
+constexpr double kHistoryMaxGapS = 60.0;
+constexpr double kHistoryMaxMoveM = 5000.0;
+constexpr double kPi = 3.14159265358979323846;
+
+}  // namespace
+
+Renderer::HistoryStep Renderer::stepHistory(const Scene& scene, const IsoTime& time,
+                                            const shared::ViewState& view, uint32_t width,
+                                            uint32_t height) {
+  const Context& ctx = mRuntime.gpu();
+  ImageDesc desc;
+  desc.width = width;
+  desc.height = height;
+  desc.format = VK_FORMAT_R32G32B32A32_SFLOAT;
+  desc.name = "clouds";
+  mCloudHistory.ensure(ctx, desc);
+  desc.format = VK_FORMAT_R32_SFLOAT;
+  desc.name = "clouds_depth";
+  mDepthHistory.ensure(ctx, desc);
+
+  HistoryStep step;
+  CloudHistory& next = step.next;
+  Scene pose = scene;  // what must not change for the history to hold
+  pose.camera.heading = pose.camera.pitch = 0.0;
+  pose.camera.latitude = pose.camera.longitude = pose.camera.altitudeM = 0.0;
+  pose.time.start = IsoTime{};
+  pose.time.end.reset();
+  pose.time.stepSeconds = 0.0;
+  next.settings = writeScene(pose, ConfigFormat::Json);
+  next.view = view;
+  next.latDeg = scene.camera.latitude;
+  next.lonDeg = scene.camera.longitude;
+  next.altitudeM = scene.camera.altitudeM;
+  next.time = time;
+  next.mapRevision = mClouds.mapRevision();
+
+  const CloudHistory& last = mHistory;
+  const glm::dvec3 here = ecefFromLatLonAltitude(next.latDeg, next.lonDeg, next.altitudeM);
+  const glm::dvec3 there = ecefFromLatLonAltitude(last.latDeg, last.lonDeg, last.altitudeM);
+  const double gap = time.secondsSince(last.time);
+  step.valid = mCloudHistory.valid() && mDepthHistory.valid() &&
+               next.settings == last.settings && next.mapRevision == last.mapRevision &&
+               std::abs(gap) <= kHistoryMaxGapS && glm::length(here - there) <= kHistoryMaxMoveM;
+  next.frame = step.valid ? last.frame + 1 : 0;
+  // A cut marches every pixel, so the first frame of a sequence is the still.
+  if (step.valid) {
+    step.block = static_cast<uint32_t>(scene.clouds.temporal.block);
+    step.offset = cloudMarchOffset(step.block, next.frame - 1);
+    const glm::dmat3 enuHere = enuToEcefRotation(next.latDeg, next.lonDeg);
+    const glm::dmat3 enuThere = enuToEcefRotation(last.latDeg, last.lonDeg);
+    step.motion.previousPosition = glm::vec3(glm::transpose(enuHere) * (there - here));
+    step.motion.toPrevious = glm::mat3(glm::transpose(enuThere) * enuHere);
+    // The noise drifts with clouds.wind_speed_ms toward wind_from + 180 degrees.
+    const double toward = (scene.clouds.windFrom + 180.0) * kPi / 180.0;
+    step.motion.windShift = glm::vec3(
+        glm::dvec3(std::sin(toward), std::cos(toward), 0.0) * scene.clouds.windSpeedMs * gap);
+  }
+  return step;
 }
 
 RenderedFrame Renderer::render(const Scene& scene, const IsoTime& time,
@@ -263,6 +331,7 @@ RenderedFrame Renderer::render(const Scene& scene, const IsoTime& time,
   CloudShadowPass::Outputs shadow{};
   shared::CloudShadowMap shadowMap{};
   CloudLayers::Frame cloudFrame;
+  std::optional<CloudHistory> pendingHistory;  // becomes mHistory once the frame has run
   if (out.clouds) {
     cloudFrame = mClouds.addTo(graph, cloudScene, time);
     out.cloudNoise = mClouds.noiseActivity();
@@ -272,9 +341,39 @@ RenderedFrame Renderer::render(const Scene& scene, const IsoTime& time,
                             cloudFrame.lowRolls);
     in.lighting = out.lighting.gpu;
     in.textures = cloudFrame.textures;
+    // Temporal reuse: a sequence's frames march a share of the pixels and reproject the rest.
+    const bool temporal = scene.clouds.temporal.mode == CloudTemporalMode::On &&
+                          scene.clouds.quality == CloudQuality::Standard && !topDown;
+    std::optional<HistoryStep> step;
+    if (temporal) {
+      step = stepHistory(scene, time, view, width, height);
+      in.params.marchBlock = step->block;
+      in.params.marchOffsetX = step->offset.x;
+      in.params.marchOffsetY = step->offset.y;
+      // A new jitter every frame, so a pixel marched again averages differently.
+      in.params.frameIndex = (in.params.frameIndex + static_cast<uint32_t>(step->next.frame) *
+                                                         0x9E3779B9u) & 0x7fffffffu;
+    }
     clouds = graph.add(mVolumetric, in);
-    graph.requestOutput(clouds.clouds, "clouds");
-    graph.requestOutput(clouds.depth, "clouds_depth");
+    if (temporal) {
+      CloudTemporalPass::Inputs t;
+      t.params = cloudTemporalParams(view, mHistory.view, step->motion, step->block, step->offset,
+                                     step->valid, in.params.geo.origin.w, scene.camera.altitudeM,
+                                     in.params.shellBaseM, in.params.shellTopM);
+      t.marched = clouds.clouds;
+      t.marchedDepth = clouds.depth;
+      t.clouds = graph.importHistory(mCloudHistory);
+      t.depth = graph.importHistory(mDepthHistory);
+      t.historySampler = &mHistorySampler;
+      const CloudTemporalPass::Outputs resolved = graph.add(mTemporal, t);
+      clouds.clouds = resolved.clouds;
+      clouds.depth = resolved.depth;
+      pendingHistory = std::move(step->next);
+    }
+    if (options.aovs) {
+      graph.requestOutput(clouds.clouds, "clouds");
+      graph.requestOutput(clouds.depth, "clouds_depth");
+    }
     // The clouds' shadows on the ground around the observer (a top-down render draws no
     // ground, but the composite's cloud variant binds a map all the same).
     shadowMap = cloudShadowMap(in.params, geometry.altitudeM);
@@ -316,8 +415,10 @@ RenderedFrame Renderer::render(const Scene& scene, const IsoTime& time,
   composite.highClouds = skyOut.highClouds;
   AtmosphereCompositePass::Outputs composited = graph.add(mComposite, composite);
   graph.requestOutput(composited.beauty, "beauty");
-  graph.requestOutput(skyOut.sky, "sky");
-  graph.requestOutput(skyOut.highClouds, "high_clouds");
+  if (options.aovs) {
+    graph.requestOutput(skyOut.sky, "sky");
+    graph.requestOutput(skyOut.highClouds, "high_clouds");
+  }
 
   struct DebugSource {
     const char* name;
@@ -344,6 +445,7 @@ RenderedFrame Renderer::render(const Scene& scene, const IsoTime& time,
       if (name == s.name && !s.requested) graph.requestOutput(s.image, "debug:" + name);
 
   out.frame = graph.execute();
+  if (pendingHistory) mHistory = std::move(*pendingHistory);
   out.graphDot = graph.toDot(&out.frame);
 
   out.image.width = static_cast<int>(width);
@@ -351,13 +453,15 @@ RenderedFrame Renderer::render(const Scene& scene, const IsoTime& time,
   // FLOAT: physical values span from a moonless night (1e-8) to the sun's disc (1e5), past
   // both ends of half's range.
   out.image.layers.push_back(toLayer(out.frame.output("beauty"), "", kRgba, true));
-  out.image.layers.push_back(toLayer(out.frame.output("sky"), "sky", kRgb, true));
-  out.image.layers.push_back(
-      toLayer(out.frame.output("high_clouds"), "high_clouds", kRgba, true));
-  out.image.layers.push_back(cloudLayer(out.clouds ? &out.frame.output("clouds") : nullptr,
-                                        out.clouds ? &out.frame.output("clouds_depth") : nullptr,
-                                        width, height));
-  if (topDown)
+  if (options.aovs) {
+    out.image.layers.push_back(toLayer(out.frame.output("sky"), "sky", kRgb, true));
+    out.image.layers.push_back(
+        toLayer(out.frame.output("high_clouds"), "high_clouds", kRgba, true));
+    out.image.layers.push_back(cloudLayer(
+        out.clouds ? &out.frame.output("clouds") : nullptr,
+        out.clouds ? &out.frame.output("clouds_depth") : nullptr, width, height));
+  }
+  if (topDown && options.aovs)
     out.image.layers.push_back(weatherCoverLayer(weather, weather.region, width, height));
   for (const std::string& name : options.debugOutputs)
     for (const DebugSource& s : sources)

@@ -19,7 +19,9 @@
 #include "engine/render/cloud_layers.h"
 #include "engine/render/cloud_volume.h"
 #include "passes/atmosphere_luts/atmosphere_luts.h"
+#include "engine/gpu/sampler.h"
 #include "passes/cloud_shadow/cloud_shadow.h"
+#include "passes/cloud_temporal/cloud_temporal.h"
 #include "passes/cloud_volume_export/cloud_volume_export.h"
 #include "passes/high_cloud_textures/high_cloud_textures.h"
 #include "passes/high_cloud_textures/regional_cover_texture.h"
@@ -47,6 +49,9 @@ void checkDebugOutputs(const Scene& scene, const std::vector<std::string>& names
 
 struct RenderOptions {
   std::vector<std::string> debugOutputs;  // names from debugOutputs(), checked
+  // Read back the EXR's layers besides the beauty (sky, high_clouds, clouds). A viewer or a
+  // benchmark frame needs the beauty alone, and each 32-bit layer costs as much to read back.
+  bool aovs = true;
 };
 
 struct DebugImage {
@@ -56,7 +61,8 @@ struct DebugImage {
 
 struct RenderedFrame {
   // "" = beauty (R,G,B,A); "sky" (R,G,B); "high_clouds" (R,G,B,A); "clouds" (R,G,B,A,depth);
-  // with camera.mode geographic_topdown also "weather" (cover_low, cover_mid).
+  // with camera.mode geographic_topdown also "weather" (cover_low, cover_mid). Without
+  // RenderOptions::aovs the beauty alone.
   LayeredImage image;
   FrameResult frame;       // per-pass GPU timings, wall time
   std::string graphDot;    // the compiled graph with timings (for --dump-graph)
@@ -92,6 +98,10 @@ public:
   // Errors: sky::Error (BadInput when the size is impossible on this device or does not fit
   // in memory, or a high-cloud image is missing or malformed).
   RenderedFrame render(const Scene& scene, const IsoTime& time, const RenderOptions& options = {});
+  // Frames of a sequence (a time-lapse, a window, a benchmark pan) rendered one after the
+  // other through one Renderer reuse each other's clouds when clouds.temporal.mode is on: the
+  // first frame, and any after a cut (a setting changed, the camera jumped, a minute passed),
+  // marches every pixel; the others 1 / block^2 of them (passes/cloud_temporal).
   // The first (or only) frame of the scene's time.
   RenderedFrame render(const Scene& scene) { return render(scene, scene.time.start); }
   // Called with the share done (0..1) while a high-cloud texture bakes.
@@ -117,6 +127,27 @@ private:
   };
   CloudSetup cloudSetup(const Scene& scene, const IsoTime& time);
 
+  // The frame temporal reuse's history images belong to (clouds.temporal), to reproject them
+  // from.
+  struct CloudHistory {
+    std::string settings;  // the scene written out, but for the camera's pose and the time
+    shared::ViewState view{};
+    double latDeg = 0.0, lonDeg = 0.0, altitudeM = 0.0;
+    IsoTime time;
+    uint64_t mapRevision = 0;
+    uint64_t frame = 0;  // frames since the last cut (0: the cut, marched in full)
+  };
+  // This frame's step of the history: whether last frame's clouds can be reprojected, and how.
+  struct HistoryStep {
+    bool valid = false;
+    uint32_t block = 1;
+    glm::uvec2 offset{0};
+    CloudTemporalMotion motion;
+    CloudHistory next;  // the history once this frame has run
+  };
+  HistoryStep stepHistory(const Scene& scene, const IsoTime& time, const shared::ViewState& view,
+                          uint32_t width, uint32_t height);
+
   GraphRuntime mRuntime;
   StarFieldPass mStars;
   HighCloudTextures mHighCloudTextures;
@@ -126,6 +157,11 @@ private:
   CloudLayers mClouds;
   VolumetricCloudsPass mVolumetric;
   CloudShadowPass mShadow;
+  CloudTemporalPass mTemporal;
+  Sampler mHistorySampler;      // linear, clamp
+  HistoryImage mCloudHistory;   // RGBA32F: premultiplied radiance and opacity, the view's size
+  HistoryImage mDepthHistory;   // R32F: transmittance-weighted distance (m)
+  CloudHistory mHistory;        // the frame they hold
   CloudDensitySlicePass mSlice;
   CloudVolumeExportPass mVolumeExport;
   AtmosphereCompositePass mComposite;
