@@ -130,7 +130,7 @@ void CloudNoise::load(CloudModel model) {
 }
 
 void CloudNoise::bake(uint32_t modelId, const std::string& key, const fs::path& file) {
-  FrameGraph graph(mRuntime);
+  FrameGraph graph(mRuntime, GraphUse::Bake);
   shared::CloudNoiseParams params{};
   params.size = glm::uvec4(CLOUD_NOISE_SHAPE_SIZE, modelId, CLOUD_NOISE_VOLUME_SHAPE, 0);
   const ImageId shape =

@@ -274,7 +274,7 @@ void HighCloudTextures::bake(const Scene& scene, uint32_t size, const std::strin
 
   const uint32_t bands = bandsFor(size), rows = size / bands;
   for (uint32_t b = 0; b < bands; ++b) {
-    FrameGraph graph(mRuntime);
+    FrameGraph graph(mRuntime, GraphUse::Bake);
     HighCloudBakePass::Inputs in;
     in.coefficients = graph.importImage(mCoefficients);
     in.rankShape = graph.importImage(mRankShape);
@@ -308,7 +308,7 @@ void HighCloudTextures::bake(const Scene& scene, uint32_t size, const std::strin
 
 FrameResult HighCloudTextures::finish(bool deriveNormals, bool readAll, bool regionalCover) {
   const uint32_t coarseSize = coarseSizeOf(mSize);
-  FrameGraph graph(mRuntime);
+  FrameGraph graph(mRuntime, GraphUse::Bake);
   const ImageId coefficients = graph.importImage(mCoefficients);
   ImageId normals = graph.importImage(mNormals);
   ImageId coarse = graph.importImage(mCoarse);
