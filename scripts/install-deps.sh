@@ -22,6 +22,9 @@ PACKAGES=(
   # Its headers include Boost's (numeric conversion, ...), which Debian does not make the
   # package depend on.
   libopenvdb-dev libboost-dev
+  # The benchmark harness (benchmarks/run.py) is Python; its plots are matplotlib's. CI runs
+  # its smoke configuration, plots included.
+  python3 python3-matplotlib
 )
 for arg in "$@"; do
   case "$arg" in

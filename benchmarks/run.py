@@ -1,0 +1,535 @@
+#!/usr/bin/python3
+"""The skylayers benchmark harness: scenes x resolutions x variants, timed in one run.
+
+    benchmarks/run.py                      # the matrix of benchmarks/matrix.json -> benchmarks/results/
+    benchmarks/run.py --smoke --out DIR    # a tiny configuration (CI)
+    benchmarks/run.py --compare still temporal --scene peer_view --resolution 640x360
+    benchmarks/run.py --baseline OTHER/skybench    # this build against another, frame by frame
+
+See benchmarks/README.md. It drives skybench (benchmarks/skybench.cpp), a frame server that
+keeps a build's Vulkan context warm, over JSON lines; Debian's /usr/bin/python3 and its
+python3-matplotlib (scripts/install-deps.sh) are all it needs.
+"""
+import argparse
+import csv
+import datetime
+import json
+import math
+import os
+import platform
+import re
+import shutil
+import statistics
+import subprocess
+import sys
+import tempfile
+import threading
+import time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+
+class HarnessError(Exception):
+    """A one-line error for the user (bad matrix, missing build, a failed frame)."""
+
+
+class Worker:
+    """One skybench process: a build of skylayers, kept warm between requests."""
+
+    def __init__(self, binary, label, env):
+        if not os.path.isfile(binary) or not os.access(binary, os.X_OK):
+            raise HarnessError(f"{binary}: no skybench binary there (build it: cmake --build "
+                               f"--preset release --target skybench)")
+        self.label = label
+        self.binary = binary
+        self.validation = []  # Vulkan validation messages the worker printed
+        self.stderr = []
+        self.proc = subprocess.Popen([binary], stdin=subprocess.PIPE, stdout=subprocess.PIPE,
+                                     stderr=subprocess.PIPE, text=True, cwd=ROOT, env=env)
+        self._reader = threading.Thread(target=self._read_stderr, daemon=True)
+        self._reader.start()
+        hello = self.request({"op": "hello"})
+        self.device = hello["device"]
+        self.version = hello["version"]
+
+    def _read_stderr(self):
+        for line in self.proc.stderr:
+            line = line.rstrip("\n")
+            self.stderr.append(line)
+            if "Vulkan validation" in line:
+                self.validation.append(line)
+
+    def request(self, message):
+        self.proc.stdin.write(json.dumps(message) + "\n")
+        self.proc.stdin.flush()
+        line = self.proc.stdout.readline()
+        if not line:
+            tail = "; ".join(self.stderr[-3:])
+            raise HarnessError(f"skybench ({self.label}) ended during {message.get('op')}: {tail}")
+        reply = json.loads(line)
+        if not reply.get("ok"):
+            raise HarnessError(f"skybench ({self.label}): {message.get('op')} "
+                               f"{message.get('case', '')}: {reply.get('error')}")
+        return reply
+
+    def close(self):
+        if self.proc.poll() is None:
+            try:
+                self.proc.stdin.write(json.dumps({"op": "quit"}) + "\n")
+                self.proc.stdin.close()
+                self.proc.wait(timeout=30)
+            except (BrokenPipeError, subprocess.TimeoutExpired):
+                self.proc.kill()
+        self._reader.join(timeout=5)
+
+
+def parse_resolution(text):
+    m = re.fullmatch(r"(\d+)x(\d+)", text)
+    if not m:
+        raise HarnessError(f"resolution '{text}': expected WIDTHxHEIGHT, e.g. 1280x720")
+    return int(m.group(1)), int(m.group(2))
+
+
+def stats(values):
+    return {"min": min(values), "median": statistics.median(values), "max": max(values)}
+
+
+def open_case(worker, name, scene, variant, resolution, first_frame=0):
+    width, height = parse_resolution(resolution)
+    worker.request({
+        "op": "open", "case": name, "scene": os.path.join(ROOT, scene["scene"]),
+        "set": scene.get("set", []) + variant.get("set", []), "width": width, "height": height,
+        "heading_deg_per_frame": scene.get("heading_deg_per_frame", 0.0),
+        "seconds_per_frame": scene.get("seconds_per_frame", 0.0), "first_frame": first_frame})
+
+
+def frame_record(reply):
+    return {"frame": reply["frame"], "frame_ms": reply["frame_ms"], "render_ms": reply["render_ms"],
+            "display_ms": reply["display_ms"], "gpu_ms": reply["gpu_ms"],
+            "passes": {p["name"]: p["gpu_ms"] for p in reply["passes"]}}
+
+
+def summarise(frames):
+    passes = {}
+    for f in frames:
+        for name, ms in f["passes"].items():
+            passes.setdefault(name, []).append(ms)
+    return {"frame_ms": stats([f["frame_ms"] for f in frames]),
+            "render_ms": stats([f["render_ms"] for f in frames]),
+            "gpu_ms": stats([f["gpu_ms"] for f in frames]),
+            # A pass absent from some frames (a light volume refreshed now and then) counts
+            # 0 there, so the medians add up to what a frame costs.
+            "pass_median_ms": {n: statistics.median(v + [0.0] * (len(frames) - len(v)))
+                               for n, v in passes.items()}}
+
+
+class Harness:
+    def __init__(self, matrix, workers, out_dir, log):
+        self.matrix = matrix
+        self.workers = workers  # {"a": Worker, optionally "b": Worker}
+        self.out_dir = out_dir
+        self.log = log
+        self.cases = []
+        self.comparisons = []
+
+    def scene(self, name):
+        try:
+            return self.matrix["scenes"][name]
+        except KeyError:
+            raise HarnessError(f"scene '{name}' is not in the matrix "
+                               f"(scenes: {', '.join(self.matrix['scenes'])})")
+
+    def variant(self, name):
+        try:
+            return self.matrix["variants"][name]
+        except KeyError:
+            raise HarnessError(f"variant '{name}' is not in the matrix "
+                               f"(variants: {', '.join(self.matrix['variants'])})")
+
+    def counts(self, scene):
+        return (scene.get("warmup", self.matrix.get("warmup", 2)),
+                scene.get("frames", self.matrix.get("frames", 5)))
+
+    def quality_frames(self, scene, warmup, frames):
+        last = warmup + frames - 1
+        wanted = scene.get("quality_frames", [last])
+        return sorted({min(max(int(k), 0), last) for k in wanted})
+
+    def reference(self, worker, scene_name, resolution, frame, case_name):
+        """Renders the reference march of `scene_name` at `frame` and compares `case_name`'s
+        last frame with it."""
+        ref_name = f"{case_name}@ref"
+        open_case(worker, ref_name, self.scene(scene_name), self.variant(
+            self.matrix.get("reference_variant", "reference")), resolution, first_frame=frame)
+        t0 = time.monotonic()
+        worker.request({"op": "frame", "case": ref_name})
+        ref_s = time.monotonic() - t0
+        q = worker.request({"op": "quality", "case": case_name, "reference": ref_name})
+        if self.out_dir:
+            worker.request({"op": "save", "case": ref_name, "png": os.path.join(
+                self.out_dir, "images", f"{case_name}_f{frame:03d}_reference.png")})
+        worker.request({"op": "close", "case": ref_name})
+        return {"frame": frame, "psnr_db": q["psnr_db"], "max_error": q["max_error"],
+                "mean_error": q["mean_error"], "reference_s": ref_s}
+
+    def run_case(self, scene_name, resolution, variant_name, quality):
+        scene, variant = self.scene(scene_name), self.variant(variant_name)
+        worker = self.workers["a"]
+        name = f"{scene_name}_{resolution}_{variant_name}"
+        warmup, frames = self.counts(scene)
+        self.log(f"{name}: {warmup} warm-up + {frames} frames")
+        open_case(worker, name, scene, variant, resolution)
+        wanted = self.quality_frames(scene, warmup, frames) if quality else []
+        records, qualities = [], []
+        for k in range(warmup + frames):
+            reply = worker.request({"op": "frame", "case": name})
+            if k >= warmup:
+                records.append(frame_record(reply))
+            if k in wanted:
+                qualities.append(self.reference(worker, scene_name, resolution, k, name))
+                self.log(f"  frame {k}: {qualities[-1]['psnr_db']:.1f} dB against the reference")
+        if self.out_dir:
+            worker.request({"op": "save", "case": name,
+                            "png": os.path.join(self.out_dir, "images", f"{name}.png")})
+        worker.request({"op": "close", "case": name})
+        w, h = parse_resolution(resolution)
+        case = {"scene": scene_name, "resolution": resolution, "pixels": w * h,
+                "variant": variant_name, "warmup": warmup, "frames": records,
+                "summary": summarise(records), "quality": qualities}
+        self.log(f"  median {case['summary']['frame_ms']['median']:.0f} ms a frame")
+        self.cases.append(case)
+        return case
+
+    def compare(self, scene_name, resolution, variant_a, variant_b):
+        """Alternates frames of A and B (two variants, or one variant on two builds) and
+        records B's time over A's frame by frame."""
+        scene = self.scene(scene_name)
+        wa = self.workers["a"]
+        wb = self.workers.get("b", wa)
+        na = f"cmp_{scene_name}_{resolution}_{variant_a}_{wa.label}"
+        nb = f"cmp_{scene_name}_{resolution}_{variant_b}_{wb.label}"
+        warmup, frames = self.counts(scene)
+        self.log(f"compare {na} / {nb}: {warmup} warm-up + {frames} pairs")
+        open_case(wa, na, scene, self.variant(variant_a), resolution)
+        open_case(wb, nb, scene, self.variant(variant_b), resolution)
+        ra, rb = [], []
+        for k in range(warmup + frames):
+            # Who goes first alternates, so neither always runs on a machine the other warmed.
+            order = [(wa, na, ra), (wb, nb, rb)] if k % 2 == 0 else [(wb, nb, rb), (wa, na, ra)]
+            for worker, name, records in order:
+                reply = worker.request({"op": "frame", "case": name})
+                if k >= warmup:
+                    records.append(frame_record(reply))
+        for worker, name in ((wa, na), (wb, nb)):
+            worker.request({"op": "close", "case": name})
+        ratios = [b["frame_ms"] / a["frame_ms"] for a, b in zip(ra, rb)]
+        result = {"scene": scene_name, "resolution": resolution,
+                  "a": {"variant": variant_a, "build": wa.binary, "summary": summarise(ra),
+                        "frames": ra},
+                  "b": {"variant": variant_b, "build": wb.binary, "summary": summarise(rb),
+                        "frames": rb},
+                  "ratio_b_over_a": stats(ratios), "ratios": ratios}
+        self.log(f"  B/A median {result['ratio_b_over_a']['median']:.3f} "
+                 f"(min {min(ratios):.3f}, max {max(ratios):.3f})")
+        self.comparisons.append(result)
+        return result
+
+
+def run_peer(resolution, frames, log):
+    """takram three-clouds at the same view and resolution (../shared/peers/takram), copied
+    out first since shared/ may be read-only. Returns its JSON or None when absent."""
+    source = os.path.join(os.path.dirname(ROOT), "shared", "peers", "takram")
+    if not os.path.isfile(os.path.join(source, "run.sh")):
+        log("peer: ../shared/peers/takram/run.sh is not here; no peer figures")
+        return None
+    work = os.path.join(tempfile.gettempdir(), "skylayers-peer-takram")
+    if not os.path.isdir(work):
+        shutil.copytree(source, work, symlinks=True)
+    env = dict(os.environ, RES=resolution, FRAMES=str(frames), WARMUP="3")
+    log(f"peer: takram three-clouds at {resolution}, {frames} frames (a few minutes)")
+    proc = subprocess.run([os.path.join(work, "run.sh")], cwd=work, env=env,
+                          capture_output=True, text=True)
+    lines = [l for l in proc.stdout.splitlines() if l.strip().startswith("{")]
+    if proc.returncode != 0 or not lines:
+        raise HarnessError(f"peer run.sh failed (exit {proc.returncode}): "
+                           f"{proc.stderr.strip().splitlines()[-1:] or ''}")
+    result = json.loads(lines[-1])
+    shot = result.get("results", {}).get(resolution, {}).get("screenshot")
+    if shot:
+        result["screenshot_path"] = os.path.join(work, "out", shot)
+    return result
+
+
+def fit_exponent(points):
+    """Least-squares slope of log(time) against log(pixels)."""
+    if len(points) < 2:
+        return None
+    xs = [math.log(p) for p, _ in points]
+    ys = [math.log(t) for _, t in points]
+    mx, my = statistics.fmean(xs), statistics.fmean(ys)
+    sxx = sum((x - mx) ** 2 for x in xs)
+    return sum((x - mx) * (y - my) for x, y in zip(xs, ys)) / sxx if sxx > 0 else None
+
+
+def scaling(cases):
+    groups = {}
+    for c in cases:
+        groups.setdefault((c["scene"], c["variant"]), []).append(
+            (c["pixels"], c["summary"]["frame_ms"]["median"]))
+    out = []
+    for (scene, variant), pts in sorted(groups.items()):
+        if len({p for p, _ in pts}) >= 2:
+            out.append({"scene": scene, "variant": variant, "points": sorted(pts),
+                        "exponent": fit_exponent(pts)})
+    return out
+
+
+def write_csv(path, cases, comparisons):
+    names = sorted({n for c in cases for f in c["frames"] for n in f["passes"]})
+    with open(path, "w", newline="") as fh:
+        w = csv.writer(fh)
+        w.writerow(["kind", "scene", "resolution", "variant", "build", "frame", "frame_ms",
+                    "render_ms", "display_ms", "gpu_ms"] + [f"{n}_ms" for n in names])
+        rows = [("case", c["scene"], c["resolution"], c["variant"], "a", c["frames"])
+                for c in cases]
+        for cmp in comparisons:
+            for side in ("a", "b"):
+                rows.append(("compare_" + side, cmp["scene"], cmp["resolution"],
+                             cmp[side]["variant"], cmp[side]["build"], cmp[side]["frames"]))
+        for kind, scene, res, variant, build, frames in rows:
+            for f in frames:
+                w.writerow([kind, scene, res, variant, build, f["frame"],
+                            f"{f['frame_ms']:.3f}", f"{f['render_ms']:.3f}",
+                            f"{f['display_ms']:.3f}", f"{f['gpu_ms']:.3f}"] +
+                           [f"{f['passes'].get(n, 0.0):.3f}" for n in names])
+
+
+def plot(out_dir, cases, fits, fmt):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    files = []
+    if cases:
+        names = []
+        for c in cases:
+            for n in c["summary"]["pass_median_ms"]:
+                if n not in names:
+                    names.append(n)
+        labels = [f"{c['scene']}\n{c['resolution']} {c['variant']}" for c in cases]
+        fig, ax = plt.subplots(figsize=(max(6, 0.9 * len(cases) + 3), 5.5))
+        bottom = [0.0] * len(cases)
+        cmap = plt.get_cmap("tab20")
+        for i, n in enumerate(names):
+            vals = [c["summary"]["pass_median_ms"].get(n, 0.0) for c in cases]
+            ax.bar(range(len(cases)), vals, bottom=bottom, label=n, color=cmap(i % 20))
+            bottom = [b + v for b, v in zip(bottom, vals)]
+        ax.scatter(range(len(cases)), [c["summary"]["frame_ms"]["median"] for c in cases],
+                   marker="_", s=300, color="black", label="whole frame (wall)", zorder=3)
+        ax.set_xticks(range(len(cases)))
+        ax.set_xticklabels(labels, rotation=60, ha="right", fontsize=7)
+        ax.set_ylabel("median ms per frame (GPU timestamps per pass)")
+        ax.set_title("Per-pass cost")
+        ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.0, 1.0))
+        fig.tight_layout()
+        path = os.path.join(out_dir, f"passes.{fmt}")
+        fig.savefig(path, dpi=110)
+        plt.close(fig)
+        files.append(path)
+    if fits:
+        fig, ax = plt.subplots(figsize=(7, 5))
+        for f in fits:
+            xs = [p for p, _ in f["points"]]
+            ys = [t for _, t in f["points"]]
+            line, = ax.plot(xs, ys, "o-", label=f"{f['scene']} {f['variant']}: "
+                            f"exponent {f['exponent']:.2f}")
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel("pixels")
+        ax.set_ylabel("median ms per frame (wall)")
+        ax.set_title("Cost against pixel count (fitted power law)")
+        ax.legend(fontsize=8)
+        ax.grid(True, which="both", alpha=0.3)
+        fig.tight_layout()
+        path = os.path.join(out_dir, f"scaling.{fmt}")
+        fig.savefig(path, dpi=110)
+        plt.close(fig)
+        files.append(path)
+    return files
+
+
+def git_build():
+    def git(*args):
+        try:
+            return subprocess.run(["git", *args], cwd=ROOT, capture_output=True, text=True,
+                                  check=True).stdout.strip()
+        except (subprocess.CalledProcessError, FileNotFoundError):
+            return ""
+    commit = git("rev-parse", "--short=12", "HEAD")
+    dirty = bool(git("status", "--porcelain", "--untracked-files=no"))
+    return commit + ("-dirty" if dirty and commit else "") or "unknown"
+
+
+def goals(result):
+    """The issue's goals, as ratios measured in this run (benchmarks/README.md)."""
+    g = {}
+    peer = result.get("peer")
+    by = {(c["scene"], c["resolution"], c["variant"]): c for c in result["cases"]}
+    spec = result["matrix"].get("goals", {})
+    pan = spec.get("pan")
+    if pan:
+        c = by.get((pan["scene"], pan["resolution"], pan["variant"]))
+        if c:
+            ours = c["summary"]["frame_ms"]["median"]
+            entry = {"case": f"{pan['scene']} {pan['resolution']} {pan['variant']}",
+                     "ours_median_ms": ours,
+                     "psnr_db_min": min((q["psnr_db"] for q in c["quality"]), default=None)}
+            if peer:
+                pr = peer.get("results", {}).get(pan["resolution"])
+                if pr:
+                    entry["peer_median_ms"] = pr["median_ms"]
+                    entry["speedup_over_peer"] = pr["median_ms"] / ours
+            g["pan_vs_peer"] = entry
+    still = spec.get("still")
+    if still:
+        for cmp in result["comparisons"]:
+            if (cmp["scene"], cmp["resolution"]) == (still["scene"], still["resolution"]) and \
+                    cmp["a"]["build"] != cmp["b"]["build"]:
+                g["still_vs_baseline"] = {
+                    "speedup": 1.0 / cmp["ratio_b_over_a"]["median"],
+                    "baseline": cmp["b"]["build"]}
+        c = by.get((still["scene"], still["resolution"], still["variant"]))
+        if c and c["quality"]:
+            g.setdefault("still_vs_baseline", {})["psnr_db"] = c["quality"][-1]["psnr_db"]
+    fits = [f for f in result["scaling"] if f["variant"] == spec.get("scaling_variant", "still")]
+    if fits:
+        g["scaling_exponents"] = {f["scene"]: f["exponent"] for f in fits}
+    return g
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--matrix", default=os.path.join(ROOT, "benchmarks", "matrix.json"))
+    ap.add_argument("--skybench", default=os.path.join(ROOT, "build", "release", "benchmarks",
+                                                       "skybench"))
+    ap.add_argument("--baseline", help="a second build's skybench: the matrix's compare "
+                    "entries run this build (A) against it (B), frame by frame")
+    ap.add_argument("--out", help="results folder (default benchmarks/results/DATE_DEVICE)")
+    ap.add_argument("--smoke", action="store_true", help="the tiny configuration CI runs")
+    ap.add_argument("--compare", nargs=2, metavar=("A", "B"),
+                    help="only alternate variants A and B of --scene at --resolution")
+    ap.add_argument("--scene", default="peer_view")
+    ap.add_argument("--resolution", default="640x360")
+    ap.add_argument("--frames", type=int, help="measured frames per case (overrides the matrix)")
+    ap.add_argument("--only", help="comma-separated scenes: run only these of the matrix")
+    ap.add_argument("--peer", choices=["auto", "on", "off"], default="auto",
+                    help="run takram three-clouds (../shared/peers/takram) at the goal's view; "
+                         "auto: when the matrix asks and the peer is present")
+    ap.add_argument("--plots", choices=["png", "svg", "off"], default="png")
+    args = ap.parse_args()
+
+    def log(msg):
+        print(msg, file=sys.stderr, flush=True)
+
+    try:
+        with open(args.matrix) as fh:
+            matrix = json.load(fh)
+    except (OSError, json.JSONDecodeError) as e:
+        raise HarnessError(f"{args.matrix}: {e}")
+    if args.smoke:
+        smoke = matrix["smoke"]
+        matrix = smoke | {"scenes": matrix["scenes"], "variants": matrix["variants"]}
+        for name, over in smoke.get("scene_overrides", {}).items():
+            matrix["scenes"][name] = matrix["scenes"][name] | over
+    if args.frames:
+        matrix["frames"] = args.frames
+        for s in matrix["scenes"].values():
+            s.pop("frames", None)
+
+    env = dict(os.environ, MESA_SHADER_CACHE_DISABLE="true")
+    started = time.monotonic()
+    workers = {"a": Worker(args.skybench, "a", env)}
+    try:
+        if args.baseline:
+            workers["b"] = Worker(args.baseline, "b", env)
+        stamp = datetime.datetime.now().strftime("%Y-%m-%d")
+        device = re.sub(r"[^A-Za-z0-9]+", "-", workers["a"].device.split("(")[0]).strip("-")
+        out_dir = args.out or os.path.join(ROOT, "benchmarks", "results", f"{stamp}_{device}")
+        os.makedirs(os.path.join(out_dir, "images"), exist_ok=True)
+        h = Harness(matrix, workers, out_dir, log)
+
+        if args.compare:
+            h.compare(args.scene, args.resolution, *args.compare)
+        else:
+            only = set(args.only.split(",")) if args.only else None
+            for run in matrix.get("runs", []):
+                for scene in run["scenes"]:
+                    if only and scene not in only:
+                        continue
+                    for res in run["resolutions"]:
+                        for variant in run["variants"]:
+                            h.run_case(scene, res, variant, run.get("quality", False))
+            for cmp in matrix.get("compare", []):
+                if only and cmp["scene"] not in only:
+                    continue
+                if cmp.get("builds") and "b" not in workers:
+                    log(f"compare {cmp['scene']}: needs --baseline; skipped")
+                    continue
+                if not cmp.get("builds") and "b" in workers:
+                    saved = workers.pop("b")
+                    h.compare(cmp["scene"], cmp["resolution"], cmp["a"], cmp["b"])
+                    workers["b"] = saved
+                else:
+                    h.compare(cmp["scene"], cmp["resolution"], cmp["a"], cmp["b"])
+
+        peer = None
+        want_peer = matrix.get("peer") and args.peer != "off" and not args.compare
+        if want_peer or args.peer == "on":
+            spec = matrix.get("peer") or {"resolution": "1280x720", "frames": 5}
+            peer = run_peer(spec["resolution"], spec.get("frames", 5), log)
+            if peer and peer.get("screenshot_path") and os.path.isfile(peer["screenshot_path"]):
+                shutil.copy(peer["screenshot_path"],
+                            os.path.join(out_dir, "images", "peer_" + spec["resolution"] + ".png"))
+
+        validation = [m for w in workers.values() for m in w.validation]
+        result = {
+            "date": datetime.datetime.now().isoformat(timespec="seconds"),
+            "device": workers["a"].device, "build": git_build(),
+            "version": workers["a"].version,
+            "baseline": workers["b"].binary if "b" in workers else None,
+            "host": {"machine": platform.machine(), "cpus": os.cpu_count(),
+                     "python": platform.python_version()},
+            "environment": {"MESA_SHADER_CACHE_DISABLE": "true"},
+            "matrix": matrix, "cases": h.cases, "comparisons": h.comparisons,
+            "scaling": scaling(h.cases), "peer": peer,
+            "validation_messages": validation,
+            "harness_wall_s": time.monotonic() - started,
+        }
+        result["goals"] = goals(result)
+        with open(os.path.join(out_dir, "results.json"), "w") as fh:
+            json.dump(result, fh, indent=1)
+        write_csv(os.path.join(out_dir, "results.csv"), h.cases, h.comparisons)
+        plots = [] if args.plots == "off" else plot(out_dir, h.cases, result["scaling"],
+                                                    args.plots)
+        log(f"wrote {out_dir}/results.json, results.csv" +
+            "".join(f", {os.path.basename(p)}" for p in plots) +
+            f" in {result['harness_wall_s']:.0f} s")
+        print(json.dumps({"out": out_dir, "goals": result["goals"],
+                          "harness_wall_s": round(result["harness_wall_s"], 1)}))
+        if validation:
+            raise HarnessError(f"{len(validation)} Vulkan validation messages, the first: "
+                               f"{validation[0]}")
+    finally:
+        for w in workers.values():
+            w.close()
+    return 0
+
+
+if __name__ == "__main__":
+    try:
+        sys.exit(main())
+    except HarnessError as e:
+        print(f"error: {e}", file=sys.stderr)
+        sys.exit(2)
+    except KeyboardInterrupt:
+        sys.exit(130)
