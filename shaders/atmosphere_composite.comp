@@ -173,7 +173,8 @@ vec3 groundRadiance(LightingState L, vec3 V, float t) {
   float across = length(hit.xy);
   vec2 toward = across > 0.0 ? hit.xy / across : vec2(0.0);
   vec2 metres = toward * atan(across, hit.z) * params.planetRadiusM;
-  vec2 u = cloudShadowU(params.shadow, metres);
+  vec2 u = cloudShadowU(params.shadow,
+                        metres - vec2(params.shadow.shiftEastM, params.shadow.shiftNorthM));
   shadow = texture(cloudShadow, clamp(u * 0.5 + 0.5, 0.0, 1.0)).r;
   // Past the map's edge the ground takes the mean share of sunlight the cover lets through.
   float outside = smoothstep(0.9, 1.0, max(abs(u.x), abs(u.y)));

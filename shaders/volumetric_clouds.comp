@@ -14,6 +14,9 @@
 #include "common/cloud_field.glsl"
 #include "common/cloud_lighting.glsl"
 
+// A light sample's footprint is at most this share of the outline's cell, where noiseKeep
+// keeps all of it (cloud_field.glsl).
+#define CLOUD_LIGHT_OUTLINE_RESOLVED 0.125
 // The light steps that may read the detail noise and the shape noise (CloudParams): all of
 // them when the file stands alone.
 #ifndef CLOUD_LIGHT_DETAIL_STEPS
@@ -27,10 +30,21 @@
 #ifndef CLOUD_REFERENCE
 #define CLOUD_REFERENCE 0
 #endif
+// Which lights the march marches toward (CloudParams.sunMarched, moonMarched): bit 0 the sun,
+// bit 1 the moon. A constant, so a light that is not marched costs nothing: lavapipe runs a
+// loop body it skips at run time all the same, which was a second light march every sample.
+#ifndef CLOUD_LIGHTS
+#define CLOUD_LIGHTS 3
+#endif
 // The reference's light march: the standard one (lightMarchDensity) with each short step
-// split into this many and the long one into twice as many, so it is the same quadrature
+// split this many ways and the long one into twice as many, so it is the same quadrature
 // refined and reaches as far (Lu (22)'s clamp sees the same path).
 #define CLOUD_REFERENCE_LIGHT_SPLIT 4
+// 1: the light beyond the first CLOUD_LIGHT_VOLUME_NEAR short steps comes from the cloud
+// light volume (passes/cloud_light_volume) instead of this march (clouds.light volume).
+#ifndef CLOUD_LIGHT_VOLUME
+#define CLOUD_LIGHT_VOLUME 0
+#endif
 
 layout(local_size_x = VOLUMETRIC_CLOUDS_GROUP_X, local_size_y = VOLUMETRIC_CLOUDS_GROUP_Y) in;
 
@@ -63,14 +77,23 @@ LatLonLine gLightLine;
 // the shadow of detail finer than the step does not alias into streaks across the cloud.
 // The steps from CLOUD_LIGHT_DETAIL_STEPS (CLOUD_LIGHT_NOISE_STEPS) on resolve no detail (no
 // noise) whatever the footprint, and do not read it.
+// What a light sample standing for `lengthM` of the march sees: the view sample's footprint,
+// or a quarter of its step, but never so coarse that the clouds' outlines (the shape's R, a
+// quarter of its repeat) blur into their mean. Beer-Lambert of a mean density is a uniform
+// dusk where the gaps between real clouds let the sun through: the long step used to take
+// the mean over its 4.8 km and left every cloud under a low sun grey (docs/clouds.md).
+float lightFootprint(float lengthM) {
+  float outline = 0.25 / params.shapeRepeatsPerM;
+  return max(gFootprintM, min(0.25 * lengthM, CLOUD_LIGHT_OUTLINE_RESOLVED * outline));
+}
+
 float cloudDensityForLight(vec3 p, float lengthM, int step) {
   ++gLightSamples;
   CloudSample s;
   int noise = CLOUD_REFERENCE != 0 || step < CLOUD_LIGHT_DETAIL_STEPS ? CLOUD_NOISE_ALL
               : step < CLOUD_LIGHT_NOISE_STEPS ? CLOUD_NOISE_SHAPE
                                                : CLOUD_NOISE_NONE;
-  cloudSampleAtLla(p, latLonAltitudeOn(gLightLine, p), max(gFootprintM, 0.25 * lengthM), false,
-                   noise, s);
+  cloudSampleAtLla(p, latLonAltitudeOn(gLightLine, p), lightFootprint(lengthM), false, noise, s);
   return s.density;
 }
 #include "common/cloud_light_march.glsl"
@@ -88,24 +111,13 @@ vec3 keyLightAt(int i, int layer) {
 }
 bool keyLightMarched(int i, int layer) {
   vec3 E = keyLightAt(i, layer);
-  return (i == 0 ? params.sunMarched : params.moonMarched) != 0.0 && max(E.r, max(E.g, E.b)) > 0.0;
+  return ((CLOUD_LIGHTS >> i) & 1) != 0 && max(E.r, max(E.g, E.b)) > 0.0;
 }
 
-// The reference's light march (CLOUD_REFERENCE): Lu (24)'s ds by the midpoint rule over the
-// standard schedule's steps split CLOUD_REFERENCE_LIGHT_SPLIT ways (the long one twice as
-// many), every noise read at every step (each still filtered to a quarter of its step).
-float referenceLightMarchDensity(vec3 p, vec3 L, float distance, int n, float offset) {
-  float ds = 0.0;
-  for (int i = 0; i <= n; ++i) {
-    float start = i < n ? lightStepStart(i, n, distance) : distance;
-    int parts = i < n ? CLOUD_REFERENCE_LIGHT_SPLIT : 2 * CLOUD_REFERENCE_LIGHT_SPLIT;
-    float len = (i < n ? lightStepLength(i, n, distance) : lightLongStepLength(distance)) /
-                float(parts);
-    for (int k = 0; k < parts; ++k)
-      ds += cloudDensityForLight(p + L * (start + (float(k) + offset) * len), len, 0) * len;
-  }
-  return ds;
-}
+#if CLOUD_LIGHT_VOLUME
+#include "common/cloud_light_volume.glsl"
+layout(binding = CLOUD_LIGHT_VOLUME_BINDING_IMAGE) uniform sampler3D lightVolume;
+#endif
 
 // Lu (24): the optical depth from the cloud sample s at p toward the sun (x) and the moon (y).
 vec2 marchKeyLights(vec3 p, CloudSample s) {
@@ -114,12 +126,23 @@ vec2 marchKeyLights(vec3 p, CloudSample s) {
     if (!keyLightMarched(i, s.layer)) continue;
     vec3 L = i == 0 ? params.sunDirection.xyz : params.moonDirection.xyz;
     gLightLine = latLonLine(p, s.latLon, L, lightLongStepDistance(params.lightDistanceM));
+#if CLOUD_LIGHT_VOLUME
+    // The cloud's own fine structure near the sample marched here, the rest from the volume
+    // at the point where this part ends (it holds the light's path from there on).
+    tau[i] = params.extinction *
+             lightMarchDensityNear(p, L, params.lightDistanceM, CLOUD_LIGHT_STEPS,
+                                   CLOUD_LIGHT_VOLUME_NEAR, gLightOffset);
+    vec3 far = p + L * params.lightVolume.startM;
+    tau[i] += textureLod(lightVolume, cloudLightVolumeCoord(params.lightVolume, params.geo, far),
+                         0.0)[i];
+#else
     tau[i] = params.extinction *
              (CLOUD_REFERENCE != 0
-                  ? referenceLightMarchDensity(p, L, params.lightDistanceM, CLOUD_LIGHT_STEPS,
-                                               gLightOffset)
+                  ? lightMarchDensityRefined(p, L, params.lightDistanceM, CLOUD_LIGHT_STEPS,
+                                             CLOUD_REFERENCE_LIGHT_SPLIT, gLightOffset)
                   : lightMarchDensity(p, L, params.lightDistanceM, CLOUD_LIGHT_STEPS,
                                       gLightOffset));
+#endif
   }
   return tau;
 }

@@ -11,6 +11,8 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
+#include "shaders/common/cloud_light_march_shared.h"
+
 namespace sky::clouds {
 
 // --- Density, cloud_density.glsl: Lu (3)-(18), cloud types, Tang ---
@@ -184,8 +186,13 @@ float lightMarchDensity(glm::vec3 p, glm::vec3 L, float distance, int n, float o
     const float len = lightStepLength(i, n, distance);
     ds += density(p + L * (start + offset * len), len, i) * len;
   }
-  ds += density(p + L * lightLongStepDistance(distance), lightLongStepLength(distance), n) *
-        lightLongStepLength(distance);
+  const float part = lightLongStepLength(distance) / static_cast<float>(CLOUD_LIGHT_LONG_SAMPLES);
+  for (int j = 0; j < CLOUD_LIGHT_LONG_SAMPLES; ++j) {
+    const float at = CLOUD_LIGHT_LONG_SAMPLES == 1
+                         ? lightLongStepDistance(distance)
+                         : distance + (static_cast<float>(j) + offset) * part;
+    ds += density(p + L * at, part, n) * part;
+  }
   return ds;
 }
 

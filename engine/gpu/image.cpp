@@ -14,6 +14,7 @@ uint32_t formatTexelSize(VkFormat f) {
     case VK_FORMAT_R16_SFLOAT:
       return 2;
     case VK_FORMAT_R32_SFLOAT:
+    case VK_FORMAT_R16G16_SFLOAT:
     case VK_FORMAT_R8G8B8A8_UNORM:
     case VK_FORMAT_R8G8B8A8_SRGB:
       return 4;
@@ -32,6 +33,8 @@ uint32_t formatChannelCount(VkFormat f) {
     case VK_FORMAT_R16_SFLOAT:
     case VK_FORMAT_R32_SFLOAT:
       return 1;
+    case VK_FORMAT_R16G16_SFLOAT:
+      return 2;
     case VK_FORMAT_R8G8B8A8_UNORM:
     case VK_FORMAT_R8G8B8A8_SRGB:
     case VK_FORMAT_R16G16B16A16_SFLOAT:
@@ -50,6 +53,8 @@ const char* formatName(VkFormat f) {
       return "r16f";
     case VK_FORMAT_R32_SFLOAT:
       return "r32f";
+    case VK_FORMAT_R16G16_SFLOAT:
+      return "rg16f";
     case VK_FORMAT_R8G8B8A8_UNORM:
       return "rgba8";
     case VK_FORMAT_R8G8B8A8_SRGB:

@@ -22,6 +22,7 @@ std::vector<float> texelsToFloat(VkFormat format, std::span<const uint8_t> bytes
       std::memcpy(out.data(), bytes.data(), out.size() * 4);
       break;
     case VK_FORMAT_R16_SFLOAT:
+    case VK_FORMAT_R16G16_SFLOAT:
     case VK_FORMAT_R16G16B16A16_SFLOAT:
       out.resize(bytes.size() / 2);
       for (size_t i = 0; i < out.size(); ++i) {

@@ -152,6 +152,7 @@ Renderer::Renderer(const Context& ctx, ShaderCompiler& compiler)
       mVolumetric(ctx, compiler),
       mShadow(ctx, compiler),
       mTemporal(ctx, compiler),
+      mLightVolume(ctx, compiler),
       mHistorySampler(ctx, SamplerWrap::Clamp),
       mSlice(ctx, compiler),
       mVolumeExport(ctx, compiler),
@@ -193,7 +194,18 @@ namespace {
 // too much for reprojection (a time-lapse's steps, a jump).
 constexpr double kHistoryMaxGapS = 60.0;
 constexpr double kHistoryMaxMoveM = 5000.0;
-constexpr double kPi = 3.14159265358979323846;
+
+// The scene written out without the camera's pose and the time: what temporal reuse and the
+// light volume compare to see whether anything else changed.
+std::string settingsWithoutPose(const Scene& scene) {
+  Scene s = scene;
+  s.camera.heading = s.camera.pitch = 0.0;
+  s.camera.latitude = s.camera.longitude = s.camera.altitudeM = 0.0;
+  s.time.start = IsoTime{};
+  s.time.end.reset();
+  s.time.stepSeconds = 0.0;
+  return writeScene(s, ConfigFormat::Json);
+}
 
 }  // namespace
 
@@ -213,13 +225,7 @@ Renderer::HistoryStep Renderer::stepHistory(const Scene& scene, const IsoTime& t
 
   HistoryStep step;
   CloudHistory& next = step.next;
-  Scene pose = scene;  // what must not change for the history to hold
-  pose.camera.heading = pose.camera.pitch = 0.0;
-  pose.camera.latitude = pose.camera.longitude = pose.camera.altitudeM = 0.0;
-  pose.time.start = IsoTime{};
-  pose.time.end.reset();
-  pose.time.stepSeconds = 0.0;
-  next.settings = writeScene(pose, ConfigFormat::Json);
+  next.settings = settingsWithoutPose(scene);
   next.view = view;
   next.latDeg = scene.camera.latitude;
   next.lonDeg = scene.camera.longitude;
@@ -243,10 +249,7 @@ Renderer::HistoryStep Renderer::stepHistory(const Scene& scene, const IsoTime& t
     const glm::dmat3 enuThere = enuToEcefRotation(last.latDeg, last.lonDeg);
     step.motion.previousPosition = glm::vec3(glm::transpose(enuHere) * (there - here));
     step.motion.toPrevious = glm::mat3(glm::transpose(enuThere) * enuHere);
-    // The noise drifts with clouds.wind_speed_ms toward wind_from + 180 degrees.
-    const double toward = (scene.clouds.windFrom + 180.0) * kPi / 180.0;
-    step.motion.windShift = glm::vec3(
-        glm::dvec3(std::sin(toward), std::cos(toward), 0.0) * scene.clouds.windSpeedMs * gap);
+    step.motion.windShift = glm::vec3(glm::vec2(cloudWindDriftM(scene.clouds, gap)), 0.0f);
   }
   return step;
 }
@@ -341,6 +344,29 @@ RenderedFrame Renderer::render(const Scene& scene, const IsoTime& time,
                             cloudFrame.lowRolls);
     in.lighting = out.lighting.gpu;
     in.textures = cloudFrame.textures;
+    // What the light volume and the shadow map are made from: kept while it holds.
+    CloudFieldKey field;
+    field.clouds = settingsWithoutPose(cloudScene);
+    field.mapRevision = mClouds.mapRevision();
+    field.camera = glm::dvec3(geometry.latDeg, geometry.lonDeg, geometry.altitudeM);
+    field.sun = glm::vec3(in.params.sunDirection);
+    field.moon = glm::vec3(in.params.moonDirection);
+    field.lights =
+        (in.params.sunMarched != 0.0f ? 1u : 0u) | (in.params.moonMarched != 0.0f ? 2u : 0u);
+    field.drift = cloudWindDriftM(scene.clouds, time.secondsSince(scene.time.start));
+    // The light through the clouds from the light volume (the reference marches it).
+    if (scene.clouds.light == CloudLight::Volume &&
+        scene.clouds.quality == CloudQuality::Standard) {
+      CloudLightVolumePass::Inputs v;
+      v.params = in.params;
+      v.params.lightVolume = cloudLightVolumePlace(in.params, geometry.altitudeM);
+      v.textures = in.textures;
+      v.key = field;
+      const CloudLightVolumePass::Outputs volume = mLightVolume.addTo(graph, v);
+      in.params.lightVolume = volume.place;
+      in.lightVolume = volume.volume;
+      in.lightVolumeSampler = &mLightVolume.sampler();
+    }
     // Temporal reuse: a sequence's frames march a share of the pixels and reproject the rest.
     const bool temporal = scene.clouds.temporal.mode == CloudTemporalMode::On &&
                           scene.clouds.quality == CloudQuality::Standard && !topDown;
@@ -376,8 +402,10 @@ RenderedFrame Renderer::render(const Scene& scene, const IsoTime& time,
     }
     // The clouds' shadows on the ground around the observer (a top-down render draws no
     // ground, but the composite's cloud variant binds a map all the same).
-    shadowMap = cloudShadowMap(in.params, geometry.altitudeM);
-    shadow = graph.add(mShadow, CloudShadowPass::Inputs{in.params, shadowMap, in.textures});
+    shadow = mShadow.addTo(graph, CloudShadowPass::Inputs{
+                                      in.params, cloudShadowMap(in.params, geometry.altitudeM),
+                                      in.textures, field});
+    shadowMap = shadow.map;
     out.cloudShadow = shadowMap;
     for (const std::string& name : options.debugOutputs) {
       if (name == "cloud_steps") graph.requestOutput(clouds.steps, "debug:" + name);
@@ -444,7 +472,13 @@ RenderedFrame Renderer::render(const Scene& scene, const IsoTime& time,
     for (const DebugSource& s : sources)
       if (name == s.name && !s.requested) graph.requestOutput(s.image, "debug:" + name);
 
-  out.frame = graph.execute();
+  try {
+    out.frame = graph.execute();
+  } catch (...) {
+    mLightVolume.invalidate();  // they may not have been made
+    mShadow.invalidate();
+    throw;
+  }
   if (pendingHistory) mHistory = std::move(*pendingHistory);
   out.graphDot = graph.toDot(&out.frame);
 

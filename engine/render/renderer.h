@@ -20,6 +20,7 @@
 #include "engine/render/cloud_volume.h"
 #include "passes/atmosphere_luts/atmosphere_luts.h"
 #include "engine/gpu/sampler.h"
+#include "passes/cloud_light_volume/cloud_light_volume.h"
 #include "passes/cloud_shadow/cloud_shadow.h"
 #include "passes/cloud_temporal/cloud_temporal.h"
 #include "passes/cloud_volume_export/cloud_volume_export.h"
@@ -158,6 +159,7 @@ private:
   VolumetricCloudsPass mVolumetric;
   CloudShadowPass mShadow;
   CloudTemporalPass mTemporal;
+  CloudLightVolumePass mLightVolume;
   Sampler mHistorySampler;      // linear, clamp
   HistoryImage mCloudHistory;   // RGBA32F: premultiplied radiance and opacity, the view's size
   HistoryImage mDepthHistory;   // R32F: transmittance-weighted distance (m)

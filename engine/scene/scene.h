@@ -259,6 +259,15 @@ constexpr auto enumNames(CloudQuality) {
       {{CloudQuality::Standard, "standard"}, {CloudQuality::Reference, "reference"}});
 }
 
+// clouds.light: how a view sample finds the light reaching it through the cloud (Lu (24)):
+// a march toward each light at every sample, or the cloud light volume made once per frame
+// (or less often) with a finer march, the sample marching only the nearest steps itself.
+enum class CloudLight { March, Volume };
+constexpr auto enumNames(CloudLight) {
+  return std::to_array<EnumName<CloudLight>>(
+      {{CloudLight::March, "march"}, {CloudLight::Volume, "volume"}});
+}
+
 // clouds.temporal.mode: whether frames of a sequence reuse the clouds of the frames before
 // (passes/cloud_temporal).
 enum class CloudTemporalMode { Off, On };
@@ -281,6 +290,7 @@ struct CloudTemporalSettings {
 struct CloudSettings {
   CloudQuality quality = CloudQuality::Standard;  // the tuned march, or the reference
   CloudTemporalSettings temporal;
+  CloudLight light = CloudLight::March;  // marched per sample, or from a light volume
   CloudModel model = CloudModel::Lu2023;                       // density and noise model
   CloudCoverageMode coverage = CloudCoverageMode::Calibrated;  // how cover sets the remap
   double extinction = 0.1;                  // sigma_t per metre at density 1, 1e-5..1

@@ -216,6 +216,10 @@ void describe(V& v, CloudSettings& s) {
           "march, no temporal reuse; many times slower)");
   v.section("temporal", s.temporal,
             "temporal reuse across the frames of a sequence (docs/clouds.md)");
+  v.field("light", s.light,
+          "volume: the light through the clouds from a light volume made with a fine march "
+          "(each sample marches only its nearest steps); march: a march toward the light at "
+          "every sample (the reference always marches, finely)");
   v.field("model", s.model,
           "density and noise model: lu2023 (Lu et al. 2023) or tang2019 (Tang et al. 2019)");
   v.field("coverage", s.coverage,

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "engine/gpu/context.h"
+
 namespace sky {
 namespace {
 
@@ -14,6 +16,20 @@ constexpr double kMaxRadiusM = 400000.0;
 // The light's path through the shells is cut after this distance: with the sun 5 degrees up it
 // crosses a 2 km layer in 23 km.
 constexpr double kMaxPathM = 60000.0;
+// A kept map follows the clouds' drift this far before it is marched again (the cover the
+// noise drifts through stays put).
+constexpr double kMaxShiftM = 200.0;
+
+PersistentImage makeShadowImage(const Context& ctx) {
+  ImageDesc desc;
+  desc.width = CLOUD_SHADOW_SIZE;
+  desc.height = CLOUD_SHADOW_SIZE;
+  desc.format = VK_FORMAT_R16_SFLOAT;
+  desc.name = "cloud_shadow";
+  desc.usage =
+      VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+  return PersistentImage{Image(ctx, desc), {}};
+}
 
 }  // namespace
 
@@ -31,18 +47,34 @@ shared::CloudShadowMap cloudShadowMap(const shared::CloudParams& params, double 
 }
 
 CloudShadowPass::CloudShadowPass(const Context& ctx, ShaderCompiler& compiler)
-    : mPipelines(ctx, compiler, "cloud_shadow.comp", kName) {}
+    : mPipelines(ctx, compiler, "cloud_shadow.comp", kName), mShadow(makeShadowImage(ctx)) {}
+
+CloudShadowPass::Outputs CloudShadowPass::addTo(FrameGraph& graph, const Inputs& in) {
+  const ImageId shadow = graph.importImage(mShadow);
+  if (mValid && cloudFieldReusable(mMade, in.key, kMaxShiftM)) {
+    Outputs out{shadow, mMap};
+    const glm::dvec2 shift = in.key.drift - mMade.drift;
+    out.map.shiftEastM = static_cast<float>(shift.x);
+    out.map.shiftNorthM = static_cast<float>(shift.y);
+    return out;
+  }
+  mTarget = shadow;
+  GraphBuilder b = graph.addPass(kName, [this](PassContext& ctx) { execute(ctx); });
+  const Outputs out = setup(b, in);
+  mMade = in.key;
+  mMap = out.map;
+  mValid = true;
+  return out;
+}
 
 CloudShadowPass::Outputs CloudShadowPass::setup(GraphBuilder& b, const Inputs& in) {
   mInputs = in;
+  mInputs.map.shiftEastM = mInputs.map.shiftNorthM = 0.0f;
   mPipeline = &mPipelines.get(in.params);
   readCloudTextures(b, in.textures);
-  ImageDesc desc;
-  desc.width = CLOUD_SHADOW_SIZE;
-  desc.height = CLOUD_SHADOW_SIZE;
-  desc.format = VK_FORMAT_R16_SFLOAT;
-  desc.name = "cloud_shadow";
-  mOutputs.shadow = b.write(b.create(desc), Access::StorageWriteCompute);
+  mOutputs.shadow = mTarget = b.write(mTarget, Access::StorageWriteCompute);
+  mOutputs.map = mInputs.map;
+  b.sideEffect();  // later frames may read it
   return mOutputs;
 }
 

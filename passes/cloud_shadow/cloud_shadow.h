@@ -18,6 +18,9 @@ class ShaderCompiler;
 // square reaching past the ground horizon seen from `cameraAltitudeM` (m above sea level).
 shared::CloudShadowMap cloudShadowMap(const shared::CloudParams& params, double cameraAltitudeM);
 
+// The map is persistent: a frame whose clouds, light and camera are those it was made for
+// (CloudFieldKey) reads it again, shifted by the wind's drift since, instead of marching it:
+// a sequence pays for it when the sun or the clouds have moved on, not every frame.
 class CloudShadowPass {
 public:
   static constexpr const char* kName = "cloud_shadow";
@@ -25,20 +28,32 @@ public:
     shared::CloudParams params{};  // the volumetric clouds' parameters (cloudParams)
     shared::CloudShadowMap map{};  // cloudShadowMap
     CloudTextures textures;
+    CloudFieldKey key;             // what the map is made from
   };
   struct Outputs {
     ImageId shadow;  // R16F CLOUD_SHADOW_SIZE^2: transmittance toward the light
+    shared::CloudShadowMap map{};  // where it lies, with the drift to read it by
   };
 
   CloudShadowPass(const Context& ctx, ShaderCompiler& compiler);
+  // Imports the map, adding the pass that makes it unless the last one serves (see above).
+  // This object must outlive graph.execute().
+  Outputs addTo(FrameGraph& graph, const Inputs& inputs);
+  // Forgets the map (a frame that failed may not have made it).
+  void invalidate() { mValid = false; }
   Outputs setup(GraphBuilder& builder, const Inputs& inputs);
   void execute(PassContext& ctx) const;
 
 private:
   CloudPipelines mPipelines;
+  PersistentImage mShadow;
   const ComputePipeline* mPipeline = nullptr;  // this frame's variant, chosen in setup()
   Inputs mInputs{};
   Outputs mOutputs;
+  ImageId mTarget;
+  CloudFieldKey mMade;  // what the map in memory was made from
+  shared::CloudShadowMap mMap{};
+  bool mValid = false;
 };
 
 }  // namespace sky

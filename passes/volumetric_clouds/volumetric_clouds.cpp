@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include <glm/common.hpp>
+#include <glm/geometric.hpp>
 
 #include "engine/clouds/cloud_math.h"
 #include "engine/core/error.h"
@@ -61,7 +62,7 @@ CloudPipelines::CloudPipelines(const Context& ctx, ShaderCompiler& compiler, con
     : mCtx(ctx), mCompiler(compiler), mFile(file), mName(name) {}
 
 const ComputePipeline& CloudPipelines::get(const shared::CloudParams& p) {
-  const std::array<uint32_t, 11> key = {p.frameKind == CLOUD_FRAME_TOPDOWN ? 1u : 0u,
+  const std::array<uint32_t, 13> key = {p.frameKind == CLOUD_FRAME_TOPDOWN ? 1u : 0u,
                                        p.lightSteps,
                                        p.octaves,
                                        p.phaseKind,
@@ -71,21 +72,48 @@ const ComputePipeline& CloudPipelines::get(const shared::CloudParams& p) {
                                        p.rolls,
                                        p.lightDetailSteps,
                                        p.lightNoiseSteps,
-                                       p.reference};
+                                       p.reference,
+                                       (p.sunMarched != 0.0f ? 1u : 0u) |
+                                           (p.moonMarched != 0.0f ? 2u : 0u),
+                                       p.lightVolume.enabled};
   std::unique_ptr<ComputePipeline>& pipeline = mPipelines[key];
   if (!pipeline) {
-    const char* names[11] = {"CLOUD_TOPDOWN",           "CLOUD_LIGHT_STEPS",
+    const char* names[13] = {"CLOUD_TOPDOWN",           "CLOUD_LIGHT_STEPS",
                              "CLOUD_OCTAVES",           "CLOUD_DUAL_LOBE",
                              "CLOUD_ENERGY_CONSERVING", "CLOUD_CALIBRATED",
                              "CLOUD_TANG",              "CLOUD_ROLLS",
                              "CLOUD_LIGHT_DETAIL_STEPS", "CLOUD_LIGHT_NOISE_STEPS",
-                             "CLOUD_REFERENCE"};
+                             "CLOUD_REFERENCE",         "CLOUD_LIGHTS",
+                             "CLOUD_LIGHT_VOLUME"};
     std::vector<ShaderDefine> defines;
     for (size_t i = 0; i < key.size(); ++i) defines.push_back({names[i], std::to_string(key[i])});
     CompiledShader shader = compileForDevice(mCtx, mCompiler, mFile, defines);
     pipeline = std::make_unique<ComputePipeline>(mCtx, mName, shader.spirv, shader.reflection);
   }
   return *pipeline;
+}
+
+bool cloudFieldReusable(const CloudFieldKey& m, const CloudFieldKey& k, double maxShiftM) {
+  // The lights may turn this far (degrees), and the camera move this far (m).
+  constexpr double kMaxLightTurnDeg = 0.05, kMaxCameraMoveM = 50.0;
+  if (k.clouds != m.clouds || k.mapRevision != m.mapRevision || k.lights != m.lights)
+    return false;
+  if (glm::length(k.drift - m.drift) > maxShiftM) return false;
+  auto turned = [](const glm::vec3& a, const glm::vec3& b) {
+    return std::acos(std::clamp(static_cast<double>(glm::dot(a, b)), -1.0, 1.0)) / kDeg;
+  };
+  if (((k.lights & 1u) && turned(k.sun, m.sun) > kMaxLightTurnDeg) ||
+      ((k.lights & 2u) && turned(k.moon, m.moon) > kMaxLightTurnDeg))
+    return false;
+  const double kMPerDeg = 111195.0;  // on the mean sphere
+  const glm::dvec3 d = k.camera - m.camera;
+  const double east = d.y * kMPerDeg * std::cos(k.camera.x * kDeg);
+  return std::hypot(d.x * kMPerDeg, east, d.z) <= kMaxCameraMoveM;
+}
+
+glm::dvec2 cloudWindDriftM(const CloudSettings& c, double elapsedS) {
+  const double toward = (c.windFrom + 180.0) * kDeg;
+  return c.windSpeedMs * elapsedS * glm::dvec2(std::sin(toward), std::cos(toward));
 }
 
 CloudFrameGeometry cloudFrameGeometry(const VolumetricCloudsSettings& s) {
@@ -140,8 +168,8 @@ shared::CloudParams cloudParams(const VolumetricCloudsSettings& settings,
   const glm::dmat3 enu = enuToEcefRotation(g.latDeg, g.lonDeg);
   const double elapsed = time.secondsSince(settings.timeStart);
   const double toward = (c.windFrom + 180.0) * kDeg;
-  const glm::dvec3 drift =
-      c.windSpeedMs * elapsed * (std::sin(toward) * enu[0] + std::cos(toward) * enu[1]);
+  const glm::dvec2 windDrift = cloudWindDriftM(c, elapsed);
+  const glm::dvec3 drift = windDrift.x * enu[0] + windDrift.y * enu[1];
   const glm::dvec3 noise = camera - drift;
   p.shapeOrigin = glm::vec4(glm::vec3(glm::mod(noise, shapeM)), 0.0f);
   p.detailOrigin = glm::vec4(glm::vec3(glm::mod(noise, detailM)), 0.0f);
@@ -168,7 +196,7 @@ shared::CloudParams cloudParams(const VolumetricCloudsSettings& settings,
     uint32_t k = 0;
     for (int i = 0; i <= n; ++i) {
       const double len = i < n ? clouds::lightStepLength(i, n, distance)
-                               : clouds::lightLongStepLength(distance);
+                               : clouds::lightLongStepLength(distance) / CLOUD_LIGHT_LONG_SAMPLES;
       if (0.25 * len >= 0.5 * cellM * 1.001) break;
       k = static_cast<uint32_t>(i + 1);
     }
@@ -177,7 +205,8 @@ shared::CloudParams cloudParams(const VolumetricCloudsSettings& settings,
   // The cells cloudSampleAt fades first: the detail's R, the shape's outline R.
   const double detailCellM = detailM / (c.model == CloudModel::Tang2019 ? 4.0 : 2.0);
   p.lightDetailSteps = stepsResolving(detailCellM);
-  p.lightNoiseSteps = stepsResolving(shapeM / 4.0);
+  // Every light step resolves the outline (lightFootprint caps the footprint there).
+  p.lightNoiseSteps = static_cast<uint32_t>(c.lightSteps + 1);
   p.shapeRepeatsPerM = static_cast<float>(1.0 / shapeM);
   p.detailRepeatsPerM = static_cast<float>(1.0 / detailM);
   p.curlRepeatsPerM = static_cast<float>(1.0 / shapeM);
@@ -262,6 +291,10 @@ VolumetricCloudsPass::Outputs VolumetricCloudsPass::setup(GraphBuilder& b, const
   mInputs = in;
   mPipeline = &mPipelines.get(in.params);
   readCloudTextures(b, in.textures);
+  if (in.params.lightVolume.enabled) {
+    if (!in.lightVolumeSampler) internalError("volumetric_clouds: no light volume sampler");
+    b.read(in.lightVolume, Access::SampledCompute);
+  }
   // With temporal reuse the pass marches one pixel of every marchBlock x marchBlock square.
   const uint32_t block = std::max(in.params.marchBlock, 1u);
   ImageDesc desc;
@@ -289,6 +322,9 @@ void VolumetricCloudsPass::execute(PassContext& ctx) const {
                    Binding::of(VOLUMETRIC_CLOUDS_BINDING_CLOUDS, mOutputs.clouds),
                    Binding::of(VOLUMETRIC_CLOUDS_BINDING_DEPTH, mOutputs.depth),
                    Binding::of(VOLUMETRIC_CLOUDS_BINDING_STEPS, mOutputs.steps)});
+  if (mInputs.params.lightVolume.enabled)
+    bindings.push_back(Binding::of(CLOUD_LIGHT_VOLUME_BINDING_IMAGE, mInputs.lightVolume,
+                                   mInputs.lightVolumeSampler));
   ctx.dispatch(*mPipeline, bindings, mPipeline->groupsX(size.width),
                mPipeline->groupsY(size.height));
 }

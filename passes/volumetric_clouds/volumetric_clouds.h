@@ -7,6 +7,7 @@
 #include <array>
 #include <map>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "engine/gpu/compute_pipeline.h"
@@ -52,7 +53,7 @@ private:
   ShaderCompiler& mCompiler;
   const char* mFile;
   const char* mName;
-  std::map<std::array<uint32_t, 11>, std::unique_ptr<ComputePipeline>> mPipelines;
+  std::map<std::array<uint32_t, 13>, std::unique_ptr<ComputePipeline>> mPipelines;
 };
 
 class VolumetricCloudsPass {
@@ -62,6 +63,9 @@ public:
     shared::CloudParams params{};
     shared::LightingState lighting{};
     CloudTextures textures;
+    // With params.lightVolume.enabled: passes/cloud_light_volume's volume and its sampler.
+    ImageId lightVolume;
+    const Sampler* lightVolumeSampler = nullptr;
   };
   struct Outputs {
     ImageId clouds;  // RGBA16F: rgb radiance premultiplied, a opacity (1 - transmittance)
@@ -134,6 +138,26 @@ struct NoiseMeans {
   glm::vec4 shape{0.5f};
   glm::vec4 detail{0.5f};
 };
+
+// What a product of the cloud field made once and kept over frames (the light volume, the
+// shadow map) was made from. A frame whose key differs in anything but the drift, or whose
+// drift has gone further than `maxShiftM` (the cover the noise drifts through stays put),
+// makes it again; within that, the product is read shifted by the drift since.
+struct CloudFieldKey {
+  std::string clouds;      // the scene written out but for the camera's pose and the time
+  uint64_t mapRevision = 0;
+  glm::dvec3 camera{0.0};           // latitude, longitude (degrees), altitude (m)
+  glm::vec3 sun{0.0f}, moon{0.0f};  // directions (ENU)
+  uint32_t lights = 0;              // which are marched: bit 0 the sun, bit 1 the moon
+  glm::dvec2 drift{0.0};            // the wind's drift of the clouds (east, north, m)
+};
+// Whether what was made for `made` serves `now` (lights turned by under 0.05 degrees, the
+// camera moved by under 50 m, the drift within maxShiftM).
+bool cloudFieldReusable(const CloudFieldKey& made, const CloudFieldKey& now, double maxShiftM);
+
+// How far (east, north, m) the wind has carried the clouds' noise `elapsedS` seconds after the
+// scene's start (clouds.wind_speed_ms toward wind_from + 180 degrees).
+glm::dvec2 cloudWindDriftM(const CloudSettings& clouds, double elapsedS);
 
 // The pass's uniforms for one frame at `time`: the layers and shells, the frame, the wind's
 // drift of the noise since settings.timeStart, the key light and its illuminance at each

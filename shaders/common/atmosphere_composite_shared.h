@@ -60,7 +60,7 @@ struct AtmosphereCompositeParams {
 SKY_SHARED_END
 
 #ifdef __cplusplus
-static_assert(sizeof(sky::shared::AtmosphereCompositeParams) == 64 + 32 + 2 * 16 + 5 * 16,
+static_assert(sizeof(sky::shared::AtmosphereCompositeParams) == 64 + 48 + 2 * 16 + 5 * 16,
               "std140 layout of AtmosphereCompositeParams");
 #endif
 #endif

@@ -25,12 +25,19 @@ struct CloudShadowMap {
   float radiusM;        // ground distance from the centre to the map's edge (m)
   float lightIsSun;     // 1: made for the sun, 0: for the moon
   float maxPathM;       // the march toward the light stops after this distance (m)
-  float valid;          // 1 when a map was made this frame (0: no volumetric clouds)
+  float valid;          // 1 when the frame has a map (0: no volumetric clouds)
+
+  // How far the clouds drifted (east, north, m) since the map was made: a map kept from an
+  // earlier frame (passes/cloud_shadow) is read where its clouds were.
+  float shiftEastM;
+  float shiftNorthM;
+  float unused0;
+  float unused1;
 };
 
 SKY_SHARED_END
 
 #ifdef __cplusplus
-static_assert(sizeof(sky::shared::CloudShadowMap) == 32, "std140 layout of CloudShadowMap");
+static_assert(sizeof(sky::shared::CloudShadowMap) == 48, "std140 layout of CloudShadowMap");
 #endif
 #endif

@@ -5,6 +5,7 @@
 #include "shared_prelude.h"
 #include "geo_shared.h"
 #include "view_shared.h"
+#include "cloud_light_volume_shared.h"
 
 #define VOLUMETRIC_CLOUDS_GROUP_X 8
 #define VOLUMETRIC_CLOUDS_GROUP_Y 8
@@ -142,6 +143,8 @@ struct CloudParams {
   // footprint average to, so distant clouds fade to it instead of aliasing (cloudSampleAt).
   vec4 shapeMean;     // rgba: of the shape texture
   vec4 detailMean;    // rgb: of the detail texture
+  // Where the cloud light volume lies (clouds.light volume; passes/cloud_light_volume).
+  CloudLightVolume lightVolume;
   vec4 coverageLut[CLOUD_COVERAGE_LUT_VEC4S];
 };
 
@@ -149,7 +152,7 @@ SKY_SHARED_END
 
 #ifdef __cplusplus
 static_assert(sizeof(sky::shared::CloudParams) ==
-                  64 + 64 + 16 + 12 * 16 + 16 * 16 + CLOUD_COVERAGE_LUT_VEC4S * 16,
+                  64 + 64 + 16 + 12 * 16 + 16 * 16 + 32 + CLOUD_COVERAGE_LUT_VEC4S * 16,
               "std140 layout of CloudParams");
 #endif
 #endif

@@ -388,7 +388,8 @@ namespace {
 TEST(CloudLightVariant, OnlyStepsThatResolveNoNoiseLeaveItOut) {
   // A light sample's footprint is at least a quarter of its step and a noise resolves nothing
   // from half a cell, so a step of 4 x half a cell or longer never reads it (the shader
-  // variant CLOUD_LIGHT_DETAIL_STEPS / CLOUD_LIGHT_NOISE_STEPS).
+  // variant CLOUD_LIGHT_DETAIL_STEPS). The clouds' outline is read by every step: the light's
+  // footprint is capped to resolve it (lightFootprint), so CLOUD_LIGHT_NOISE_STEPS is all.
   const auto steps = [](std::vector<std::string> overrides) {
     const Scene s = cloudScene("cumulus_noon", std::move(overrides));
     const shared::ViewState view = makeViewState(s.camera, 8, 8);
@@ -397,14 +398,14 @@ TEST(CloudLightVariant, OnlyStepsThatResolveNoNoiseLeaveItOut) {
                     view, glm::vec2(0.5f, 0.0f), glm::uvec2(256), {}, {}, false);
     return std::pair{p.lightDetailSteps, p.lightNoiseSteps};
   };
-  // The defaults: steps of 38.7 ... 619.4 m and a long one of 4.8 km; detail cells of 200 m
-  // (lu2023: 2 a 0.4 km repeat), outline cells of 1.25 km. The fifth short step (619.4 m)
-  // reads no detail, the long one no noise.
-  EXPECT_EQ(steps({}), (std::pair{4u, 5u}));
-  // A 100 m march (long step 400 m, just short of 4 x 100 m) may resolve everything.
+  // The defaults: steps of 38.7 ... 619.4 m and a long one of 4.8 km in three parts of 1.6 km;
+  // detail cells of 200 m (lu2023: 2 a 0.4 km repeat). The fifth short step (619.4 m) reads no
+  // detail, nor does the long one.
+  EXPECT_EQ(steps({}), (std::pair{4u, 6u}));
+  // A 100 m march (long step 400 m in parts of 133 m) may resolve everything.
   EXPECT_EQ(steps({"clouds.light_distance_m=100"}), (std::pair{6u, 6u}));
   // Tang's detail has 4 cells a repeat (100 m): from the fourth short step (309.7 m) on none.
-  EXPECT_EQ(steps({"clouds.model=tang2019"}), (std::pair{3u, 5u}));
+  EXPECT_EQ(steps({"clouds.model=tang2019"}), (std::pair{3u, 6u}));
 }
 
 TEST(CloudNoiseFrame, TheNoiseStaysWithTheGround) {

@@ -1,0 +1,104 @@
+#include "passes/cloud_light_volume/cloud_light_volume.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "engine/clouds/cloud_math.h"
+#include "engine/core/error.h"
+#include "engine/gpu/context.h"
+#include "engine/gpu/sampler.h"
+
+namespace sky {
+namespace {
+
+// A reused volume follows the clouds' drift by a shift; beyond this the cover they drift
+// through (which stays put) has changed under them, and the volume is made again.
+constexpr double kMaxShiftM = 200.0;
+// Past where the shells' top meets the horizon, and never under or over these.
+constexpr double kHorizonMarginM = 10000.0;
+constexpr double kMinRadiusM = 40000.0;
+constexpr double kMaxRadiusM = 400000.0;
+
+PersistentImage makeVolume(const Context& ctx) {
+  ImageDesc d;
+  d.name = "cloud_light_volume";
+  d.dim = ImageDim::Tex3D;
+  d.format = VK_FORMAT_R16G16_SFLOAT;
+  d.width = d.height = CLOUD_LIGHT_VOLUME_SIZE;
+  d.depth = CLOUD_LIGHT_VOLUME_SLICES;
+  d.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
+            VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+  return PersistentImage{Image(ctx, d), {}};
+}
+
+}  // namespace
+
+shared::CloudLightVolume cloudLightVolumePlace(const shared::CloudParams& params,
+                                               double cameraAltitudeM) {
+  const double R = params.geo.origin.w;
+  // Ground distance to where a ray grazing the horizon from the camera reaches the top.
+  const double reach = std::sqrt(2.0 * R * std::max<double>(params.shellTopM, 1.0)) +
+                       std::sqrt(2.0 * R * std::max(cameraAltitudeM, 1.0));
+  shared::CloudLightVolume v{};
+  v.radiusM = static_cast<float>(std::clamp(reach + kHorizonMarginM, kMinRadiusM, kMaxRadiusM));
+  v.baseM = params.shellBaseM;
+  v.topM = params.shellTopM;
+  v.enabled = 1;
+  v.startM = clouds::lightStepStart(CLOUD_LIGHT_VOLUME_NEAR, static_cast<int>(params.lightSteps),
+                                    params.lightDistanceM);
+  return v;
+}
+
+CloudLightVolumePass::CloudLightVolumePass(const Context& ctx, ShaderCompiler& compiler)
+    : mPipelines(ctx, compiler, "cloud_light_volume.comp", kName),
+      mSampler(ctx, SamplerWrap::Clamp),
+      mVolume(makeVolume(ctx)) {}
+
+CloudLightVolumePass::Outputs CloudLightVolumePass::addTo(FrameGraph& graph, const Inputs& in) {
+  Outputs out;
+  const ImageId volume = graph.importImage(mVolume);
+  if (mValid && cloudFieldReusable(mMade, in.key, kMaxShiftM)) {
+    out.volume = volume;
+    out.place = mPlace;
+    // The clouds drifted on since: read the volume where they were.
+    const glm::dvec2 shift = in.key.drift - mMade.drift;
+    out.place.shiftEastM = static_cast<float>(shift.x);
+    out.place.shiftNorthM = static_cast<float>(shift.y);
+    return out;
+  }
+  mTarget = volume;
+  GraphBuilder b = graph.addPass(kName, [this](PassContext& ctx) { execute(ctx); });
+  out = setup(b, in);
+  // Recorded as made now; a frame that then fails calls invalidate().
+  mMade = in.key;
+  mPlace = in.params.lightVolume;
+  mPlace.shiftEastM = mPlace.shiftNorthM = 0.0f;
+  mValid = true;
+  return out;
+}
+
+CloudLightVolumePass::Outputs CloudLightVolumePass::setup(GraphBuilder& b, const Inputs& in) {
+  mInputs = in;
+  mInputs.params.lightVolume.shiftEastM = mInputs.params.lightVolume.shiftNorthM = 0.0f;
+  mPipeline = &mPipelines.get(in.params);
+  readCloudTextures(b, in.textures);
+  Outputs out;
+  out.volume = b.write(mTarget, Access::StorageWriteCompute);
+  mTarget = out.volume;
+  out.place = mInputs.params.lightVolume;
+  out.made = true;
+  b.sideEffect();  // later frames read it
+  return out;
+}
+
+void CloudLightVolumePass::execute(PassContext& ctx) const {
+  std::vector<Binding> bindings = cloudTextureBindings(mInputs.textures);
+  bindings.insert(bindings.end(),
+                  {Binding::of(VOLUMETRIC_CLOUDS_BINDING_PARAMS, ctx.uniform(mInputs.params)),
+                   Binding::of(CLOUD_LIGHT_VOLUME_BINDING_IMAGE, mTarget)});
+  ctx.dispatch(*mPipeline, bindings, mPipeline->groupsX(CLOUD_LIGHT_VOLUME_SIZE),
+               mPipeline->groupsY(CLOUD_LIGHT_VOLUME_SIZE),
+               mPipeline->groupsZ(CLOUD_LIGHT_VOLUME_SLICES));
+}
+
+}  // namespace sky

@@ -1,0 +1,68 @@
+#version 460
+// The cloud light volume (passes/cloud_light_volume; docs/clouds.md, "Light volume"): at the
+// centre of each texel, the optical depth toward the sun (r) and the moon (g) along the light
+// march's whole reach, Lu (24), by the march's own schedule with every step split
+// CLOUD_LIGHT_VOLUME_SPLIT ways: the reference's quadrature, once per texel, where the
+// raymarch used to march a coarser one at every sample. Each texel's density is filtered to
+// its own size, so detail finer than the volume resolves does not alias into it; the
+// raymarch marches the nearest steps itself, where that detail shadows the cloud.
+#include "common/volumetric_clouds_shared.h"
+#include "common/geo.glsl"
+#include "common/cloud_density.glsl"
+#include "common/cloud_field.glsl"
+#include "common/cloud_lighting.glsl"
+#include "common/cloud_light_volume.glsl"
+#include "common/noise.glsl"
+
+#ifndef CLOUD_LIGHTS
+#define CLOUD_LIGHTS 3
+#endif
+
+layout(local_size_x = CLOUD_LIGHT_VOLUME_GROUP_X, local_size_y = CLOUD_LIGHT_VOLUME_GROUP_Y,
+       local_size_z = CLOUD_LIGHT_VOLUME_GROUP_Z) in;
+layout(binding = CLOUD_LIGHT_VOLUME_BINDING_IMAGE, rg16f) uniform writeonly image3D lightVolume;
+
+// The size this texel's density is filtered to.
+float gFootprintM = 0.0;
+// The latitude and longitude along the light march being run (cloud_field.glsl).
+LatLonLine gLightLine;
+
+float cloudDensityForLight(vec3 p, float lengthM, int step) {
+  CloudSample s;
+  cloudSampleAtLla(p, latLonAltitudeOn(gLightLine, p), max(gFootprintM, 0.25 * lengthM), false,
+                   CLOUD_NOISE_ALL, s);
+  return s.density;
+}
+#include "common/cloud_light_march.glsl"
+
+void main() {
+  ivec3 id = ivec3(gl_GlobalInvocationID);
+  if (any(greaterThanEqual(id, ivec3(CLOUD_LIGHT_VOLUME_SIZE, CLOUD_LIGHT_VOLUME_SIZE,
+                                     CLOUD_LIGHT_VOLUME_SLICES))))
+    return;
+  CloudLightVolume v = params.lightVolume;
+  vec2 u = (vec2(id.xy) + 0.5) / float(CLOUD_LIGHT_VOLUME_SIZE) * 2.0 - 1.0;
+  vec2 metres = v.radiusM * u * abs(u);
+  float slice = (v.topM - v.baseM) / float(CLOUD_LIGHT_VOLUME_SLICES);
+  float h = v.baseM + (float(id.z) + 0.5) * slice;
+  vec3 p = cloudLightVolumePoint(params.geo, metres, h);
+  // The texel's size: ground distance r u |u| puts 4 sqrt(r d) / N metres between texel
+  // centres d metres out (at least a texel's worth at the centre).
+  vec2 spacing = 4.0 * sqrt(v.radiusM * max(abs(metres), vec2(v.radiusM) /
+                                        float(CLOUD_LIGHT_VOLUME_SIZE * CLOUD_LIGHT_VOLUME_SIZE))) /
+                 float(CLOUD_LIGHT_VOLUME_SIZE);
+  gFootprintM = 0.5 * max(max(spacing.x, spacing.y), slice);
+  // Each texel places its samples differently inside their steps: no contour lines.
+  float offset = noiseHashUnit3(uvec3(id.xy, uint(id.z) + 0x6c766f6cu)).x;
+  vec2 tau = vec2(0.0);
+  vec2 latLon = latLonAltitude(params.geo, p).xy;
+  for (int i = 0; i < 2; ++i) {
+    if (((CLOUD_LIGHTS >> i) & 1) == 0) continue;
+    vec3 L = i == 0 ? params.sunDirection.xyz : params.moonDirection.xyz;
+    gLightLine = latLonLine(p, latLon, L, lightLongStepDistance(params.lightDistanceM));
+    tau[i] = params.extinction * lightMarchDensityRefined(p, L, params.lightDistanceM,
+                                                          CLOUD_LIGHT_STEPS,
+                                                          CLOUD_LIGHT_VOLUME_SPLIT, offset);
+  }
+  imageStore(lightVolume, id, vec4(tau, 0.0, 0.0));
+}

@@ -1,0 +1,95 @@
+// What the clouds make once and keep over frames: the cloud shadow map and the light volume
+// (clouds.light volume) are made on the first frame, read again (shifted by the wind's drift)
+// while the clouds, the sun and the camera stay, and made again once they move on.
+#include <cmath>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "cloud_test_util.h"
+#include "engine/io/image_metrics.h"
+
+namespace sky {
+namespace {
+
+using test::cloudScene;
+using test::hasPass;
+
+class CloudKeptTest : public test::CloudRenderTest {
+protected:
+  Renderer& fresh() {
+    mCompiler = std::make_unique<ShaderCompiler>();
+    mRenderer = std::make_unique<Renderer>(ctx(), *mCompiler);
+    return *mRenderer;
+  }
+  void TearDown() override {
+    mRenderer.reset();
+    mCompiler.reset();
+  }
+  static Scene scene(std::vector<std::string> more = {}) {
+    std::vector<std::string> o = {"output.width=96", "output.height=54", "camera.altitude_m=300",
+                                  "camera.pitch=-5"};  // some ground, in the clouds' shadows
+    o.insert(o.end(), more.begin(), more.end());
+    return cloudScene("cumulus_noon", o);
+  }
+  std::unique_ptr<ShaderCompiler> mCompiler;
+  std::unique_ptr<Renderer> mRenderer;
+};
+
+std::vector<float> beauty(const RenderedFrame& f) {
+  return f.image.find("")->pixels;
+}
+
+TEST_F(CloudKeptTest, TheShadowMapIsKeptWhileTheCloudsAndTheSunStay) {
+  Renderer& r = fresh();
+  const Scene s = scene();
+  const IsoTime t = s.time.start;
+  const RenderedFrame first = r.render(s, t);
+  EXPECT_TRUE(hasPass(first, "cloud_shadow"));
+  // One second on the clouds have drifted 10 m: the map is read 10 m on, not marched.
+  const RenderedFrame kept = r.render(s, t.plusSeconds(1.0));
+  EXPECT_FALSE(hasPass(kept, "cloud_shadow"));
+  EXPECT_EQ(kept.cloudShadow.shiftEastM, 10.0f) << "wind_from 270: the drift is east";
+  // ... and the frame is the one a fresh map gives, but for the map's own jitter.
+  Renderer other(ctx(), *mCompiler);
+  const RenderedFrame made = other.render(s, t.plusSeconds(1.0));
+  EXPECT_TRUE(hasPass(made, "cloud_shadow"));
+  EXPECT_GE(psnr(beauty(kept), beauty(made), 1.0), 40.0);
+  // A minute on (600 m of drift) or with the sun a degree round, it is marched again.
+  EXPECT_TRUE(hasPass(r.render(s, t.plusSeconds(60.0)), "cloud_shadow"));
+  const Scene turned = scene({"sun.azimuth=200", "sun.elevation=40"});
+  EXPECT_TRUE(hasPass(r.render(turned, t.plusSeconds(60.0)), "cloud_shadow"));
+  EXPECT_FALSE(hasPass(r.render(turned, t.plusSeconds(60.0)), "cloud_shadow"));
+  EXPECT_TRUE(hasPass(r.render(scene({"sun.azimuth=201", "sun.elevation=40"}),
+                               t.plusSeconds(60.0)),
+                      "cloud_shadow"));
+}
+
+// clouds.light volume: made once and kept, and within the stated dB of the reference march.
+// Measured 25 dB at 96 x 54 where the per-sample march reaches 37 dB: the volume's texels
+// blur the light (and far from the camera hold the clouds' mean), which is why the march
+// stays the default (docs/clouds.md, "Light volume").
+TEST_F(CloudKeptTest, TheLightVolumeIsKeptAndAgreesWithTheReference) {
+  Renderer& r = fresh();
+  const Scene s = scene({"camera.pitch=10", "camera.altitude_m=2", "clouds.light=volume"});
+  const RenderedFrame first = r.render(s);
+  EXPECT_TRUE(hasPass(first, "cloud_light_volume"));
+  const RenderedFrame again = r.render(s);
+  EXPECT_FALSE(hasPass(again, "cloud_light_volume"));
+  EXPECT_TRUE(std::isinf(psnr(beauty(first), beauty(again), 1.0)))
+      << "a kept volume gives the very same frame";
+  const RenderedFrame reference =
+      render(scene({"camera.pitch=10", "camera.altitude_m=2", "clouds.quality=reference"}));
+  auto toned = [](std::vector<float> v) {
+    for (float& x : v) x = 0.5f * x / (1.0f + 0.5f * x);
+    return v;
+  };
+  const double db = psnr(toned(beauty(first)), toned(beauty(reference)), 1.0);
+  std::printf("light volume against the reference: %.1f dB\n", db);
+  EXPECT_GE(db, 24.0);
+}
+
+}  // namespace
+}  // namespace sky
