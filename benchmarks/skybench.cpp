@@ -34,6 +34,7 @@
 #include "engine/render/exposure.h"
 #include "engine/render/render_files.h"
 #include "engine/render/renderer.h"
+#include "engine/scene/scene.h"
 #include "engine/scene/scene_io.h"
 #include "engine/shader/shader_compiler.h"
 
@@ -51,6 +52,7 @@ struct Case {
   double secondsPerFrame = 0.0;     // and the scene's time advances by this much
   int64_t next = 0;                 // the frame the next "frame" request renders
   std::vector<float> display;       // the last frame's display-referred RGBA
+  bool quantized = false;           // display came as 8-bit codes (the GPU display path)
   int width = 0, height = 0;
 };
 
@@ -112,17 +114,26 @@ private:
     double heading = std::fmod(scene.camera.heading + c.headingDegPerFrame * index, 360.0);
     scene.camera.heading = heading;
     const IsoTime time = scene.time.start.plusSeconds(c.secondsPerFrame * index);
-    // A viewer's frame: the beauty alone is read back (the EXR's other layers are not made).
+    // A viewer's frame: the display image alone, through the GPU display path (a histogram
+    // exposure meters the beauty on the CPU, so such a scene reads the beauty back instead).
     RenderOptions options;
-    options.aovs = false;
+    const bool gpu = scene.output.exposure != ExposureMode::Histogram;
+    options.readBack = gpu ? ReadBack::Display : ReadBack::Beauty;
+    if (gpu) options.gpuDisplay = &mOcio;
     const auto start = std::chrono::steady_clock::now();
     RenderedFrame f = c.renderer->render(scene, time, options);
     const double renderMs = elapsedMs(start);
     const auto displayStart = std::chrono::steady_clock::now();
-    c.display = displayPixels(f, scene, c.exposure.expose(scene, f, time), mOcio);
+    if (gpu) {
+      c.display.resize(f.display.size());
+      for (size_t i = 0; i < f.display.size(); ++i) c.display[i] = f.display[i] / 255.0f;
+    } else {
+      c.display = displayPixels(f, scene, c.exposure.expose(scene, f, time), mOcio);
+    }
     const double displayMs = elapsedMs(displayStart);
-    c.width = f.image.width;
-    c.height = f.image.height;
+    c.quantized = gpu;
+    c.width = scene.output.width;
+    c.height = scene.output.height;
     Json passes = Json::array();
     for (const PassTiming& p : f.frame.passes) passes.push_back({{"name", p.name}, {"gpu_ms", p.gpuMs}});
     return {{"ok", true},          {"frame", index},
@@ -154,7 +165,8 @@ private:
     if (c.display.empty()) inputError("save: no frame rendered yet");
     const std::string png = r.value("png", "");
     if (png.empty()) inputError("save: 'png' is required");
-    writePng8(png, c.width, c.height, c.display, PngQuantize::Dither);
+    writePng8(png, c.width, c.height, c.display,
+              c.quantized ? PngQuantize::Nearest : PngQuantize::Dither);
     return {{"ok", true}, {"png", png}};
   }
 

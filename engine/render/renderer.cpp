@@ -1,6 +1,7 @@
 #include "engine/render/renderer.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "engine/core/error.h"
 #include "engine/core/paths.h"
@@ -153,6 +154,7 @@ Renderer::Renderer(const Context& ctx, ShaderCompiler& compiler)
       mShadow(ctx, compiler),
       mTemporal(ctx, compiler),
       mLightVolume(ctx, compiler),
+      mDisplay(ctx, compiler),
       mHistorySampler(ctx, SamplerWrap::Clamp),
       mSlice(ctx, compiler),
       mVolumeExport(ctx, compiler),
@@ -257,6 +259,9 @@ Renderer::HistoryStep Renderer::stepHistory(const Scene& scene, const IsoTime& t
 RenderedFrame Renderer::render(const Scene& scene, const IsoTime& time,
                                const RenderOptions& options) {
   checkDebugOutputs(scene, options.debugOutputs);
+  if (options.readBack == ReadBack::Display && !options.gpuDisplay)
+    internalError("ReadBack::Display without RenderOptions::gpuDisplay");
+  const bool layers = options.readBack == ReadBack::Layers;
   RenderedFrame out;
   const CloudSetup setup = cloudSetup(scene, time);
   const WeatherMap& weather = *setup.weather;
@@ -396,7 +401,7 @@ RenderedFrame Renderer::render(const Scene& scene, const IsoTime& time,
       clouds.depth = resolved.depth;
       pendingHistory = std::move(step->next);
     }
-    if (options.aovs) {
+    if (layers) {
       graph.requestOutput(clouds.clouds, "clouds");
       graph.requestOutput(clouds.depth, "clouds_depth");
     }
@@ -442,8 +447,22 @@ RenderedFrame Renderer::render(const Scene& scene, const IsoTime& time,
   composite.sky = skyOut.sky;
   composite.highClouds = skyOut.highClouds;
   AtmosphereCompositePass::Outputs composited = graph.add(mComposite, composite);
-  graph.requestOutput(composited.beauty, "beauty");
-  if (options.aovs) {
+  if (options.readBack != ReadBack::Display) graph.requestOutput(composited.beauty, "beauty");
+  if (options.gpuDisplay) {
+    if (scene.output.exposure == ExposureMode::Histogram)
+      internalError("the GPU display path has no histogram exposure (it meters the frame)");
+    DisplayTransformPass::Inputs d;
+    d.settings = {options.gpuDisplay, scene.output.display, scene.output.view,
+                  (scene.output.exposure == ExposureMode::Auto ? out.lighting.nightLiftEv : 0.0) +
+                      scene.output.exposureEv,
+                  scene.output.nightLook};
+    d.beauty = composited.beauty;
+    d.width = width;
+    d.height = height;
+    out.displayEv = d.settings.exposureEv;
+    graph.requestOutput(mDisplay.addTo(graph, d).display, "display");
+  }
+  if (layers) {
     graph.requestOutput(skyOut.sky, "sky");
     graph.requestOutput(skyOut.highClouds, "high_clouds");
   }
@@ -486,8 +505,9 @@ RenderedFrame Renderer::render(const Scene& scene, const IsoTime& time,
   out.image.height = static_cast<int>(height);
   // FLOAT: physical values span from a moonless night (1e-8) to the sun's disc (1e5), past
   // both ends of half's range.
-  out.image.layers.push_back(toLayer(out.frame.output("beauty"), "", kRgba, true));
-  if (options.aovs) {
+  if (options.readBack != ReadBack::Display)
+    out.image.layers.push_back(toLayer(out.frame.output("beauty"), "", kRgba, true));
+  if (layers) {
     out.image.layers.push_back(toLayer(out.frame.output("sky"), "sky", kRgb, true));
     out.image.layers.push_back(
         toLayer(out.frame.output("high_clouds"), "high_clouds", kRgba, true));
@@ -495,7 +515,7 @@ RenderedFrame Renderer::render(const Scene& scene, const IsoTime& time,
         out.clouds ? &out.frame.output("clouds") : nullptr,
         out.clouds ? &out.frame.output("clouds_depth") : nullptr, width, height));
   }
-  if (topDown && options.aovs)
+  if (topDown && layers)
     out.image.layers.push_back(weatherCoverLayer(weather, weather.region, width, height));
   for (const std::string& name : options.debugOutputs)
     for (const DebugSource& s : sources)
@@ -507,6 +527,12 @@ RenderedFrame Renderer::render(const Scene& scene, const IsoTime& time,
         d.image.layers.push_back(toLayer(img, "", *s.channels));
         out.debug.push_back(std::move(d));
       }
+  if (options.gpuDisplay) {
+    const std::vector<float>& codes = out.frame.output("display").pixels;
+    out.display.resize(codes.size());
+    for (size_t i = 0; i < codes.size(); ++i)
+      out.display[i] = static_cast<uint8_t>(std::lround(codes[i] * 255.0f));
+  }
   for (ReadbackImage& o : out.frame.outputs) o.pixels = {};  // the layers hold the data now
   return out;
 }

@@ -23,6 +23,7 @@
 #include "passes/cloud_light_volume/cloud_light_volume.h"
 #include "passes/cloud_shadow/cloud_shadow.h"
 #include "passes/cloud_temporal/cloud_temporal.h"
+#include "passes/display_transform/display_transform.h"
 #include "passes/cloud_volume_export/cloud_volume_export.h"
 #include "passes/high_cloud_textures/high_cloud_textures.h"
 #include "passes/high_cloud_textures/regional_cover_texture.h"
@@ -33,6 +34,7 @@
 namespace sky {
 
 class Context;
+class OcioOutput;
 class ShaderCompiler;
 
 // Extra images a render can write besides the frame (the debug view): the high-cloud
@@ -48,11 +50,22 @@ const std::vector<DebugOutputInfo>& debugOutputs();
 // BadInput naming the first unknown name, or one that `scene` does not produce.
 void checkDebugOutputs(const Scene& scene, const std::vector<std::string>& names);
 
+// What a frame reads back to the host. Each 32-bit layer at 1280 x 720 is 15 MB to copy and
+// convert: a still wants the EXR's layers, a viewer or a benchmark frame only a picture.
+enum class ReadBack {
+  Layers,   // the EXR's: beauty, sky, high_clouds, clouds (and weather for a top-down view)
+  Beauty,   // the beauty alone
+  Display,  // RenderedFrame::display alone (needs RenderOptions::gpuDisplay)
+};
+
 struct RenderOptions {
   std::vector<std::string> debugOutputs;  // names from debugOutputs(), checked
-  // Read back the EXR's layers besides the beauty (sky, high_clouds, clouds). A viewer or a
-  // benchmark frame needs the beauty alone, and each 32-bit layer costs as much to read back.
-  bool aovs = true;
+  ReadBack readBack = ReadBack::Layers;
+  // The GPU display path (passes/display_transform): with an OCIO config here, the frame's
+  // display image comes back as RenderedFrame::display, through the scene's display, view,
+  // night look and exposure (auto or fixed; a histogram exposure meters the read-back frame
+  // and needs the CPU path). The config must outlive the call.
+  const OcioOutput* gpuDisplay = nullptr;
 };
 
 struct DebugImage {
@@ -62,8 +75,8 @@ struct DebugImage {
 
 struct RenderedFrame {
   // "" = beauty (R,G,B,A); "sky" (R,G,B); "high_clouds" (R,G,B,A); "clouds" (R,G,B,A,depth);
-  // with camera.mode geographic_topdown also "weather" (cover_low, cover_mid). Without
-  // RenderOptions::aovs the beauty alone.
+  // with camera.mode geographic_topdown also "weather" (cover_low, cover_mid); as
+  // RenderOptions::readBack says (ReadBack::Display: no layer).
   LayeredImage image;
   FrameResult frame;       // per-pass GPU timings, wall time
   std::string graphDot;    // the compiled graph with timings (for --dump-graph)
@@ -79,6 +92,10 @@ struct RenderedFrame {
   WeatherRegion weatherRegion;
   glm::uvec2 weatherTexels{0};
   std::vector<DebugImage> debug;  // as requested in RenderOptions
+  // With RenderOptions::gpuDisplay: the display image, 8-bit RGBA codes (row 0 the top), and
+  // the exposure it was made with (EV).
+  std::vector<uint8_t> display;
+  double displayEv = 0.0;
 };
 
 // The physical sky's atmosphere for `scene`: its atmosphere settings with the ground's albedo
@@ -160,6 +177,7 @@ private:
   CloudShadowPass mShadow;
   CloudTemporalPass mTemporal;
   CloudLightVolumePass mLightVolume;
+  DisplayTransformPass mDisplay;
   Sampler mHistorySampler;      // linear, clamp
   HistoryImage mCloudHistory;   // RGBA32F: premultiplied radiance and opacity, the view's size
   HistoryImage mDepthHistory;   // R32F: transmittance-weighted distance (m)
