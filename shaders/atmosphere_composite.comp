@@ -34,7 +34,7 @@ layout(binding = ATMOSPHERE_COMPOSITE_BINDING_HIGH_CLOUDS, rgba32f) uniform read
     highCloudImage;
 #if ATMOSPHERE_COMPOSITE_CLOUDS
 layout(binding = ATMOSPHERE_COMPOSITE_BINDING_CLOUDS, rgba32f) uniform readonly image2D cloudImage;
-layout(binding = ATMOSPHERE_COMPOSITE_BINDING_CLOUD_DEPTH, r32f) uniform readonly image2D
+layout(binding = ATMOSPHERE_COMPOSITE_BINDING_CLOUD_DEPTH, rg32f) uniform readonly image2D
     cloudDepthImage;
 layout(binding = ATMOSPHERE_COMPOSITE_BINDING_CLOUD_SHADOW) uniform sampler2D cloudShadow;
 #endif

@@ -14,10 +14,6 @@
 #include "common/cloud_light_volume.glsl"
 #include "common/noise.glsl"
 
-#ifndef CLOUD_LIGHTS
-#define CLOUD_LIGHTS 3
-#endif
-
 layout(local_size_x = CLOUD_LIGHT_VOLUME_GROUP_X, local_size_y = CLOUD_LIGHT_VOLUME_GROUP_Y,
        local_size_z = CLOUD_LIGHT_VOLUME_GROUP_Z) in;
 layout(binding = CLOUD_LIGHT_VOLUME_BINDING_IMAGE, rg16f) uniform writeonly image3D lightVolume;
@@ -57,7 +53,7 @@ void main() {
   vec2 tau = vec2(0.0);
   vec2 latLon = latLonAltitude(params.geo, p).xy;
   for (int i = 0; i < 2; ++i) {
-    if (((CLOUD_LIGHTS >> i) & 1) == 0) continue;
+    if ((i == 0 ? params.sunMarched : params.moonMarched) == 0.0) continue;
     vec3 L = i == 0 ? params.sunDirection.xyz : params.moonDirection.xyz;
     gLightLine = latLonLine(p, latLon, L, lightLongStepDistance(params.lightDistanceM));
     tau[i] = params.extinction * lightMarchDensityRefined(p, L, params.lightDistanceM,

@@ -9,8 +9,8 @@
 //    frames of resampling do not blur the clouds' edges);
 //  - where that is uncertain (the depth around it spans enough parallax to move the point by
 //    over half a pixel: a disocclusion, a cloud edge crossing one further back) the history is
-//    clamped into the range of this frame's marched neighbours, so nothing that is not there
-//    any more lingers (no ghost); where there is no history (a cut, the screen's edge) the
+//    clamped into the range of this frame's four nearest marched pixels, so nothing that is
+//    not there any more lingers (no ghost); where there is no history (a cut, the screen's edge) the
 //    marched neighbours are upsampled, weighted by how alike their rays are (depth-aware: a
 //    ray that meets the ground first never takes a cloud from one that reaches the shells).
 // Every pixel is marched afresh once every block^2 frames, so whatever the reprojection
@@ -26,11 +26,11 @@ layout(std140, binding = CLOUD_TEMPORAL_BINDING_PARAMS) uniform CloudTemporalBlo
 };
 #define params paramsBlock[SKY_PARAMS_INDEX]
 layout(binding = CLOUD_TEMPORAL_BINDING_MARCHED, rgba32f) uniform readonly image2D marched;
-layout(binding = CLOUD_TEMPORAL_BINDING_MARCHED_DEPTH, r32f) uniform readonly image2D marchedDepth;
+layout(binding = CLOUD_TEMPORAL_BINDING_MARCHED_DEPTH, rg32f) uniform readonly image2D marchedDepth;
 layout(binding = CLOUD_TEMPORAL_BINDING_HISTORY) uniform sampler2D history;
-layout(binding = CLOUD_TEMPORAL_BINDING_HISTORY_DEPTH, r32f) uniform readonly image2D historyDepth;
+layout(binding = CLOUD_TEMPORAL_BINDING_HISTORY_DEPTH, rg32f) uniform readonly image2D historyDepth;
 layout(binding = CLOUD_TEMPORAL_BINDING_CLOUDS, rgba32f) uniform writeonly image2D outClouds;
-layout(binding = CLOUD_TEMPORAL_BINDING_DEPTH, r32f) uniform writeonly image2D outDepth;
+layout(binding = CLOUD_TEMPORAL_BINDING_DEPTH, rg32f) uniform writeonly image2D outDepth;
 
 // Where a ray with no cloud on it is taken to be, when nothing better is known (m): far
 // enough that only the camera's turning moves it.
@@ -129,48 +129,42 @@ void main() {
   } else {
     vec3 d = viewDirection(params.view, vec2(p) + 0.5);
     float entry = shellEntry(d);
-    // This frame's marched neighbours: a depth-aware bilinear upsampling of the four around
-    // the pixel, the range of the nine around its square, and the nearest and farthest
-    // cloud among those nine.
+    // This frame's four marched neighbours around the pixel: a depth-aware bilinear
+    // upsampling of them, their range (the clamp) and their nearest and farthest cloud.
     vec2 f = (vec2(p) - vec2(params.offsetX, params.offsetY)) / float(params.block);
     ivec2 q0 = ivec2(floor(f));
     vec2 t = f - vec2(q0);
     vec4 sum = vec4(0.0);
     float depthSum = 0.0, depthWeight = 0.0, weightSum = 0.0;
+    vec4 lo = vec4(1e30), hi = vec4(-1e30);
+    float near = 1e30, far = 0.0;
     for (int j = 0; j < 2; ++j)
       for (int i = 0; i < 2; ++i) {
         ivec2 qi = clamp(q0 + ivec2(i, j), ivec2(0), marchedSize - 1);
         float w = (i == 0 ? 1.0 - t.x : t.x) * (j == 0 ? 1.0 - t.y : t.y);
-        float e = shellEntry(viewDirection(params.view, vec2(marchedPixel(qi)) + 0.5));
+        vec4 c = imageLoad(marched, qi);
+        vec2 z = imageLoad(marchedDepth, qi).rg;  // depth, where its ray reached the shells
         // Rays that both miss the shells, or both reach them at similar distances, agree.
+        float e = z.g;
         float alike = (e < 0.0) != (entry < 0.0)
                           ? 1e-3
                           : 1.0 / (1.0 + 4.0 * abs(e - entry) / max(max(e, entry), 100.0));
         w = max(w, 1e-4) * alike;
-        vec4 c = imageLoad(marched, qi);
         sum += w * c;
         weightSum += w;
         // The depth of the cloudy ones alone, by opacity: a clear neighbour has no depth (0),
         // and averaging it in would pull the point toward the camera.
-        depthSum += w * c.a * imageLoad(marchedDepth, qi).r;
+        depthSum += w * c.a * z.r;
         depthWeight += w * c.a;
+        lo = min(lo, c);
+        hi = max(hi, c);
+        if (z.r > 0.0) {
+          near = min(near, z.r);
+          far = max(far, z.r);
+        }
       }
     vec4 upsampled = sum / weightSum;
     float upsampledDepth = depthWeight > 0.0 ? depthSum / depthWeight : 0.0;
-    vec4 lo = vec4(1e30), hi = vec4(-1e30);
-    float near = 1e30, far = 0.0;
-    for (int j = -1; j <= 1; ++j)
-      for (int i = -1; i <= 1; ++i) {
-        ivec2 qi = clamp(q + ivec2(i, j), ivec2(0), marchedSize - 1);
-        vec4 c = imageLoad(marched, qi);
-        lo = min(lo, c);
-        hi = max(hi, c);
-        float z = imageLoad(marchedDepth, qi).r;
-        if (z > 0.0) {
-          near = min(near, z);
-          far = max(far, z);
-        }
-      }
     // Where no cloud is near, the point is taken where the ray meets the shells, or far.
     float clear = entry > 0.0 ? entry : CLOUD_TEMPORAL_FAR_M;
     if (far <= 0.0) near = far = clear;

@@ -30,12 +30,6 @@
 #ifndef CLOUD_REFERENCE
 #define CLOUD_REFERENCE 0
 #endif
-// Which lights the march marches toward (CloudParams.sunMarched, moonMarched): bit 0 the sun,
-// bit 1 the moon. A constant, so a light that is not marched costs nothing: lavapipe runs a
-// loop body it skips at run time all the same, which was a second light march every sample.
-#ifndef CLOUD_LIGHTS
-#define CLOUD_LIGHTS 3
-#endif
 // The reference's light march: the standard one (lightMarchDensity) with each short step
 // split this many ways and the long one into twice as many, so it is the same quadrature
 // refined and reaches as far (Lu (22)'s clamp sees the same path).
@@ -49,7 +43,7 @@
 layout(local_size_x = VOLUMETRIC_CLOUDS_GROUP_X, local_size_y = VOLUMETRIC_CLOUDS_GROUP_Y) in;
 
 layout(binding = VOLUMETRIC_CLOUDS_BINDING_CLOUDS, rgba32f) uniform writeonly image2D cloudImage;
-layout(binding = VOLUMETRIC_CLOUDS_BINDING_DEPTH, r32f) uniform writeonly image2D depthImage;
+layout(binding = VOLUMETRIC_CLOUDS_BINDING_DEPTH, rg32f) uniform writeonly image2D depthImage;
 layout(binding = VOLUMETRIC_CLOUDS_BINDING_STEPS, rgba16f) uniform writeonly image2D stepImage;
 
 // Counts density evaluations inside the light march for the step heat map.
@@ -111,7 +105,7 @@ vec3 keyLightAt(int i, int layer) {
 }
 bool keyLightMarched(int i, int layer) {
   vec3 E = keyLightAt(i, layer);
-  return ((CLOUD_LIGHTS >> i) & 1) != 0 && max(E.r, max(E.g, E.b)) > 0.0;
+  return (i == 0 ? params.sunMarched : params.moonMarched) != 0.0 && max(E.r, max(E.g, E.b)) > 0.0;
 }
 
 #if CLOUD_LIGHT_VOLUME
@@ -283,11 +277,15 @@ void main() {
   float transmittance = 1.0;
   float depthSum = 0.0;
   int samples = 0;
+  // Where the ray first reaches the shells, -1 if it never does (the ground comes first): the
+  // temporal pass's upsampling compares rays by it (cloud_temporal.comp).
+  float shellEntry = -1.0;
   if (params.anyCover > 0.0) {
     float R = params.geo.origin.w;
     vec2 iv[2];
     int n = shellIntervals(o, d, geoCentre(params.geo), R + params.shellBaseM, R + params.shellTopM,
                            R, iv);
+    if (n > 0) shellEntry = iv[0].x;
     float jitter = pixelHash(id, params.frameIndex, 0u) * params.jitter;
     int maxSteps = int(params.maxSteps);
     CloudLight light = CloudLight(vec2(0.0), -1);
@@ -382,6 +380,6 @@ void main() {
   }
   float alpha = 1.0 - transmittance;
   imageStore(cloudImage, ip, vec4(radiance, alpha));
-  imageStore(depthImage, ip, vec4(alpha > 0.0 ? depthSum / alpha : 0.0));
+  imageStore(depthImage, ip, vec4(alpha > 0.0 ? depthSum / alpha : 0.0, shellEntry, 0.0, 0.0));
   imageStore(stepImage, ip, vec4(float(samples), float(gLightSamples), 0.0, 0.0));
 }

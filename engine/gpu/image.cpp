@@ -19,6 +19,7 @@ uint32_t formatTexelSize(VkFormat f) {
     case VK_FORMAT_R8G8B8A8_SRGB:
       return 4;
     case VK_FORMAT_R16G16B16A16_SFLOAT:
+    case VK_FORMAT_R32G32_SFLOAT:
       return 8;
     case VK_FORMAT_R32G32B32A32_SFLOAT:
       return 16;
@@ -34,6 +35,7 @@ uint32_t formatChannelCount(VkFormat f) {
     case VK_FORMAT_R32_SFLOAT:
       return 1;
     case VK_FORMAT_R16G16_SFLOAT:
+    case VK_FORMAT_R32G32_SFLOAT:
       return 2;
     case VK_FORMAT_R8G8B8A8_UNORM:
     case VK_FORMAT_R8G8B8A8_SRGB:
@@ -55,6 +57,8 @@ const char* formatName(VkFormat f) {
       return "r32f";
     case VK_FORMAT_R16G16_SFLOAT:
       return "rg16f";
+    case VK_FORMAT_R32G32_SFLOAT:
+      return "rg32f";
     case VK_FORMAT_R8G8B8A8_UNORM:
       return "rgba8";
     case VK_FORMAT_R8G8B8A8_SRGB:

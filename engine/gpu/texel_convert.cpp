@@ -17,6 +17,7 @@ std::vector<float> texelsToFloat(VkFormat format, std::span<const uint8_t> bytes
   std::vector<float> out;
   switch (format) {
     case VK_FORMAT_R32_SFLOAT:
+    case VK_FORMAT_R32G32_SFLOAT:
     case VK_FORMAT_R32G32B32A32_SFLOAT:
       out.resize(bytes.size() / 4);
       std::memcpy(out.data(), bytes.data(), out.size() * 4);

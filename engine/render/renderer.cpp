@@ -221,7 +221,7 @@ Renderer::HistoryStep Renderer::stepHistory(const Scene& scene, const IsoTime& t
   desc.format = VK_FORMAT_R32G32B32A32_SFLOAT;
   desc.name = "clouds";
   mCloudHistory.ensure(ctx, desc);
-  desc.format = VK_FORMAT_R32_SFLOAT;
+  desc.format = VK_FORMAT_R32G32_SFLOAT;
   desc.name = "clouds_depth";
   mDepthHistory.ensure(ctx, desc);
 

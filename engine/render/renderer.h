@@ -180,7 +180,7 @@ private:
   DisplayTransformPass mDisplay;
   Sampler mHistorySampler;      // linear, clamp
   HistoryImage mCloudHistory;   // RGBA32F: premultiplied radiance and opacity, the view's size
-  HistoryImage mDepthHistory;   // R32F: transmittance-weighted distance (m)
+  HistoryImage mDepthHistory;   // RG32F: transmittance-weighted distance (m) in r
   CloudHistory mHistory;        // the frame they hold
   CloudDensitySlicePass mSlice;
   CloudVolumeExportPass mVolumeExport;

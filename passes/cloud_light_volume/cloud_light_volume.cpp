@@ -51,11 +51,12 @@ shared::CloudLightVolume cloudLightVolumePlace(const shared::CloudParams& params
 
 CloudLightVolumePass::CloudLightVolumePass(const Context& ctx, ShaderCompiler& compiler)
     : mPipelines(ctx, compiler, "cloud_light_volume.comp", kName),
-      mSampler(ctx, SamplerWrap::Clamp),
-      mVolume(makeVolume(ctx)) {}
+      mCtx(ctx),
+      mSampler(ctx, SamplerWrap::Clamp) {}
 
 CloudLightVolumePass::Outputs CloudLightVolumePass::addTo(FrameGraph& graph, const Inputs& in) {
   Outputs out;
+  if (!mVolume.image) mVolume = makeVolume(mCtx);  // 8 MB, only for scenes that use it
   const ImageId volume = graph.importImage(mVolume);
   if (mValid && cloudFieldReusable(mMade, in.key, kMaxShiftM)) {
     out.volume = volume;

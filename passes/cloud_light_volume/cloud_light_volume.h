@@ -49,6 +49,7 @@ public:
 
 private:
   CloudPipelines mPipelines;
+  const Context& mCtx;
   Sampler mSampler;  // linear, clamp
   PersistentImage mVolume;
   const ComputePipeline* mPipeline = nullptr;

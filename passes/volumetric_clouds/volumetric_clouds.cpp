@@ -62,7 +62,7 @@ CloudPipelines::CloudPipelines(const Context& ctx, ShaderCompiler& compiler, con
     : mCtx(ctx), mCompiler(compiler), mFile(file), mName(name) {}
 
 const ComputePipeline& CloudPipelines::get(const shared::CloudParams& p) {
-  const std::array<uint32_t, 13> key = {p.frameKind == CLOUD_FRAME_TOPDOWN ? 1u : 0u,
+  const std::array<uint32_t, 12> key = {p.frameKind == CLOUD_FRAME_TOPDOWN ? 1u : 0u,
                                        p.lightSteps,
                                        p.octaves,
                                        p.phaseKind,
@@ -73,18 +73,15 @@ const ComputePipeline& CloudPipelines::get(const shared::CloudParams& p) {
                                        p.lightDetailSteps,
                                        p.lightNoiseSteps,
                                        p.reference,
-                                       (p.sunMarched != 0.0f ? 1u : 0u) |
-                                           (p.moonMarched != 0.0f ? 2u : 0u),
                                        p.lightVolume.enabled};
   std::unique_ptr<ComputePipeline>& pipeline = mPipelines[key];
   if (!pipeline) {
-    const char* names[13] = {"CLOUD_TOPDOWN",           "CLOUD_LIGHT_STEPS",
+    const char* names[12] = {"CLOUD_TOPDOWN",           "CLOUD_LIGHT_STEPS",
                              "CLOUD_OCTAVES",           "CLOUD_DUAL_LOBE",
                              "CLOUD_ENERGY_CONSERVING", "CLOUD_CALIBRATED",
                              "CLOUD_TANG",              "CLOUD_ROLLS",
                              "CLOUD_LIGHT_DETAIL_STEPS", "CLOUD_LIGHT_NOISE_STEPS",
-                             "CLOUD_REFERENCE",         "CLOUD_LIGHTS",
-                             "CLOUD_LIGHT_VOLUME"};
+                             "CLOUD_REFERENCE",         "CLOUD_LIGHT_VOLUME"};
     std::vector<ShaderDefine> defines;
     for (size_t i = 0; i < key.size(); ++i) defines.push_back({names[i], std::to_string(key[i])});
     CompiledShader shader = compileForDevice(mCtx, mCompiler, mFile, defines);
@@ -304,7 +301,7 @@ VolumetricCloudsPass::Outputs VolumetricCloudsPass::setup(GraphBuilder& b, const
   desc.format = VK_FORMAT_R32G32B32A32_SFLOAT;
   desc.name = "clouds";
   mOutputs.clouds = b.write(b.create(desc), Access::StorageWriteCompute);
-  desc.format = VK_FORMAT_R32_SFLOAT;
+  desc.format = VK_FORMAT_R32G32_SFLOAT;
   desc.name = "clouds_depth";
   mOutputs.depth = b.write(b.create(desc), Access::StorageWriteCompute);
   desc.format = VK_FORMAT_R16G16B16A16_SFLOAT;

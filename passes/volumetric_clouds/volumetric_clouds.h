@@ -53,7 +53,7 @@ private:
   ShaderCompiler& mCompiler;
   const char* mFile;
   const char* mName;
-  std::map<std::array<uint32_t, 13>, std::unique_ptr<ComputePipeline>> mPipelines;
+  std::map<std::array<uint32_t, 12>, std::unique_ptr<ComputePipeline>> mPipelines;
 };
 
 class VolumetricCloudsPass {
@@ -69,7 +69,8 @@ public:
   };
   struct Outputs {
     ImageId clouds;  // RGBA16F: rgb radiance premultiplied, a opacity (1 - transmittance)
-    ImageId depth;   // R32F: transmittance-weighted distance to the clouds (m), 0 where clear
+    ImageId depth;   // RG32F: transmittance-weighted distance to the clouds (m), 0 where
+                     // clear; g: where the ray reaches the shells (m), -1 if never
     ImageId steps;   // RGBA16F: density samples along the view ray, and inside light marches
   };
 

@@ -12,7 +12,8 @@
 #define VOLUMETRIC_CLOUDS_BINDING_PARAMS 0
 #define VOLUMETRIC_CLOUDS_BINDING_LIGHTING 1
 #define VOLUMETRIC_CLOUDS_BINDING_CLOUDS 2  // out: rgb premultiplied radiance, a opacity
-#define VOLUMETRIC_CLOUDS_BINDING_DEPTH 3   // out: r transmittance-weighted distance (m)
+#define VOLUMETRIC_CLOUDS_BINDING_DEPTH 3   // out: r transmittance-weighted distance (m),
+                                            // g where the ray reaches the shells (-1: never)
 #define VOLUMETRIC_CLOUDS_BINDING_STEPS 4   // out: r density samples taken, g light samples
 #define VOLUMETRIC_CLOUDS_BINDING_SHAPE 5
 #define VOLUMETRIC_CLOUDS_BINDING_DETAIL 6
