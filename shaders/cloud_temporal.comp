@@ -18,6 +18,7 @@
 #include "common/cloud_temporal_shared.h"
 #include "common/params_block.glsl"
 #include "common/view.glsl"
+#include "common/cloud_shells.glsl"
 
 layout(local_size_x = CLOUD_TEMPORAL_GROUP_X, local_size_y = CLOUD_TEMPORAL_GROUP_Y) in;
 
@@ -44,33 +45,6 @@ layout(binding = CLOUD_TEMPORAL_BINDING_DEPTH, rg32f) uniform writeonly image2D 
 ivec2 marchedPixel(ivec2 q) {
   return min(q * int(params.block) + ivec2(params.offsetX, params.offsetY),
              ivec2(params.view.size.xy) - 1);
-}
-
-// The distance along the ray (origin at the camera, unit d) at which it first lies between
-// the shells' altitudes before meeting the ground; -1 when it never does. The upsampling's
-// guide: rays alike in this see alike clouds.
-float shellEntry(vec3 d) {
-  float R = params.planetRadiusM;
-  float h = params.cameraAltitudeM;
-  float rc = R + h;  // the camera's distance from the centre; centre at (0, 0, -rc)
-  float b = rc * d.z;  // dot(camera - centre, d)
-  float c0 = rc * rc;
-  // The ground: the ray meets the sphere R at the nearer root, when it meets it ahead.
-  float discGround = b * b - (c0 - R * R);
-  float ground = discGround > 0.0 && -b - sqrt(discGround) > 0.0 ? -b - sqrt(discGround) : 1e30;
-  float rBase = R + params.shellBaseM, rTop = R + params.shellTopM;
-  if (h >= params.shellBaseM && h <= params.shellTopM) return 0.0;  // inside the shells
-  float t;
-  if (h < params.shellBaseM) {
-    float disc = b * b - (c0 - rBase * rBase);  // from below: leaving the base sphere
-    t = -b + sqrt(max(disc, 0.0));
-  } else {
-    float disc = b * b - (c0 - rTop * rTop);  // from above: entering the top sphere
-    if (disc <= 0.0) return -1.0;
-    t = -b - sqrt(disc);
-    if (t < 0.0) return -1.0;
-  }
-  return t < ground ? t : -1.0;
 }
 
 // The continuous pixel of last frame's view that saw the cloud point now at distance `dist`
@@ -122,13 +96,17 @@ void main() {
   ivec2 q = p / int(params.block);
   vec4 clouds;
   float depth;
+  float entry;  // where this pixel's ray reaches the shells (-1: never), kept with the depth
   if (all(equal(p, marchedPixel(q)))) {
     // Marched this frame.
     clouds = imageLoad(marched, q);
-    depth = imageLoad(marchedDepth, q).r;
+    vec2 z = imageLoad(marchedDepth, q).rg;
+    depth = z.r;
+    entry = z.g;
   } else {
     vec3 d = viewDirection(params.view, vec2(p) + 0.5);
-    float entry = shellEntry(d);
+    entry = cloudShellEntry(params.planetRadiusM, params.cameraAltitudeM, params.shellBaseM,
+                            params.shellTopM, d);
     // This frame's four marched neighbours around the pixel: a depth-aware bilinear
     // upsampling of them, their range (the clamp) and their nearest and farthest cloud.
     vec2 f = (vec2(p) - vec2(params.offsetX, params.offsetY)) / float(params.block);
@@ -145,11 +123,7 @@ void main() {
         vec4 c = imageLoad(marched, qi);
         vec2 z = imageLoad(marchedDepth, qi).rg;  // depth, where its ray reached the shells
         // Rays that both miss the shells, or both reach them at similar distances, agree.
-        float e = z.g;
-        float alike = (e < 0.0) != (entry < 0.0)
-                          ? 1e-3
-                          : 1.0 / (1.0 + 4.0 * abs(e - entry) / max(max(e, entry), 100.0));
-        w = max(w, 1e-4) * alike;
+        w = max(w, 1e-4) * cloudShellAlike(z.g, entry);
         sum += w * c;
         weightSum += w;
         // The depth of the cloudy ones alone, by opacity: a clear neighbour has no depth (0),
@@ -197,5 +171,5 @@ void main() {
     }
   }
   imageStore(outClouds, p, clouds);
-  imageStore(outDepth, p, vec4(depth));
+  imageStore(outDepth, p, vec4(depth, entry, 0.0, 0.0));
 }

@@ -153,6 +153,7 @@ Renderer::Renderer(const Context& ctx, ShaderCompiler& compiler)
       mVolumetric(ctx, compiler),
       mShadow(ctx, compiler),
       mTemporal(ctx, compiler),
+      mUpsample(ctx, compiler),
       mLightVolume(ctx, compiler),
       mDisplay(ctx, compiler),
       mHistorySampler(ctx, SamplerWrap::Clamp),
@@ -289,7 +290,14 @@ RenderedFrame Renderer::render(const Scene& scene, const IsoTime& time,
   stars.view = view;
   stars.j2000ToEnu = glm::mat3(out.lighting.ephemeris.equatorialJ2000ToEnu);
   stars.extinction = static_cast<float>(scene.lighting.starExtinction);
-  StarFieldPass::Outputs starOut = mStars.addTo(graph, stars);
+  // No star passes by day: the brightest star over a pixel of this view against the sky.
+  const glm::vec3 skyColor = glm::vec3(out.lighting.gpu.palette.sky);
+  const double skyLuminance = 0.2126 * skyColor.r + 0.7152 * skyColor.g + 0.0722 * skyColor.b;
+  const bool starsShow =
+      out.lighting.dayFactor < 1.0 ||
+      starsVisible(mStars.brightestVmag(), out.lighting.gpu.night.z,
+                   double(view.forward.w) * double(view.forward.w), skyLuminance);
+  StarFieldPass::Outputs starOut = mStars.addTo(graph, stars, starsShow);
 
   // The high-cloud textures: kept from the last frame, loaded, or baked (before this graph).
   // With a forecast's high layer the cover comes from the map per pixel, at the data's
@@ -343,8 +351,18 @@ RenderedFrame Renderer::render(const Scene& scene, const IsoTime& time,
   if (out.clouds) {
     cloudFrame = mClouds.addTo(graph, cloudScene, time);
     out.cloudNoise = mClouds.noiseActivity();
+    // Temporal reuse: a sequence's frames march a share of the pixels and reproject the rest,
+    // at the view's size or at half its width and height.
+    const bool temporal = scene.clouds.temporal.mode == CloudTemporalMode::On &&
+                          scene.clouds.quality == CloudQuality::Standard && !topDown;
+    const bool half =
+        temporal && scene.clouds.temporal.resolution == CloudTemporalResolution::Half;
+    const uint32_t cloudWidth = half ? (width + 1) / 2 : width;
+    const uint32_t cloudHeight = half ? (height + 1) / 2 : height;
+    const shared::ViewState cloudView =
+        half ? makeViewState(scene.camera, cloudWidth, cloudHeight) : view;
     VolumetricCloudsPass::Inputs in;
-    in.params = cloudParams(setup.volumetric, out.lighting, time, view, cloudFrame.maxCover,
+    in.params = cloudParams(setup.volumetric, out.lighting, time, cloudView, cloudFrame.maxCover,
                             cloudFrame.weatherSize, cloudFrame.coverage, cloudFrame.noiseMeans,
                             cloudFrame.lowRolls);
     in.lighting = out.lighting.gpu;
@@ -372,12 +390,9 @@ RenderedFrame Renderer::render(const Scene& scene, const IsoTime& time,
       in.lightVolume = volume.volume;
       in.lightVolumeSampler = &mLightVolume.sampler();
     }
-    // Temporal reuse: a sequence's frames march a share of the pixels and reproject the rest.
-    const bool temporal = scene.clouds.temporal.mode == CloudTemporalMode::On &&
-                          scene.clouds.quality == CloudQuality::Standard && !topDown;
     std::optional<HistoryStep> step;
     if (temporal) {
-      step = stepHistory(scene, time, view, width, height);
+      step = stepHistory(scene, time, cloudView, cloudWidth, cloudHeight);
       in.params.marchBlock = step->block;
       in.params.marchOffsetX = step->offset.x;
       in.params.marchOffsetY = step->offset.y;
@@ -388,9 +403,10 @@ RenderedFrame Renderer::render(const Scene& scene, const IsoTime& time,
     clouds = graph.add(mVolumetric, in);
     if (temporal) {
       CloudTemporalPass::Inputs t;
-      t.params = cloudTemporalParams(view, mHistory.view, step->motion, step->block, step->offset,
-                                     step->valid, in.params.geo.origin.w, scene.camera.altitudeM,
-                                     in.params.shellBaseM, in.params.shellTopM);
+      t.params = cloudTemporalParams(cloudView, mHistory.view, step->motion, step->block,
+                                     step->offset, step->valid, in.params.geo.origin.w,
+                                     scene.camera.altitudeM, in.params.shellBaseM,
+                                     in.params.shellTopM);
       t.marched = clouds.clouds;
       t.marchedDepth = clouds.depth;
       t.clouds = graph.importHistory(mCloudHistory);
@@ -400,6 +416,20 @@ RenderedFrame Renderer::render(const Scene& scene, const IsoTime& time,
       clouds.clouds = resolved.clouds;
       clouds.depth = resolved.depth;
       pendingHistory = std::move(step->next);
+    }
+    if (half) {
+      CloudUpsamplePass::Inputs u;
+      u.params.view = view;
+      u.params.source = cloudView;
+      u.params.planetRadiusM = in.params.geo.origin.w;
+      u.params.cameraAltitudeM = static_cast<float>(scene.camera.altitudeM);
+      u.params.shellBaseM = in.params.shellBaseM;
+      u.params.shellTopM = in.params.shellTopM;
+      u.clouds = clouds.clouds;
+      u.depth = clouds.depth;
+      const CloudUpsamplePass::Outputs full = graph.add(mUpsample, u);
+      clouds.clouds = full.clouds;
+      clouds.depth = full.depth;
     }
     if (layers) {
       graph.requestOutput(clouds.clouds, "clouds");

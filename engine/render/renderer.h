@@ -23,6 +23,7 @@
 #include "passes/cloud_light_volume/cloud_light_volume.h"
 #include "passes/cloud_shadow/cloud_shadow.h"
 #include "passes/cloud_temporal/cloud_temporal.h"
+#include "passes/cloud_upsample/cloud_upsample.h"
 #include "passes/display_transform/display_transform.h"
 #include "passes/cloud_volume_export/cloud_volume_export.h"
 #include "passes/high_cloud_textures/high_cloud_textures.h"
@@ -176,6 +177,7 @@ private:
   VolumetricCloudsPass mVolumetric;
   CloudShadowPass mShadow;
   CloudTemporalPass mTemporal;
+  CloudUpsamplePass mUpsample;
   CloudLightVolumePass mLightVolume;
   DisplayTransformPass mDisplay;
   Sampler mHistorySampler;      // linear, clamp

@@ -276,6 +276,14 @@ constexpr auto enumNames(CloudTemporalMode) {
       {{CloudTemporalMode::Off, "off"}, {CloudTemporalMode::On, "on"}});
 }
 
+// clouds.temporal.resolution: the clouds of a sequence marched and kept at the view's size,
+// or at half its width and height and upsampled (passes/cloud_upsample).
+enum class CloudTemporalResolution { Full, Half };
+constexpr auto enumNames(CloudTemporalResolution) {
+  return std::to_array<EnumName<CloudTemporalResolution>>(
+      {{CloudTemporalResolution::Full, "full"}, {CloudTemporalResolution::Half, "half"}});
+}
+
 // Temporal reuse of the volumetric clouds (Nubis-style): each frame marches one pixel of every
 // block x block square and reprojects the rest from the frames before, with the camera's
 // motion and the wind. A single frame (a still) is unchanged whatever these say: it marches
@@ -283,6 +291,7 @@ constexpr auto enumNames(CloudTemporalMode) {
 struct CloudTemporalSettings {
   CloudTemporalMode mode = CloudTemporalMode::Off;
   int block = 4;  // 1..4: a frame marches 1 / block^2 of the pixels
+  CloudTemporalResolution resolution = CloudTemporalResolution::Full;
 };
 
 // The volumetric low and mid clouds (Lu et al. 2023, Tang et al. 2019), raymarched through

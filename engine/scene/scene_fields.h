@@ -206,6 +206,10 @@ void describe(V& v, CloudTemporalSettings& s) {
           "frame always marches them all");
   v.field("block", s.block, NumberRange{1, 4},
           "each frame marches one pixel of every block x block square (4: a sixteenth)");
+  v.field("resolution", s.resolution,
+          "full: the clouds are marched and kept at the view's size; half: at half its width "
+          "and height, upsampled depth-aware (four times fewer pixels to march; the first "
+          "frame then differs from the still)");
 }
 
 template <class V>

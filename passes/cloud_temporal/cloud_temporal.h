@@ -37,7 +37,7 @@ public:
     ImageId marched;       // the cloud pass's clouds, the view's size / block
     ImageId marchedDepth;  // and depth
     HistoryIds clouds;     // RGBA32F, the view's size
-    HistoryIds depth;      // RG32F, the view's size: depth (m), g unused
+    HistoryIds depth;      // RG32F, the view's size: depth (m), where the ray reaches the shells
     const Sampler* historySampler = nullptr;  // linear, clamp
   };
   struct Outputs {

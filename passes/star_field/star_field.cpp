@@ -43,6 +43,13 @@ VkDeviceSize starFluxBufferBytes(uint32_t width, uint32_t height) {
   return (STAR_FLUX_HEADER_UINTS + VkDeviceSize(width) * height) * sizeof(uint32_t);
 }
 
+bool starsVisible(double brightestVmag, double fluxPerVega, double pixelSolidAngleSr,
+                  double skyLuminance) {
+  constexpr double kBelowACode = 1e-3;
+  const double radiance = fluxPerVega * std::pow(10.0, -0.4 * brightestVmag) / pixelSolidAngleSr;
+  return !(radiance < kBelowACode * skyLuminance);
+}
+
 StarClearPass::StarClearPass(const Context& ctx, ShaderCompiler& compiler)
     : mPipeline(buildPipeline(ctx, compiler, kName)) {}
 
@@ -69,9 +76,19 @@ StarFieldPass::StarFieldPass(const Context& ctx, ShaderCompiler& compiler,
     : mClear(ctx, compiler),
       mPipeline(buildPipeline(ctx, compiler, kName)),
       mStars(uploadStars(ctx, stars)),
-      mStarCount(static_cast<uint32_t>(stars.size())) {}
+      mNoStars{Buffer(ctx, {"no_stars", starFluxBufferBytes(0, 0) + sizeof(uint32_t),
+                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, BufferMemory::HostVisible}),
+               {}},
+      mStarCount(static_cast<uint32_t>(stars.size())) {
+  std::memset(mNoStars.buffer.mapped(), 0, mNoStars.buffer.size());
+  mBrightestVmag = std::min_element(stars.begin(), stars.end(), [](const Star& a, const Star& b) {
+                     return a.vmag < b.vmag;
+                   })->vmag;
+}
 
-StarFieldPass::Outputs StarFieldPass::addTo(FrameGraph& graph, const Frame& frame) {
+StarFieldPass::Outputs StarFieldPass::addTo(FrameGraph& graph, const Frame& frame,
+                                            bool visible) {
+  if (!visible) return {graph.importBuffer(mNoStars)};
   Inputs in;
   in.stars = graph.importBuffer(mStars);
   in.flux = graph.add(mClear, {frame.view.size.x, frame.view.size.y}).flux;

@@ -23,6 +23,15 @@ class ShaderCompiler;
 // Bytes of the flux buffer of a width x height image: the uvec4 header, one uint per pixel.
 VkDeviceSize starFluxBufferBytes(uint32_t width, uint32_t height);
 
+// Whether any star can show in a frame: the brightest catalogue star (`brightestVmag`), its
+// flux (`fluxPerVega`: LightingState night.z, a V = 0 star's illuminance) spread over one pixel
+// of `pixelSolidAngleSr`, against the radiance of the sky behind it (`skyLuminance`): under
+// 1/1000 of it the star is below one 8-bit code of any view, so by day the star passes are
+// left out ("no star passes by day"). A camera with pixels small enough (a long lens) keeps
+// them: the brightest stars do show in a telescope's daytime sky.
+bool starsVisible(double brightestVmag, double fluxPerVega, double pixelSolidAngleSr,
+                  double skyLuminance);
+
 // Creates the frame's flux buffer, zeroed, with its (width, height) header.
 class StarClearPass {
 public:
@@ -69,10 +78,14 @@ public:
 
   // Imports the star buffer, adds star_clear and star_field to `graph` and returns the
   // filled flux buffer. This pass object must outlive graph.execute().
-  Outputs addTo(FrameGraph& graph, const Frame& frame);
+  // With `visible` false (stars drowned in the day sky, starsVisible) it adds no pass and
+  // returns an empty field: a flux buffer of size 0 x 0, which starFlux() reads as no star.
+  Outputs addTo(FrameGraph& graph, const Frame& frame, bool visible = true);
 
   // The pieces addTo() uses, for graphs that want to place the passes themselves.
   PersistentBuffer& starBuffer() { return mStars; }
+  // The V magnitude of the brightest star in the catalogue.
+  double brightestVmag() const { return mBrightestVmag; }
   uint32_t starCount() const { return mStarCount; }
   Outputs setup(GraphBuilder& builder, const Inputs& inputs);
   void execute(PassContext& ctx) const;
@@ -81,7 +94,9 @@ private:
   StarClearPass mClear;
   ComputePipeline mPipeline;
   PersistentBuffer mStars;
+  PersistentBuffer mNoStars;  // a flux buffer with a 0 x 0 header
   uint32_t mStarCount = 0;
+  double mBrightestVmag = 0.0;
   shared::StarFieldParams mParams{};
   Inputs mInputs{};
   Outputs mOutputs;

@@ -1,6 +1,7 @@
 // passes/atmosphere_composite on the device: the shader against a C++ reference of Kozlov
 // 3.1 lit by sun and moon (every pixel), the sun and moon discs' energy and phase, stars by
 // night only, and golden images from day to night.
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -214,9 +215,25 @@ TEST_F(AtmosphereCompositeTest, StarsShineOnlyInTheDark) {
     if (beauty->pixels[i * 4 + 1] > 1.1f * sky->pixels[i * 3 + 1]) ++starPixels;
   EXPECT_GE(starPixels, 10) << "pixels where stars outshine the night sky by 10 %";
 
+  const auto hasStarPasses = [](const RenderedFrame& f) {
+    return std::any_of(f.frame.passes.begin(), f.frame.passes.end(),
+                       [](const PassTiming& t) { return t.name == "star_field"; });
+  };
+  EXPECT_TRUE(hasStarPasses(night));
+
   RenderedFrame noon = render(scene, "2024-06-06T13:00:00+02:00");
   const glm::dvec3 added = addedIlluminance(noon, scene.camera);
   EXPECT_LT(added.g, 1e-6 * noon.lighting.gpu.sun.illuminance.g) << "no stars by day";
+  EXPECT_FALSE(hasStarPasses(noon)) << "no star passes by day";
+  // Through a long lens (a 0.05 degree field, pixels of 1.4 arcseconds) Sirius outshines a
+  // pixel's worth of the noon sky, as it does in a telescope: the passes stay.
+  scene.camera.verticalFov = 0.05;
+  EXPECT_TRUE(hasStarPasses(render(scene, "2024-06-06T13:00:00+02:00")));
+  // Vega's 2.5e-6 lux is 8e-11 renderer units; a 1280 x 720 pixel of a 60 degree view spans
+  // 2e-6 sr; the noon sky is about 0.3 units.
+  EXPECT_FALSE(starsVisible(-1.46, 8e-11, 2e-6, 0.3)) << "Sirius in a 720p pixel at noon";
+  EXPECT_TRUE(starsVisible(-1.46, 8e-11, 1e-11, 0.3)) << "in a telescope's pixel";
+  EXPECT_TRUE(starsVisible(-1.46, 8e-11, 2e-6, 1e-4)) << "in a dark sky";
 }
 
 TEST_F(AtmosphereCompositeTest, KozlovSkyTakesThePhysicalSkysHueAndPalesTowardTheHorizon) {
