@@ -52,17 +52,18 @@ shared::CloudLightVolume cloudLightVolumePlace(const shared::CloudParams& params
 CloudLightVolumePass::CloudLightVolumePass(const Context& ctx, ShaderCompiler& compiler)
     : mPipelines(ctx, compiler, "cloud_light_volume.comp", kName),
       mCtx(ctx),
-      mSampler(ctx, SamplerWrap::Clamp) {}
+      mSampler(ctx, SamplerWrap::Clamp),
+      mKept(kMaxShiftM) {}
 
 CloudLightVolumePass::Outputs CloudLightVolumePass::addTo(FrameGraph& graph, const Inputs& in) {
   Outputs out;
   if (!mVolume.image) mVolume = makeVolume(mCtx);  // 8 MB, only for scenes that use it
   const ImageId volume = graph.importImage(mVolume);
-  if (mValid && cloudFieldReusable(mMade, in.key, kMaxShiftM)) {
+  if (!mKept.needsMaking(in.key)) {
     out.volume = volume;
     out.place = mPlace;
     // The clouds drifted on since: read the volume where they were.
-    const glm::dvec2 shift = in.key.drift - mMade.drift;
+    const glm::dvec2 shift = mKept.shift(in.key);
     out.place.shiftEastM = static_cast<float>(shift.x);
     out.place.shiftNorthM = static_cast<float>(shift.y);
     return out;
@@ -70,11 +71,8 @@ CloudLightVolumePass::Outputs CloudLightVolumePass::addTo(FrameGraph& graph, con
   mTarget = volume;
   GraphBuilder b = graph.addPass(kName, [this](PassContext& ctx) { execute(ctx); });
   out = setup(b, in);
-  // Recorded as made now; a frame that then fails calls invalidate().
-  mMade = in.key;
   mPlace = in.params.lightVolume;
   mPlace.shiftEastM = mPlace.shiftNorthM = 0.0f;
-  mValid = true;
   return out;
 }
 

@@ -41,7 +41,7 @@ public:
   // This object must outlive graph.execute().
   Outputs addTo(FrameGraph& graph, const Inputs& inputs);
   // Forgets the volume, so the next frame makes it (a failed frame may not have).
-  void invalidate() { mMade.clouds.clear(); mValid = false; }
+  void invalidate() { mKept.invalidate(); }
   // The pieces addTo() uses.
   Outputs setup(GraphBuilder& builder, const Inputs& inputs);
   void execute(PassContext& ctx) const;
@@ -55,9 +55,8 @@ private:
   const ComputePipeline* mPipeline = nullptr;
   Inputs mInputs{};
   ImageId mTarget;
-  CloudFieldKey mMade;  // what the volume in memory was made from
+  KeptCloudProduct mKept;  // what the volume in memory was made from
   shared::CloudLightVolume mPlace{};
-  bool mValid = false;
 };
 
 }  // namespace sky

@@ -47,13 +47,15 @@ shared::CloudShadowMap cloudShadowMap(const shared::CloudParams& params, double 
 }
 
 CloudShadowPass::CloudShadowPass(const Context& ctx, ShaderCompiler& compiler)
-    : mPipelines(ctx, compiler, "cloud_shadow.comp", kName), mShadow(makeShadowImage(ctx)) {}
+    : mPipelines(ctx, compiler, "cloud_shadow.comp", kName),
+      mShadow(makeShadowImage(ctx)),
+      mKept(kMaxShiftM) {}
 
 CloudShadowPass::Outputs CloudShadowPass::addTo(FrameGraph& graph, const Inputs& in) {
   const ImageId shadow = graph.importImage(mShadow);
-  if (mValid && cloudFieldReusable(mMade, in.key, kMaxShiftM)) {
+  if (!mKept.needsMaking(in.key)) {
     Outputs out{shadow, mMap};
-    const glm::dvec2 shift = in.key.drift - mMade.drift;
+    const glm::dvec2 shift = mKept.shift(in.key);
     out.map.shiftEastM = static_cast<float>(shift.x);
     out.map.shiftNorthM = static_cast<float>(shift.y);
     return out;
@@ -61,9 +63,7 @@ CloudShadowPass::Outputs CloudShadowPass::addTo(FrameGraph& graph, const Inputs&
   mTarget = shadow;
   GraphBuilder b = graph.addPass(kName, [this](PassContext& ctx) { execute(ctx); });
   const Outputs out = setup(b, in);
-  mMade = in.key;
   mMap = out.map;
-  mValid = true;
   return out;
 }
 

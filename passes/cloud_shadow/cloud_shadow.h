@@ -40,7 +40,7 @@ public:
   // This object must outlive graph.execute().
   Outputs addTo(FrameGraph& graph, const Inputs& inputs);
   // Forgets the map (a frame that failed may not have made it).
-  void invalidate() { mValid = false; }
+  void invalidate() { mKept.invalidate(); }
   Outputs setup(GraphBuilder& builder, const Inputs& inputs);
   void execute(PassContext& ctx) const;
 
@@ -51,9 +51,8 @@ private:
   Inputs mInputs{};
   Outputs mOutputs;
   ImageId mTarget;
-  CloudFieldKey mMade;  // what the map in memory was made from
-  shared::CloudShadowMap mMap{};
-  bool mValid = false;
+  KeptCloudProduct mKept;         // what the map in memory was made from
+  shared::CloudShadowMap mMap{};  // where it lies
 };
 
 }  // namespace sky

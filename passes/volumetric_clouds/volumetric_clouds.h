@@ -156,6 +156,28 @@ struct CloudFieldKey {
 // camera moved by under 50 m, the drift within maxShiftM).
 bool cloudFieldReusable(const CloudFieldKey& made, const CloudFieldKey& now, double maxShiftM);
 
+// The bookkeeping of one such product (the pass owns the image): what it was made from.
+class KeptCloudProduct {
+public:
+  explicit KeptCloudProduct(double maxShiftM) : mMaxShiftM(maxShiftM) {}
+  // Whether a frame with `key` must make the product again; if so it is recorded as made
+  // for `key` (a frame that then fails calls invalidate()).
+  bool needsMaking(const CloudFieldKey& key) {
+    if (mValid && cloudFieldReusable(mMade, key, mMaxShiftM)) return false;
+    mMade = key;
+    mValid = true;
+    return true;
+  }
+  // How far (east, north, m) the clouds drifted from where they were when it was made.
+  glm::dvec2 shift(const CloudFieldKey& key) const { return key.drift - mMade.drift; }
+  void invalidate() { mValid = false; }
+
+private:
+  double mMaxShiftM;
+  CloudFieldKey mMade;
+  bool mValid = false;
+};
+
 // How far (east, north, m) the wind has carried the clouds' noise `elapsedS` seconds after the
 // scene's start (clouds.wind_speed_ms toward wind_from + 180 degrees).
 glm::dvec2 cloudWindDriftM(const CloudSettings& clouds, double elapsedS);

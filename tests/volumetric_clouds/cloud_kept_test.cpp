@@ -17,25 +17,14 @@ namespace {
 using test::cloudScene;
 using test::hasPass;
 
-class CloudKeptTest : public test::CloudRenderTest {
+class CloudKeptTest : public test::OwnRendererTest {
 protected:
-  Renderer& fresh() {
-    mCompiler = std::make_unique<ShaderCompiler>();
-    mRenderer = std::make_unique<Renderer>(ctx(), *mCompiler);
-    return *mRenderer;
-  }
-  void TearDown() override {
-    mRenderer.reset();
-    mCompiler.reset();
-  }
   static Scene scene(std::vector<std::string> more = {}) {
     std::vector<std::string> o = {"output.width=96", "output.height=54", "camera.altitude_m=300",
                                   "camera.pitch=-5"};  // some ground, in the clouds' shadows
     o.insert(o.end(), more.begin(), more.end());
     return cloudScene("cumulus_noon", o);
   }
-  std::unique_ptr<ShaderCompiler> mCompiler;
-  std::unique_ptr<Renderer> mRenderer;
 };
 
 std::vector<float> beauty(const RenderedFrame& f) {
@@ -53,7 +42,7 @@ TEST_F(CloudKeptTest, TheShadowMapIsKeptWhileTheCloudsAndTheSunStay) {
   EXPECT_FALSE(hasPass(kept, "cloud_shadow"));
   EXPECT_EQ(kept.cloudShadow.shiftEastM, 10.0f) << "wind_from 270: the drift is east";
   // ... and the frame is the one a fresh map gives, but for the map's own jitter.
-  Renderer other(ctx(), *mCompiler);
+  Renderer other(ctx(), ownCompiler());
   const RenderedFrame made = other.render(s, t.plusSeconds(1.0));
   EXPECT_TRUE(hasPass(made, "cloud_shadow"));
   EXPECT_GE(psnr(beauty(kept), beauty(made), 1.0), 40.0);

@@ -48,19 +48,8 @@ double opacityMismatch(const RenderedFrame& a, const RenderedFrame& b, float by)
   return static_cast<double>(n) / static_cast<double>(x.size());
 }
 
-class CloudTemporalTest : public test::CloudRenderTest {
+class CloudTemporalTest : public test::OwnRendererTest {
 protected:
-  // A renderer of its own: its history must not leak into the suite's shared one.
-  Renderer& fresh() {
-    mCompiler = std::make_unique<ShaderCompiler>();
-    mRenderer = std::make_unique<Renderer>(ctx(), *mCompiler);
-    return *mRenderer;
-  }
-  void TearDown() override {
-    mRenderer.reset();
-    mCompiler.reset();
-  }
-
   // cumulus_noon at 96x54 with temporal reuse on (or off), turned to `heading`.
   static Scene scene(bool temporal, double heading = 200.0,
                      std::vector<std::string> more = {}) {
@@ -70,9 +59,6 @@ protected:
     o.insert(o.end(), more.begin(), more.end());
     return cloudScene("cumulus_noon", o);
   }
-
-  std::unique_ptr<ShaderCompiler> mCompiler;
-  std::unique_ptr<Renderer> mRenderer;
 };
 
 TEST_F(CloudTemporalTest, TheFirstFrameIsTheStillAndLaterFramesMarchASixteenth) {

@@ -52,6 +52,28 @@ private:
   static inline std::unique_ptr<Renderer> sRenderer;
 };
 
+// A suite whose tests each need a renderer of their own, besides the suite's shared one: what
+// a renderer keeps between frames (temporal history, the kept shadow map and light volume)
+// must not leak from one test into another.
+class OwnRendererTest : public CloudRenderTest {
+protected:
+  // A new renderer, replacing the test's last one; it lives until the test ends.
+  Renderer& fresh() {
+    mOwnCompiler = std::make_unique<ShaderCompiler>();
+    mOwnRenderer = std::make_unique<Renderer>(sharedContext(), *mOwnCompiler);
+    return *mOwnRenderer;
+  }
+  ShaderCompiler& ownCompiler() { return *mOwnCompiler; }
+  void TearDown() override {
+    mOwnRenderer.reset();
+    mOwnCompiler.reset();
+  }
+
+private:
+  std::unique_ptr<ShaderCompiler> mOwnCompiler;
+  std::unique_ptr<Renderer> mOwnRenderer;
+};
+
 // configs/tests/clouds/<name>.yaml with `--set`-style overrides.
 inline Scene cloudScene(const std::string& name, const std::vector<std::string>& overrides = {}) {
   return loadSceneFile(configDir() / "tests" / "clouds" / (name + ".yaml"), overrides);
