@@ -242,6 +242,9 @@ def run_peer(resolution, frames, log):
     if not os.path.isfile(os.path.join(source, "run.sh")):
         log("peer: ../shared/peers/takram/run.sh is not here; no peer figures")
         return None
+    # Chromium and Node.js through the project's installer (only what is missing).
+    subprocess.run([os.path.join(ROOT, "scripts", "install-deps.sh"), "--peer"], check=True,
+                   stdout=sys.stderr)
     work = os.path.join(tempfile.gettempdir(), "skylayers-peer-takram")
     if not os.path.isdir(work):
         shutil.copytree(source, work, symlinks=True)
@@ -271,10 +274,19 @@ def fit_exponent(points):
     return sum((x - mx) * (y - my) for x, y in zip(xs, ys)) / sxx if sxx > 0 else None
 
 
-def scaling(cases):
+def scaling(cases, scenes):
+    """Cases of one scene file (and overrides) and variant at several resolutions: the fitted
+    exponent of time against pixels. Matrix scenes that differ only in frame counts (cumulus,
+    cumulus_big) are one scene here."""
     groups = {}
     for c in cases:
-        groups.setdefault((c["scene"], c["variant"]), []).append(
+        spec = scenes[c["scene"]]
+        if spec.get("heading_deg_per_frame"):
+            continue  # a pan's frames are not a still's
+        name = next(n for n, s in scenes.items()
+                    if s.get("scene") == spec.get("scene") and s.get("set") == spec.get("set")
+                    and not s.get("heading_deg_per_frame"))
+        groups.setdefault((name, c["variant"]), []).append(
             (c["pixels"], c["summary"]["frame_ms"]["median"]))
     out = []
     for (scene, variant), pts in sorted(groups.items()):
@@ -316,21 +328,31 @@ def plot(out_dir, cases, fits, fmt):
             for n in c["summary"]["pass_median_ms"]:
                 if n not in names:
                     names.append(n)
+        # The costliest passes first, so the legend reads in order of what matters.
+        names.sort(key=lambda n: -sum(c["summary"]["pass_median_ms"].get(n, 0.0) for c in cases))
         labels = [f"{c['scene']}\n{c['resolution']} {c['variant']}" for c in cases]
-        fig, ax = plt.subplots(figsize=(max(6, 0.9 * len(cases) + 3), 5.5))
+        fig, (ax, share) = plt.subplots(2, 1, figsize=(max(6, 0.9 * len(cases) + 3), 9),
+                                        sharex=True)
         bottom = [0.0] * len(cases)
+        shares = [0.0] * len(cases)
+        totals = [max(sum(c["summary"]["pass_median_ms"].values()), 1e-9) for c in cases]
         cmap = plt.get_cmap("tab20")
         for i, n in enumerate(names):
             vals = [c["summary"]["pass_median_ms"].get(n, 0.0) for c in cases]
             ax.bar(range(len(cases)), vals, bottom=bottom, label=n, color=cmap(i % 20))
+            part = [100.0 * v / t for v, t in zip(vals, totals)]
+            share.bar(range(len(cases)), part, bottom=shares, color=cmap(i % 20))
             bottom = [b + v for b, v in zip(bottom, vals)]
+            shares = [b + v for b, v in zip(shares, part)]
         ax.scatter(range(len(cases)), [c["summary"]["frame_ms"]["median"] for c in cases],
                    marker="_", s=300, color="black", label="whole frame (wall)", zorder=3)
-        ax.set_xticks(range(len(cases)))
-        ax.set_xticklabels(labels, rotation=60, ha="right", fontsize=7)
-        ax.set_ylabel("median ms per frame (GPU timestamps per pass)")
-        ax.set_title("Per-pass cost")
+        ax.set_yscale("log")
+        ax.set_ylabel("median ms per frame (log)")
+        ax.set_title("Per-pass cost (GPU timestamps, medians) and the whole frame")
         ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.0, 1.0))
+        share.set_ylabel("share of the GPU time (%)")
+        share.set_xticks(range(len(cases)))
+        share.set_xticklabels(labels, rotation=60, ha="right", fontsize=7)
         fig.tight_layout()
         path = os.path.join(out_dir, f"passes.{fmt}")
         fig.savefig(path, dpi=110)
@@ -356,6 +378,24 @@ def plot(out_dir, cases, fits, fmt):
         plt.close(fig)
         files.append(path)
     return files
+
+
+def shrink_images(folder, max_width):
+    """Box-filters every PNG in `folder` wider than max_width down by a whole factor, so a
+    run's images stay small enough to commit (--full-images keeps them as rendered)."""
+    import matplotlib.image as mpimg
+    import numpy as np
+    for name in sorted(os.listdir(folder)):
+        path = os.path.join(folder, name)
+        if not name.endswith(".png"):
+            continue
+        img = mpimg.imread(path)
+        k = -(-img.shape[1] // max_width)
+        if k <= 1:
+            continue
+        h, w = img.shape[0] // k * k, img.shape[1] // k * k
+        small = img[:h, :w].reshape(h // k, k, w // k, k, -1).mean(axis=(1, 3))
+        mpimg.imsave(path, np.clip(small, 0.0, 1.0))
 
 
 def git_build():
@@ -395,8 +435,9 @@ def goals(result):
         for cmp in result["comparisons"]:
             if (cmp["scene"], cmp["resolution"]) == (still["scene"], still["resolution"]) and \
                     cmp["a"]["build"] != cmp["b"]["build"]:
+                # B is the baseline: its time over ours is how much faster we are.
                 g["still_vs_baseline"] = {
-                    "speedup": 1.0 / cmp["ratio_b_over_a"]["median"],
+                    "speedup": cmp["ratio_b_over_a"]["median"],
                     "baseline": cmp["b"]["build"]}
         c = by.get((still["scene"], still["resolution"], still["variant"]))
         if c and c["quality"]:
@@ -426,6 +467,8 @@ def main():
                     help="run takram three-clouds (../shared/peers/takram) at the goal's view; "
                          "auto: when the matrix asks and the peer is present")
     ap.add_argument("--plots", choices=["png", "svg", "off"], default="png")
+    ap.add_argument("--full-images", action="store_true",
+                    help="keep the images as rendered (default: shrunk to 640 px wide)")
     args = ap.parse_args()
 
     def log(msg):
@@ -501,7 +544,7 @@ def main():
                      "python": platform.python_version()},
             "environment": {"MESA_SHADER_CACHE_DISABLE": "true"},
             "matrix": matrix, "cases": h.cases, "comparisons": h.comparisons,
-            "scaling": scaling(h.cases), "peer": peer,
+            "scaling": scaling(h.cases, matrix["scenes"]), "peer": peer,
             "validation_messages": validation,
             "harness_wall_s": time.monotonic() - started,
         }
@@ -509,6 +552,8 @@ def main():
         with open(os.path.join(out_dir, "results.json"), "w") as fh:
             json.dump(result, fh, indent=1)
         write_csv(os.path.join(out_dir, "results.csv"), h.cases, h.comparisons)
+        if not args.full_images and args.plots != "off":
+            shrink_images(os.path.join(out_dir, "images"), 640)
         plots = [] if args.plots == "off" else plot(out_dir, h.cases, result["scaling"],
                                                     args.plots)
         log(f"wrote {out_dir}/results.json, results.csv" +

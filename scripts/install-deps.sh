@@ -1,10 +1,13 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages skylayers needs, only those that are missing.
-# Usage: scripts/install-deps.sh [--pathtracer]
+# Usage: scripts/install-deps.sh [--pathtracer] [--peer]
 #   --pathtracer  also installs Blender (Cycles) and the Python modules of OpenVDB and
 #                 OpenImageIO, which only the path-traced cloud comparison
 #                 (scripts/pathtrace/compare.sh) needs; CI and the build never do, and
 #                 Blender pulls in some 500 MB.
+#   --peer        also installs Chromium, which only the benchmark harness's peer
+#                 mode needs (benchmarks/run.py runs ../shared/peers/takram in headless
+#                 Chromium with the machine's Node.js; its run.sh takes its npm packages).
 set -euo pipefail
 
 PACKAGES=(
@@ -29,7 +32,8 @@ PACKAGES=(
 for arg in "$@"; do
   case "$arg" in
     --pathtracer) PACKAGES+=(blender python3-openvdb python3-openimageio) ;;
-    *) echo "error: install-deps.sh: unknown option '$arg' (expected --pathtracer)" >&2; exit 2 ;;
+    --peer) PACKAGES+=(chromium) ;;
+    *) echo "error: install-deps.sh: unknown option '$arg' (expected --pathtracer or --peer)" >&2; exit 2 ;;
   esac
 done
 
