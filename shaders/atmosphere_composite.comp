@@ -236,9 +236,13 @@ void main() {
   vec3 moonDisc = mix(moonMean, moonResolved, resolved) * moonCover * aboveHorizon *
                   mix(L.moon.illuminance.w, 1.0, resolved);
 
-  // Stars shine through the sky light but not through the moon.
-  vec3 stars = vec3(starFlux(ivec2(p)) * L.night.z / pixelSolidAngle(params.view, pixelCentre));
-  stars *= (1.0 - moonCover) * aboveHorizon;
+  // Stars shine through the sky light but not through the moon. The pixel's solid angle only
+  // where a star fell (by day, or with no star passes, nowhere: the branch is skipped).
+  float flux = starFlux(ivec2(p));
+  vec3 stars = vec3(0.0);
+  if (flux > 0.0)
+    stars = vec3(flux * L.night.z / pixelSolidAngle(params.view, pixelCentre) *
+                 (1.0 - moonCover) * aboveHorizon);
 
   // Seen from below the clouds the sky within a few degrees of the horizon is the air under
   // them, lit like it (airLight): under an overcast the distant horizon is no bright band of

@@ -118,6 +118,8 @@ inline void expectSameScene(const Scene& a, const Scene& b) {
   EXPECT_EQ(ac.quality, bc.quality);
   EXPECT_EQ(ac.temporal.mode, bc.temporal.mode);
   EXPECT_EQ(ac.temporal.block, bc.temporal.block);
+  EXPECT_EQ(ac.temporal.resolution, bc.temporal.resolution);
+  EXPECT_EQ(ac.light, bc.light);
   EXPECT_EQ(ac.model, bc.model);
   EXPECT_EQ(ac.coverage, bc.coverage);
   EXPECT_EQ(ac.extinction, bc.extinction);
@@ -243,6 +245,8 @@ inline Scene unusualScene() {
   s.clouds.quality = CloudQuality::Reference;
   s.clouds.temporal.mode = CloudTemporalMode::On;
   s.clouds.temporal.block = 3;
+  s.clouds.temporal.resolution = CloudTemporalResolution::Half;
+  s.clouds.light = CloudLight::Volume;
   s.clouds.model = CloudModel::Tang2019;
   s.clouds.coverage = CloudCoverageMode::Paper;
   s.clouds.extinction = 1e-5;

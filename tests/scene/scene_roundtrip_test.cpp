@@ -153,9 +153,10 @@ TEST(SceneRoundTrip, UnusualSceneDiffersFromTheDefaultEverywhere) {
   // and automaton. The weather region counts once (given against absent) where its four
   // numbers counted before, and camera_region_km once; then atmosphere.aerosols (the ground
   // albedo moved from atmosphere to ground with its three channels) and output.exposure,
-  // exposure_adaptation_s and night_look; then clouds.quality and clouds.temporal's two.
+  // exposure_adaptation_s and night_look; then clouds.quality, clouds.light and
+  // clouds.temporal's three.
   EXPECT_EQ(failuresOf([] { expectSameScene(test::unusualScene(), Scene()); }),
-            66 + 1 + 24 + 13 + 2 + 9 + 2 + 1 + 4 - 4 + 1 + 1 + 1 + 3 + 3);
+            66 + 1 + 24 + 13 + 2 + 9 + 2 + 1 + 4 - 4 + 1 + 1 + 1 + 3 + 5);
   const std::vector<PaletteKey> palette = test::unusualScene().lighting.palette;
   for (size_t i = 0; i < palette.size(); ++i) {
     const PaletteKey& k = palette[i];
@@ -309,6 +310,8 @@ TEST(SceneRoundTrip, PrintedYamlLooksLikeAScene) {
             "  temporal:\n"
             "    mode: \"off\"\n"
             "    block: 4\n"
+            "    resolution: \"full\"\n"
+            "  light: \"march\"\n"
             "  model: \"lu2023\"\n"
             "  coverage: \"calibrated\"\n"
             "  extinction: 0.1\n"
@@ -489,8 +492,10 @@ TEST(SceneRoundTrip, PrintedJsonLooksLikeAScene) {
             "    \"quality\": \"standard\",\n"
             "    \"temporal\": {\n"
             "      \"mode\": \"off\",\n"
-            "      \"block\": 4\n"
+            "      \"block\": 4,\n"
+            "      \"resolution\": \"full\"\n"
             "    },\n"
+            "    \"light\": \"march\",\n"
             "    \"model\": \"lu2023\",\n"
             "    \"coverage\": \"calibrated\",\n"
             "    \"extinction\": 0.1,\n"
