@@ -10,12 +10,19 @@
 // (ATMOSPHERE_COMPOSITE_PHYSICAL) takes it from its aerial-perspective volume and
 // transmittance LUT (Hillaire 2020, section 5.4), the kozlov one from the haze of the
 // lighting model's atmosphere (Koschmieder's airlight). The high clouds carry their own.
+//
+// What a frame does not show is compiled out, not branched around (a software rasteriser
+// runs both sides of a branch): ATMOSPHERE_COMPOSITE_SUN_DISC and _MOON_DISC only when the
+// disc can reach a pixel of the view, ATMOSPHERE_COMPOSITE_STARS only when the star passes
+// ran (passes/atmosphere_composite picks the variant per frame; the image is the same).
 #include "common/params_block.glsl"
 #include "common/atmosphere_composite_shared.h"
 #include "common/view.glsl"
 #define LIGHTING_BINDING ATMOSPHERE_COMPOSITE_BINDING_LIGHTING
 #include "common/lighting.glsl"
+#if ATMOSPHERE_COMPOSITE_STARS
 #define STAR_FLUX_BINDING ATMOSPHERE_COMPOSITE_BINDING_STARS
+#endif
 #include "common/star_field.glsl"
 #include "common/cloud_shadow.glsl"
 #if ATMOSPHERE_COMPOSITE_PHYSICAL
@@ -114,10 +121,10 @@ Air airTo(vec3 V, float distanceM, vec2 uv, vec3 skyHere) {
   float n = atmosphere.aerialPerspective.y;
   float lastSlice = atmosphereApSliceDistance(atmosphere, (n - 0.5) / n);
   Air a;
-  a.transmittance = transmittanceAlong(atmosphere, transmittanceLut, V, d);
+  mat3 T = transmittancesAlong(atmosphere, transmittanceLut, V, vec3(d, lastSlice, 1e9));
+  a.transmittance = T[0];
   vec3 nearS = aerialPerspective(atmosphere, aerialPerspectiveLut, uv, min(d, lastSlice)).rgb;
-  vec3 nearT = transmittanceAlong(atmosphere, transmittanceLut, V, lastSlice);
-  vec3 endT = transmittanceAlong(atmosphere, transmittanceLut, V, 1e9);
+  vec3 nearT = T[1], endT = T[2];
   vec3 w = clamp((nearT - a.transmittance) / max(nearT - endT, vec3(1e-6)), 0.0, 1.0);
   a.inScattered = (d <= lastSlice ? nearS : mix(nearS, max(skyHere, nearS), w)) * params.airLight;
   return a;
@@ -213,6 +220,8 @@ void main() {
   // A disc spread over a pixel wider than itself (see discCoverage) would leak past the
   // horizon; there the share of the disc above the horizon (illuminance.w) hides it instead.
   // Resolved discs are cut pixel by pixel. The two blend as the disc grows past a pixel.
+  vec3 sunDisc = vec3(0.0);
+#if ATMOSPHERE_COMPOSITE_SUN_DISC
   vec3 S = L.sun.direction.xyz;
   float sunR = L.sun.direction.w;
   float sunDist = acos(clamp(dot(V, S), -1.0, 1.0));
@@ -220,29 +229,35 @@ void main() {
   float sunResolved = smoothstep(1.0, 2.0, sunR / pixelAngle);
   // A resolved disc shows its limb darkening; one a pixel or less across, its mean.
   vec3 limb = mix(vec3(1.0), sunLimbDarkening(min(sunDist / sunR, 1.0)), sunResolved);
-  vec3 sunDisc = L.sunDisc.rgb * limb * sunCover * aboveHorizon *
-                 mix(L.sun.illuminance.w, 1.0, sunResolved);
+  sunDisc = L.sunDisc.rgb * limb * sunCover * aboveHorizon *
+            mix(L.sun.illuminance.w, 1.0, sunResolved);
+#endif
 
   // The moon: resolved discs are shaded per pixel with an anti-aliased edge; discs near or
   // below a pixel in size carry their mean radiance with the sun's coverage rule, so the
   // drawn flux stays right at every resolution. The two blend, so zooming does not pop.
+  vec3 moonDisc = vec3(0.0);
+  float moonCover = 0.0;
+#if ATMOSPHERE_COMPOSITE_MOON_DISC
   vec3 M = L.moon.direction.xyz;
   float moonR = L.moon.direction.w;
   float moonDist = acos(clamp(dot(V, M), -1.0, 1.0));
-  float moonCover = discCoverage(moonDist, moonR, pixelAngle);
+  moonCover = discCoverage(moonDist, moonR, pixelAngle);
   vec3 moonMean = L.moonDisc.rgb * L.moonEarthshine.w + L.moonEarthshine.rgb;
   vec3 moonResolved = moonDist < moonR + pixelAngle ? moonSurface(L, V) : vec3(0.0);
   float resolved = smoothstep(1.0, 2.0, moonR / pixelAngle);
-  vec3 moonDisc = mix(moonMean, moonResolved, resolved) * moonCover * aboveHorizon *
-                  mix(L.moon.illuminance.w, 1.0, resolved);
+  moonDisc = mix(moonMean, moonResolved, resolved) * moonCover * aboveHorizon *
+             mix(L.moon.illuminance.w, 1.0, resolved);
+#endif
 
-  // Stars shine through the sky light but not through the moon. The pixel's solid angle only
-  // where a star fell (by day, or with no star passes, nowhere: the branch is skipped).
-  float flux = starFlux(ivec2(p));
+  // Stars shine through the sky light but not through the moon.
   vec3 stars = vec3(0.0);
+#if ATMOSPHERE_COMPOSITE_STARS
+  float flux = starFlux(ivec2(p));
   if (flux > 0.0)
     stars = vec3(flux * L.night.z / pixelSolidAngle(params.view, pixelCentre) *
                  (1.0 - moonCover) * aboveHorizon);
+#endif
 
   // Seen from below the clouds the sky within a few degrees of the horizon is the air under
   // them, lit like it (airLight): under an overcast the distant horizon is no bright band of

@@ -5,6 +5,8 @@
 // Writes the sky alone and the clouds premultiplied (rgb radiance, a coverage = 1 - clear).
 // With SKY_HIGH_CLOUDS_REGIONAL the cover comes per pixel from the weather map's high layer
 // where the ray meets the layer, applied to the baked rank/shape texture.
+// SKY_HIGH_CLOUDS_LAYER 0 (no high clouds in the scene) and LIGHTING_MOON 0 (by day) compile
+// out what the frame does not show: a software rasteriser runs both sides of a branch.
 #include "common/params_block.glsl"
 #include "common/sky_high_clouds_shared.h"
 #include "common/view.glsl"
@@ -45,15 +47,20 @@ layout(std140, binding = SKY_HIGH_CLOUDS_BINDING_ATMOSPHERE) uniform AtmosphereB
 #define atmosphere atmosphereBlock[SKY_PARAMS_INDEX]
 layout(binding = SKY_HIGH_CLOUDS_BINDING_TRANSMITTANCE) uniform sampler2D transmittanceLut;
 layout(binding = SKY_HIGH_CLOUDS_BINDING_SKY_VIEW_SUN) uniform sampler2D skyViewSunLut;
+#if LIGHTING_MOON
 layout(binding = SKY_HIGH_CLOUDS_BINDING_SKY_VIEW_MOON) uniform sampler2D skyViewMoonLut;
+#endif
 #endif
 
 // The clear sky in direction V, without discs or stars (the composite adds those).
 vec3 skyRadiance(LightingState L, vec3 V) {
 #if SKY_PHYSICAL_SKY
   // Hillaire 2020: the sky-view LUTs already carry each light's illuminance.
-  return skyViewRadiance(atmosphere, skyViewSunLut, V, L.sun.direction.xyz) +
-         skyViewRadiance(atmosphere, skyViewMoonLut, V, L.moon.direction.xyz);
+  vec3 sky = skyViewRadiance(atmosphere, skyViewSunLut, V, L.sun.direction.xyz);
+#if LIGHTING_MOON
+  sky += skyViewRadiance(atmosphere, skyViewMoonLut, V, L.moon.direction.xyz);
+#endif
+  return sky;
 #else
   return clearSky(L, V);  // Kozlov 3.1 around the sun and the moon
 #endif
@@ -111,6 +118,7 @@ void main() {
   imageStore(skyImage, ivec2(p), vec4(sky, 1.0));
 
   vec4 clouds = vec4(0.0);
+#if SKY_HIGH_CLOUDS_LAYER
   float planetR = params.layer.x, cameraR = params.layer.y, layerR = params.layer.z;
   float t = params.layer.w > 0.0 ? sphereHit(cameraR, V, layerR) : -1.0;
   // The ground hides the layer behind it (looking down from below the layer).
@@ -166,12 +174,14 @@ void main() {
       vec3 E = lightAtLayer(up, S, params.sunAtLayer.rgb, L.sunSpace.rgb);
       rgb += kozlovCloudTerms(c, n, St, dot(V, S), E, L.palette, edgeWidth);
     }
+#if LIGHTING_MOON
     {
       vec3 M = L.moon.direction.xyz;
       vec3 Mt = vec3(dot(M, east), dot(M, north), dot(M, up));
       vec3 E = lightAtLayer(up, M, params.moonAtLayer.rgb, L.moonSpace.rgb);
       rgb += kozlovCloudTerms(c, n, Mt, dot(V, M), E, L.moonPalette, edgeWidth);
     }
+#endif
     rgb *= params.shading.x;
     float coverage = 1.0 - c.b;  // the clear-sky channel is the layer's transmittance
 
@@ -186,5 +196,6 @@ void main() {
 #endif
     clouds = vec4(rgb * through + coverage * (1.0 - through) * sky, coverage);
   }
+#endif
   imageStore(cloudImage, ivec2(p), clouds);
 }

@@ -19,6 +19,21 @@ ComputePipeline buildComputePipeline(const Context& ctx, ShaderCompiler& compile
   return ComputePipeline(ctx, name, shader.spirv, shader.reflection);
 }
 
+ComputePipelineVariants::ComputePipelineVariants(const Context& ctx, ShaderCompiler& compiler,
+                                                 std::filesystem::path file, std::string name)
+    : mCtx(ctx), mCompiler(compiler), mFile(std::move(file)), mName(std::move(name)) {}
+
+const ComputePipeline& ComputePipelineVariants::get(const std::vector<ShaderDefine>& defines) {
+  std::vector<std::pair<std::string, std::string>> key;
+  for (const ShaderDefine& d : defines) key.emplace_back(d.name, d.value);
+  std::unique_ptr<ComputePipeline>& pipeline = mPipelines[key];
+  if (!pipeline) {
+    CompiledShader shader = compileForDevice(mCtx, mCompiler, mFile, defines);
+    pipeline = std::make_unique<ComputePipeline>(mCtx, mName, shader.spirv, shader.reflection);
+  }
+  return *pipeline;
+}
+
 ComputePipeline::ComputePipeline(const Context& ctx, const std::string& name,
                                  const std::vector<uint32_t>& spirv,
                                  const ShaderReflection& reflection)

@@ -1,7 +1,10 @@
 #pragma once
 // A compute pipeline built from compiled SPIR-V. Its descriptor set layout (set 0) and push
 // constant range come from the shader's own reflection, so C++ never restates bindings.
+#include <map>
+#include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <vulkan/vulkan.h>
@@ -63,6 +66,24 @@ private:
   VkDescriptorSetLayout mSetLayout = VK_NULL_HANDLE;
   VkPipelineLayout mLayout = VK_NULL_HANDLE;
   VkPipeline mPipeline = VK_NULL_HANDLE;
+};
+
+// One shader compiled once per combination of defines it meets: each pipeline is built on
+// first use and kept. A pass whose frames choose among many variants (what is on screen, the
+// scene's fixed choices) pays a compile only for those a run needs.
+class ComputePipelineVariants {
+public:
+  ComputePipelineVariants(const Context& ctx, ShaderCompiler& compiler,
+                          std::filesystem::path file, std::string name);
+  const ComputePipeline& get(const std::vector<ShaderDefine>& defines);
+
+private:
+  const Context& mCtx;
+  ShaderCompiler& mCompiler;
+  std::filesystem::path mFile;
+  std::string mName;
+  std::map<std::vector<std::pair<std::string, std::string>>, std::unique_ptr<ComputePipeline>>
+      mPipelines;
 };
 
 }  // namespace sky

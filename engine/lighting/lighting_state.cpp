@@ -207,6 +207,12 @@ LightingState computeLighting(const Scene& scene, const IsoTime& time) {
   return st;
 }
 
+bool moonLightNegligible(const shared::LightingState& g) {
+  const float sun = std::max({g.sunSpace.r, g.sunSpace.g, g.sunSpace.b});
+  const float moon = std::max({g.moonSpace.r, g.moonSpace.g, g.moonSpace.b});
+  return g.sun.direction.z > 0.0f && moon < 1e-4f * sun;
+}
+
 nlohmann::ordered_json lightingJson(const LightingState& st) {
   IsoTime utc = st.time;
   utc.offsetMinutes = 0;

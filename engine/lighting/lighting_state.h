@@ -56,6 +56,11 @@ LightingState computeLighting(const Scene& scene, const IsoTime& time);
 // being moister and murkier. Updates `palette`, `moonPalette`, `overcast` and `gpu`.
 void applyOvercast(LightingState& state, const SkySettings& sky, double overcast);
 
+// Whether the moon's light may be left out of a frame (shaders/common/lighting.glsl,
+// LIGHTING_MOON 0): with the sun above the horizon moonlight is a few millionths of sunlight
+// (a full moon's 0.3 lux against 100 000), far under a pixel's precision.
+bool moonLightNegligible(const shared::LightingState& state);
+
 // The state as JSON, for `skyrender ephemeris` and render reports:
 // {"time_utc", "sun": {...}, "moon": {...}, "light": {"key", "day_factor", ...}}.
 nlohmann::ordered_json lightingJson(const LightingState& state);

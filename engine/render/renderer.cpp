@@ -297,7 +297,7 @@ RenderedFrame Renderer::render(const Scene& scene, const IsoTime& time,
       out.lighting.dayFactor < 1.0 ||
       starsVisible(mStars.brightestVmag(), out.lighting.gpu.night.z,
                    double(view.forward.w) * double(view.forward.w), skyLuminance);
-  StarFieldPass::Outputs starOut = mStars.addTo(graph, stars, starsShow);
+  const std::optional<StarFieldPass::Outputs> starOut = mStars.addTo(graph, stars, starsShow);
 
   // The high-cloud textures: kept from the last frame, loaded, or baked (before this graph).
   // With a forecast's high layer the cover comes from the map per pixel, at the data's
@@ -473,7 +473,7 @@ RenderedFrame Renderer::render(const Scene& scene, const IsoTime& time,
     composite.atmosphere = AtmosphereCompositePass::Atmosphere{
         mAtmosphere.params(), luts.transmittance, luts.aerialPerspective, &mAtmosphere.sampler()};
   composite.lighting = out.lighting.gpu;
-  composite.starFlux = starOut.flux;
+  if (starOut) composite.starFlux = starOut->flux;
   composite.sky = skyOut.sky;
   composite.highClouds = skyOut.highClouds;
   AtmosphereCompositePass::Outputs composited = graph.add(mComposite, composite);

@@ -1,6 +1,7 @@
 #include "passes/atmosphere_composite/atmosphere_composite.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "engine/core/error.h"
 #include "engine/lighting/light_model.h"
@@ -9,13 +10,7 @@
 namespace sky {
 namespace {
 
-ComputePipeline buildPipeline(const Context& ctx, ShaderCompiler& compiler, bool physical,
-                              bool clouds) {
-  CompiledShader shader = compileForDevice(ctx, compiler, "atmosphere_composite.comp",
-                                           {{"ATMOSPHERE_COMPOSITE_PHYSICAL", physical ? "1" : "0"},
-                                            {"ATMOSPHERE_COMPOSITE_CLOUDS", clouds ? "1" : "0"}});
-  return ComputePipeline(ctx, AtmosphereCompositePass::kName, shader.spirv, shader.reflection);
-}
+ShaderDefine flag(const char* name, bool on) { return {name, on ? "1" : "0"}; }
 
 glm::vec4 v4(const glm::dvec3& v, double w = 0.0) {
   return glm::vec4(glm::vec3(v), static_cast<float>(w));
@@ -59,22 +54,37 @@ shared::AtmosphereCompositeParams atmosphereCompositeParams(const AtmosphereComp
   return p;
 }
 
-AtmosphereCompositePass::AtmosphereCompositePass(const Context& ctx, ShaderCompiler& compiler)
-    : mKozlov(buildPipeline(ctx, compiler, false, false)),
-      mPhysical(buildPipeline(ctx, compiler, true, false)),
-      mKozlovClouds(buildPipeline(ctx, compiler, false, true)),
-      mPhysicalClouds(buildPipeline(ctx, compiler, true, true)) {}
-
-const ComputePipeline& AtmosphereCompositePass::pipeline() const {
-  const bool clouds = mInputs.clouds.has_value();
-  if (mInputs.atmosphere) return clouds ? mPhysicalClouds : mPhysical;
-  return clouds ? mKozlovClouds : mKozlov;
+bool discReachesView(const shared::ViewState& view, const glm::vec3& direction, float radius) {
+  if (view.size.z != VIEW_PROJECTION_PERSPECTIVE) return true;  // the whole sphere, or no sky
+  // The widest angle a pixel centre lies from the view axis (the image's corner), and the
+  // reach of discCoverage past a disc's centre: its spread max(radius, pixel) plus half a
+  // pixel, with a whole pixel (the largest, at the centre: forward.w) and a margin for
+  // rounding.
+  const double corner = std::atan(std::hypot(double(view.right.w), double(view.up.w)));
+  const double pixel = view.forward.w;
+  const double reach = std::max(double(radius), pixel) + pixel + 1e-3;
+  const double fromAxis = std::acos(std::clamp(
+      double(glm::dot(glm::normalize(direction), glm::vec3(view.forward))), -1.0, 1.0));
+  return fromAxis <= corner + reach;
 }
+
+AtmosphereCompositePass::AtmosphereCompositePass(const Context& ctx, ShaderCompiler& compiler)
+    : mVariants(ctx, compiler, "atmosphere_composite.comp", kName) {}
 
 AtmosphereCompositePass::Outputs AtmosphereCompositePass::setup(GraphBuilder& b, const Inputs& in) {
   mInputs = in;
   mInputs.params.clouds = in.clouds ? 1u : 0u;
-  b.read(in.starFlux, Access::StorageReadCompute);
+  const shared::LightingState& L = in.lighting;
+  const bool sunDisc = discReachesView(in.params.view, glm::vec3(L.sun.direction),
+                                       L.sun.direction.w);
+  const bool moonDisc = discReachesView(in.params.view, glm::vec3(L.moon.direction),
+                                        L.moon.direction.w);
+  mPipeline = &mVariants.get({flag("ATMOSPHERE_COMPOSITE_PHYSICAL", in.atmosphere.has_value()),
+                              flag("ATMOSPHERE_COMPOSITE_CLOUDS", in.clouds.has_value()),
+                              flag("ATMOSPHERE_COMPOSITE_STARS", in.starFlux.has_value()),
+                              flag("ATMOSPHERE_COMPOSITE_SUN_DISC", sunDisc),
+                              flag("ATMOSPHERE_COMPOSITE_MOON_DISC", moonDisc)});
+  if (in.starFlux) b.read(*in.starFlux, Access::StorageReadCompute);
   b.read(in.sky, Access::StorageReadCompute);
   b.read(in.highClouds, Access::StorageReadCompute);
   if (in.clouds) {
@@ -101,15 +111,16 @@ AtmosphereCompositePass::Outputs AtmosphereCompositePass::setup(GraphBuilder& b,
 
 void AtmosphereCompositePass::execute(PassContext& ctx) const {
   const auto& size = mInputs.params.view.size;
-  // Each variant's shader declares exactly these: the common ones, the clouds' and, for the
-  // physical sky, the atmosphere's.
+  // Each variant's shader declares exactly these: the common ones, the stars', the clouds'
+  // and, for the physical sky, the atmosphere's.
   std::vector<Binding> bindings = {
       Binding::of(ATMOSPHERE_COMPOSITE_BINDING_PARAMS, ctx.uniform(mInputs.params)),
       Binding::of(ATMOSPHERE_COMPOSITE_BINDING_BEAUTY, mOutputs.beauty),
       Binding::of(ATMOSPHERE_COMPOSITE_BINDING_SKY, mInputs.sky),
       Binding::of(ATMOSPHERE_COMPOSITE_BINDING_HIGH_CLOUDS, mInputs.highClouds),
-      Binding::of(ATMOSPHERE_COMPOSITE_BINDING_LIGHTING, ctx.uniform(mInputs.lighting)),
-      Binding::of(ATMOSPHERE_COMPOSITE_BINDING_STARS, mInputs.starFlux)};
+      Binding::of(ATMOSPHERE_COMPOSITE_BINDING_LIGHTING, ctx.uniform(mInputs.lighting))};
+  if (mInputs.starFlux)
+    bindings.push_back(Binding::of(ATMOSPHERE_COMPOSITE_BINDING_STARS, *mInputs.starFlux));
   if (const auto& c = mInputs.clouds) {
     bindings.push_back(Binding::of(ATMOSPHERE_COMPOSITE_BINDING_CLOUDS, c->clouds));
     bindings.push_back(Binding::of(ATMOSPHERE_COMPOSITE_BINDING_CLOUD_DEPTH, c->depth));
@@ -124,8 +135,7 @@ void AtmosphereCompositePass::execute(PassContext& ctx) const {
     bindings.push_back(Binding::of(ATMOSPHERE_COMPOSITE_BINDING_AERIAL_PERSPECTIVE,
                                    a->aerialPerspective, a->sampler));
   }
-  const ComputePipeline& p = pipeline();
-  ctx.dispatch(p, bindings, p.groupsX(size.x), p.groupsY(size.y));
+  ctx.dispatch(*mPipeline, bindings, mPipeline->groupsX(size.x), mPipeline->groupsY(size.y));
 }
 
 }  // namespace sky

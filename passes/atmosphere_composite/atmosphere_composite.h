@@ -37,6 +37,11 @@ shared::AtmosphereCompositeParams atmosphereCompositeParams(
     const AtmosphereCompositeSettings& settings, const LightingState& lighting,
     const shared::ViewState& view);
 
+// Whether a disc of angular radius `radius` (radians) centred on unit `direction` covers any
+// part of a pixel of `view` by the composite's discCoverage: false only when no pixel can get
+// a share, so leaving the disc out changes nothing.
+bool discReachesView(const shared::ViewState& view, const glm::vec3& direction, float radius);
+
 class AtmosphereCompositePass {
 public:
   static constexpr const char* kName = "atmosphere_composite";
@@ -57,7 +62,7 @@ public:
   struct Inputs {
     shared::AtmosphereCompositeParams params;  // atmosphereCompositeParams
     shared::LightingState lighting;            // this frame's lights and palette
-    BufferId starFlux;                         // from StarFieldPass
+    std::optional<BufferId> starFlux;          // from StarFieldPass; none: no stars this frame
     ImageId sky;                               // from SkyHighCloudsPass
     ImageId highClouds;                        // from SkyHighCloudsPass
     std::optional<Clouds> clouds;              // none: no volumetric clouds
@@ -67,16 +72,15 @@ public:
     ImageId beauty;  // RGBA16F scene-linear, alpha 1
   };
 
-  // Compiles the four variants (clouds or not, physical or kozlov) and builds their
-  // pipelines (once, at renderer start-up).
+  // The shader's variants (physical or kozlov; clouds, stars, each disc or not) are compiled
+  // on first use: setup picks the one this frame needs.
   AtmosphereCompositePass(const Context& ctx, ShaderCompiler& compiler);
   Outputs setup(GraphBuilder& builder, const Inputs& inputs);
   void execute(PassContext& ctx) const;
 
 private:
-  const ComputePipeline& pipeline() const;
-
-  ComputePipeline mKozlov, mPhysical, mKozlovClouds, mPhysicalClouds;
+  ComputePipelineVariants mVariants;
+  const ComputePipeline* mPipeline = nullptr;  // this frame's variant
   Inputs mInputs{};
   Outputs mOutputs;
 };

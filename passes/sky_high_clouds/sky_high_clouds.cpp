@@ -15,13 +15,7 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kDeg = kPi / 180.0;
-ComputePipeline buildPipeline(const Context& ctx, ShaderCompiler& compiler, bool physical,
-                              bool regional) {
-  CompiledShader shader = compileForDevice(ctx, compiler, "sky_high_clouds.comp",
-                                           {{"SKY_PHYSICAL_SKY", physical ? "1" : "0"},
-                                            {"SKY_HIGH_CLOUDS_REGIONAL", regional ? "1" : "0"}});
-  return ComputePipeline(ctx, SkyHighCloudsPass::kName, shader.spirv, shader.reflection);
-}
+ShaderDefine flag(const char* name, bool on) { return {name, on ? "1" : "0"}; }
 
 }  // namespace
 
@@ -117,15 +111,17 @@ bool highCloudsFromWeather(const Scene& scene, const WeatherMap& map) {
 }
 
 SkyHighCloudsPass::SkyHighCloudsPass(const Context& ctx, ShaderCompiler& compiler)
-    : mKozlov(buildPipeline(ctx, compiler, false, false)),
-      mPhysical(buildPipeline(ctx, compiler, true, false)),
-      mKozlovRegional(buildPipeline(ctx, compiler, false, true)),
-      mPhysicalRegional(buildPipeline(ctx, compiler, true, true)) {}
+    : mVariants(ctx, compiler, "sky_high_clouds.comp", kName) {}
 
 SkyHighCloudsPass::Outputs SkyHighCloudsPass::setup(GraphBuilder& b, const Inputs& in) {
   if (!in.textures.sampler) internalError("sky_high_clouds: no texture sampler");
   if (in.physical && !in.atmosphere.sampler) internalError("sky_high_clouds: no LUT sampler");
   mInputs = in;
+  mMoon = !moonLightNegligible(in.lighting);
+  mPipeline = &mVariants.get({flag("SKY_PHYSICAL_SKY", in.physical),
+                              flag("SKY_HIGH_CLOUDS_REGIONAL", regional()),
+                              flag("SKY_HIGH_CLOUDS_LAYER", in.params.layer.w > 0.0f),
+                              flag("LIGHTING_MOON", mMoon)});
   b.read(in.textures.normals, Access::SampledCompute);
   if (regional()) {
     const Regional& r = in.regional;
@@ -141,7 +137,7 @@ SkyHighCloudsPass::Outputs SkyHighCloudsPass::setup(GraphBuilder& b, const Input
   if (in.physical) {
     b.read(in.atmosphere.transmittance, Access::SampledCompute);
     b.read(in.atmosphere.skyViewSun, Access::SampledCompute);
-    b.read(in.atmosphere.skyViewMoon, Access::SampledCompute);
+    if (mMoon) b.read(in.atmosphere.skyViewMoon, Access::SampledCompute);
   }
   ImageDesc desc;
   // 32-bit: the images are physical, and a moonlit night's 1e-7 (renderer units) is below
@@ -164,7 +160,7 @@ void SkyHighCloudsPass::execute(PassContext& ctx) const {
   const UniformRange lighting = ctx.uniform(mInputs.lighting);
   const Atmosphere& atm = mInputs.atmosphere;
   // Each variant's shader declares exactly these: the common ones, the cloud textures of its
-  // cover mode and, for the physical sky, the atmosphere LUTs.
+  // cover mode and, for the physical sky, the atmosphere LUTs (the moon's when it shines).
   std::vector<Binding> bindings = {
       Binding::of(SKY_HIGH_CLOUDS_BINDING_PARAMS, params),
       Binding::of(SKY_HIGH_CLOUDS_BINDING_LIGHTING, lighting),
@@ -188,12 +184,11 @@ void SkyHighCloudsPass::execute(PassContext& ctx) const {
         Binding::of(SKY_HIGH_CLOUDS_BINDING_TRANSMITTANCE, atm.transmittance, atm.sampler));
     bindings.push_back(
         Binding::of(SKY_HIGH_CLOUDS_BINDING_SKY_VIEW_SUN, atm.skyViewSun, atm.sampler));
-    bindings.push_back(
-        Binding::of(SKY_HIGH_CLOUDS_BINDING_SKY_VIEW_MOON, atm.skyViewMoon, atm.sampler));
+    if (mMoon)
+      bindings.push_back(
+          Binding::of(SKY_HIGH_CLOUDS_BINDING_SKY_VIEW_MOON, atm.skyViewMoon, atm.sampler));
   }
-  const ComputePipeline& pipeline = mInputs.physical ? (regional() ? mPhysicalRegional : mPhysical)
-                                                     : (regional() ? mKozlovRegional : mKozlov);
-  ctx.dispatch(pipeline, bindings, pipeline.groupsX(size.x), pipeline.groupsY(size.y));
+  ctx.dispatch(*mPipeline, bindings, mPipeline->groupsX(size.x), mPipeline->groupsY(size.y));
 }
 
 }  // namespace sky

@@ -62,18 +62,17 @@ public:
     ImageId highClouds;  // RGBA16F: cloud radiance premultiplied, a = coverage
   };
 
-  // Compiles the four variants (kozlov, physical, each with and without regional cover) once,
-  // at renderer start-up.
+  // The shader's variants (kozlov or physical; regional cover; a high-cloud layer or none;
+  // moonlight or, by day, none) are compiled on first use: setup picks the frame's.
   SkyHighCloudsPass(const Context& ctx, ShaderCompiler& compiler);
   Outputs setup(GraphBuilder& builder, const Inputs& inputs);
   void execute(PassContext& ctx) const;
 
 private:
   bool regional() const { return mInputs.params.regional.x > 0.5f; }
-  ComputePipeline mKozlov;
-  ComputePipeline mPhysical;
-  ComputePipeline mKozlovRegional;
-  ComputePipeline mPhysicalRegional;
+  ComputePipelineVariants mVariants;
+  const ComputePipeline* mPipeline = nullptr;  // this frame's variant
+  bool mMoon = true;                           // the moon's light is in this frame
   Inputs mInputs{};
   Outputs mOutputs;
 };

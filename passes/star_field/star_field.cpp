@@ -76,19 +76,15 @@ StarFieldPass::StarFieldPass(const Context& ctx, ShaderCompiler& compiler,
     : mClear(ctx, compiler),
       mPipeline(buildPipeline(ctx, compiler, kName)),
       mStars(uploadStars(ctx, stars)),
-      mNoStars{Buffer(ctx, {"no_stars", starFluxBufferBytes(0, 0) + sizeof(uint32_t),
-                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, BufferMemory::HostVisible}),
-               {}},
       mStarCount(static_cast<uint32_t>(stars.size())) {
-  std::memset(mNoStars.buffer.mapped(), 0, mNoStars.buffer.size());
   mBrightestVmag = std::min_element(stars.begin(), stars.end(), [](const Star& a, const Star& b) {
                      return a.vmag < b.vmag;
                    })->vmag;
 }
 
-StarFieldPass::Outputs StarFieldPass::addTo(FrameGraph& graph, const Frame& frame,
-                                            bool visible) {
-  if (!visible) return {graph.importBuffer(mNoStars)};
+std::optional<StarFieldPass::Outputs> StarFieldPass::addTo(FrameGraph& graph,
+                                                           const Frame& frame, bool visible) {
+  if (!visible) return std::nullopt;
   Inputs in;
   in.stars = graph.importBuffer(mStars);
   in.flux = graph.add(mClear, {frame.view.size.x, frame.view.size.y}).flux;

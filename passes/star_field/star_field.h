@@ -5,6 +5,7 @@
 // (shaders/star_field.comp; layout in shaders/common/star_field_shared.h). Composites read
 // it through shaders/common/star_field.glsl. Two graph passes: star_clear zeroes the
 // transient buffer, star_field accumulates into it with atomics.
+#include <optional>
 #include <span>
 
 #include <glm/mat3x3.hpp>
@@ -79,8 +80,8 @@ public:
   // Imports the star buffer, adds star_clear and star_field to `graph` and returns the
   // filled flux buffer. This pass object must outlive graph.execute().
   // With `visible` false (stars drowned in the day sky, starsVisible) it adds no pass and
-  // returns an empty field: a flux buffer of size 0 x 0, which starFlux() reads as no star.
-  Outputs addTo(FrameGraph& graph, const Frame& frame, bool visible = true);
+  // returns none: the composite then compiles the stars out.
+  std::optional<Outputs> addTo(FrameGraph& graph, const Frame& frame, bool visible = true);
 
   // The pieces addTo() uses, for graphs that want to place the passes themselves.
   PersistentBuffer& starBuffer() { return mStars; }
@@ -94,7 +95,6 @@ private:
   StarClearPass mClear;
   ComputePipeline mPipeline;
   PersistentBuffer mStars;
-  PersistentBuffer mNoStars;  // a flux buffer with a 0 x 0 header
   uint32_t mStarCount = 0;
   double mBrightestVmag = 0.0;
   shared::StarFieldParams mParams{};

@@ -59,35 +59,21 @@ std::vector<Binding> cloudTextureBindings(const CloudTextures& t) {
 
 CloudPipelines::CloudPipelines(const Context& ctx, ShaderCompiler& compiler, const char* file,
                                const char* name)
-    : mCtx(ctx), mCompiler(compiler), mFile(file), mName(name) {}
+    : mVariants(ctx, compiler, file, name) {}
 
 const ComputePipeline& CloudPipelines::get(const shared::CloudParams& p) {
-  const std::array<uint32_t, 12> key = {p.frameKind == CLOUD_FRAME_TOPDOWN ? 1u : 0u,
-                                       p.lightSteps,
-                                       p.octaves,
-                                       p.phaseKind,
-                                       p.energyConserving,
-                                       p.calibratedCoverage,
-                                       p.model,
-                                       p.rolls,
-                                       p.lightDetailSteps,
-                                       p.lightNoiseSteps,
-                                       p.reference,
-                                       p.lightVolume.enabled};
-  std::unique_ptr<ComputePipeline>& pipeline = mPipelines[key];
-  if (!pipeline) {
-    const char* names[12] = {"CLOUD_TOPDOWN",           "CLOUD_LIGHT_STEPS",
-                             "CLOUD_OCTAVES",           "CLOUD_DUAL_LOBE",
-                             "CLOUD_ENERGY_CONSERVING", "CLOUD_CALIBRATED",
-                             "CLOUD_TANG",              "CLOUD_ROLLS",
-                             "CLOUD_LIGHT_DETAIL_STEPS", "CLOUD_LIGHT_NOISE_STEPS",
-                             "CLOUD_REFERENCE",         "CLOUD_LIGHT_VOLUME"};
-    std::vector<ShaderDefine> defines;
-    for (size_t i = 0; i < key.size(); ++i) defines.push_back({names[i], std::to_string(key[i])});
-    CompiledShader shader = compileForDevice(mCtx, mCompiler, mFile, defines);
-    pipeline = std::make_unique<ComputePipeline>(mCtx, mName, shader.spirv, shader.reflection);
-  }
-  return *pipeline;
+  return mVariants.get({{"CLOUD_TOPDOWN", p.frameKind == CLOUD_FRAME_TOPDOWN ? "1" : "0"},
+                        {"CLOUD_LIGHT_STEPS", std::to_string(p.lightSteps)},
+                        {"CLOUD_OCTAVES", std::to_string(p.octaves)},
+                        {"CLOUD_DUAL_LOBE", std::to_string(p.phaseKind)},
+                        {"CLOUD_ENERGY_CONSERVING", std::to_string(p.energyConserving)},
+                        {"CLOUD_CALIBRATED", std::to_string(p.calibratedCoverage)},
+                        {"CLOUD_TANG", std::to_string(p.model)},
+                        {"CLOUD_ROLLS", std::to_string(p.rolls)},
+                        {"CLOUD_LIGHT_DETAIL_STEPS", std::to_string(p.lightDetailSteps)},
+                        {"CLOUD_LIGHT_NOISE_STEPS", std::to_string(p.lightNoiseSteps)},
+                        {"CLOUD_REFERENCE", std::to_string(p.reference)},
+                        {"CLOUD_LIGHT_VOLUME", std::to_string(p.lightVolume.enabled)}});
 }
 
 bool cloudFieldReusable(const CloudFieldKey& m, const CloudFieldKey& k, double maxShiftM) {

@@ -49,11 +49,7 @@ public:
   const ComputePipeline& get(const shared::CloudParams& params);
 
 private:
-  const Context& mCtx;
-  ShaderCompiler& mCompiler;
-  const char* mFile;
-  const char* mName;
-  std::map<std::array<uint32_t, 12>, std::unique_ptr<ComputePipeline>> mPipelines;
+  ComputePipelineVariants mVariants;
 };
 
 class VolumetricCloudsPass {

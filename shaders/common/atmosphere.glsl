@@ -181,6 +181,27 @@ vec3 transmittanceAlong(AtmosphereParams p, sampler2D lut, vec3 V, float distanc
   return min(num / max(den, vec3(1e-30)), vec3(1.0));
 }
 
+// transmittanceAlong to three distances along the same V at once (columns 0..2 for d.x, d.y,
+// d.z). The lookup at the camera's end of the ray is the same for all three, so this takes
+// four LUT samples where three calls take six: the composite's aerial perspective needs the
+// transmittance to a cloud, to the froxel volume's end and to the end of the ray per pixel.
+mat3 transmittancesAlong(AtmosphereParams p, sampler2D lut, vec3 V, vec3 distance) {
+  float r = p.radii.z, mu = V.z;
+  bool ground = atmosphereRayHitsGround(p, r, mu);
+  vec3 camera = atmosphereTransmittanceLut(p, lut, r, ground ? -mu : mu);
+  float rayLength = atmosphereRayLength(p, r, mu);
+  mat3 result;
+  for (int i = 0; i < 3; ++i) {
+    float d = clamp(distance[i], 0.0, rayLength);
+    float rd = sqrt(max(d * d + 2.0 * r * mu * d + r * r, 0.0));
+    float mud = clamp((r * mu + d) / rd, -1.0, 1.0);
+    vec3 far = atmosphereTransmittanceLut(p, lut, rd, ground ? -mud : mud);
+    vec3 num = ground ? far : camera, den = ground ? camera : far;
+    result[i] = min(num / max(den, vec3(1e-30)), vec3(1.0));
+  }
+  return result;
+}
+
 // Multiple-scattering LUT (Hillaire 2020, section 5.2): x = cos(light zenith) over [-1, 1],
 // y = altitude over [0, thickness]. Holds Psi_ms per unit illuminance (1/sr).
 vec2 atmosphereMultiScatteringUv(AtmosphereParams p, float r, float muS) {

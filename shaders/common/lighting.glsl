@@ -15,15 +15,25 @@ layout(std140, binding = LIGHTING_BINDING) uniform LightingBlock {
 #define lighting lightingBlock[SKY_PARAMS_INDEX]
 #endif
 
+// LIGHTING_MOON 0 leaves the moon's light out: a pass compiles that variant for frames with
+// the sun above the horizon (moonLightNegligible in engine/lighting/lighting_state.h), where
+// moonlight is a few millionths of the sunlit sky and changes no pixel.
+#ifndef LIGHTING_MOON
+#define LIGHTING_MOON 1
+#endif
+
 // The clear sky in direction V: the daylit Kozlov sky around the sun plus the moonlit copy
 // around the moon (LightingState.moonPalette is already dimmed to moonlight).
 vec3 clearSky(LightingState L, vec3 V) {
   Palette d = L.palette;
   Palette m = L.moonPalette;
-  return kozlovClearSky(V, L.sun.direction.xyz, d.sky.rgb, d.fog.rgb, d.glow.rgb, d.sky.w,
-                        d.glow.w, d.fog.w) +
-         kozlovClearSky(V, L.moon.direction.xyz, m.sky.rgb, m.fog.rgb, m.glow.rgb, m.sky.w,
+  vec3 sky = kozlovClearSky(V, L.sun.direction.xyz, d.sky.rgb, d.fog.rgb, d.glow.rgb, d.sky.w,
+                            d.glow.w, d.fog.w);
+#if LIGHTING_MOON
+  sky += kozlovClearSky(V, L.moon.direction.xyz, m.sky.rgb, m.fog.rgb, m.glow.rgb, m.sky.w,
                         m.glow.w, m.fog.w);
+#endif
+  return sky;
 }
 
 #endif

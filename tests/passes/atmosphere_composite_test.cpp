@@ -18,6 +18,7 @@
 #include "engine/render/renderer.h"
 #include "engine/scene/scene_io.h"
 #include "engine/shader/shader_compiler.h"
+#include "passes/atmosphere_composite/atmosphere_composite.h"
 #include "gpu_test.h"
 #include "kozlov_reference.h"
 
@@ -145,6 +146,56 @@ TEST_F(AtmosphereCompositeTest, ResolvedSunDiscIsDarkerAndRedderAtTheLimbWithIts
   const double r = 0.5 * scene.sun.angularDiameter * 3.14159265358979 / 180;
   const double expected = 3.14159265358979 * r * r * frame.lighting.gpu.sunDisc.g;
   EXPECT_NEAR(addedIlluminance(frame, scene.camera).g, expected, 0.05 * expected);
+}
+
+// The composite compiles a disc out when no pixel can get a share of it
+// (discReachesView): a disc whose centre lies just past the frame's edge must still be
+// drawn where it reaches in, and one a few pixels further out may be left out.
+TEST_F(AtmosphereCompositeTest, SunDiscJustPastTheEdgeIsStillDrawn) {
+  Scene scene = loadSceneFile(configDir() / "tests" / "clear_sky_high.yaml");
+  scene.sun.azimuth = 180.0;
+  scene.sun.elevation = 45.0;
+  scene.camera.pitch = 45.0;
+  scene.camera.verticalFov = 1.5;
+  const int w = scene.output.width, h = scene.output.height;
+  const double pixelDeg = scene.camera.verticalFov / h;
+  const double radiusPx = 0.5 * scene.sun.angularDiameter / pixelDeg;  // ~6 pixels
+  const double halfWidthDeg =
+      std::atan(std::tan(0.75 * 3.14159265358979 / 180) * w / h) * 180 / 3.14159265358979;
+  // Facing south the sun lies to the right by the heading's offset (times cos 45 degrees in
+  // angle, at 45 degrees up): its centre `beyondPx` pixels past the right edge.
+  auto edgeExcess = [&](double beyondPx) {
+    scene.camera.heading = 180.0 - (halfWidthDeg + beyondPx * pixelDeg) / std::cos(3.14159265358979 / 4);
+    const RenderedFrame frame = render(scene);
+    const ImageLayer* beauty = frame.image.find("");
+    const ImageLayer* sky = frame.image.find("sky");
+    double most = 0;
+    for (int y = 0; y < h; ++y) {
+      const size_t i = static_cast<size_t>(y) * w + (w - 1);
+      most = std::max(most, double(beauty->pixels[i * 4 + 1] - sky->pixels[i * 3 + 1]) /
+                                sky->pixels[i * 3 + 1]);
+    }
+    return most;
+  };
+  EXPECT_GT(edgeExcess(0.5 * radiusPx), 10.0) << "the disc's left part lies in the last column";
+  EXPECT_LT(edgeExcess(radiusPx + 4.0), 1e-5) << "the disc lies wholly outside";
+
+  const shared::ViewState view = makeViewState(scene.camera, w, h);
+  const glm::vec3 forward(view.forward), right(view.right);
+  const float r = static_cast<float>(0.5 * scene.sun.angularDiameter * 3.14159265358979 / 180);
+  auto along = [&](double angle) {
+    return glm::normalize(float(std::cos(angle)) * forward + float(std::sin(angle)) * right);
+  };
+  EXPECT_TRUE(discReachesView(view, forward, r));
+  EXPECT_FALSE(discReachesView(view, -forward, r));
+  // The corner pixel's centre, and a disc just reaching it from outward along the diagonal.
+  const glm::vec3 corner = referenceDirection(scene.camera, w, h, w - 1, 0);
+  const double cornerAngle = std::acos(glm::dot(corner, forward));
+  const glm::vec3 outward = glm::normalize(corner - forward * glm::dot(corner, forward));
+  const double reach = cornerAngle + r + 0.4 * view.forward.w;
+  EXPECT_TRUE(discReachesView(
+      view, glm::normalize(float(std::cos(reach)) * forward + float(std::sin(reach)) * outward), r));
+  EXPECT_FALSE(discReachesView(view, along(cornerAngle + r + 4.0 * view.forward.w + 2e-3), r));
 }
 
 // The moon seen from Zurich with a 1-degree field of view, so the disc spans about 19 pixels.

@@ -174,7 +174,7 @@ protected:
   // missing clear would show up as flux carried over.
   Readout render(StarFieldPass& pass, const StarFieldPass::Frame& frame) {
     FrameGraph g(*mRuntime);
-    const BufferId flux = pass.addTo(g, frame).flux;
+    const BufferId flux = pass.addTo(g, frame)->flux;
     const shared::ViewState view = frame.view;
     ImageId out;
     GraphBuilder b = g.addPass("star_readout", [&](PassContext& pc) {
