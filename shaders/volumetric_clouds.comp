@@ -299,81 +299,97 @@ void main() {
       // The longest step the density of the sample before allows (CLOUD_STEP_MAX_TAU).
       float depthLimit = CLOUD_NO_DEPTH_LIMIT;
       while (t < iv[k].y && samples < maxSteps && transmittance > params.transmittanceCutoff) {
-        stepLen = (params.stepM + params.stepGrowth * t) * stretch;  // Lu: grows with distance
-        // A stretched step's length is random (mean unchanged): what strides still skip turns
-        // into fine grain instead of lines where the strides of neighbouring rays line up.
-        if (stretch > 1.0) stepLen *= 0.5 + pixelHash(id, params.frameIndex, uint(samples) + 1u);
-        float dt = min(min(stepLen, depthLimit), iv[k].y - t);
-        vec3 p = o + d * (t + 0.5 * dt);
-        // What one sample resolves: a pixel's width at this distance, or a quarter of the step
-        // along the ray, the larger (top-down: full detail, the cover is measured there).
-        float footprint =
-            CLOUD_TOPDOWN != 0 ? 0.0 : max((t + 0.5 * dt) * params.view.forward.w, 0.25 * dt);
+        // Step through clear air until a sample finds cloud: this inner loop holds all that a
+        // clear sample costs and the lighting below runs once per sample in a cloud. lavapipe
+        // runs both sides of a branch for a whole group of invocations but leaves a loop once
+        // none is left in it; with the lighting inside this loop every clear step of every
+        // group in which any ray was in a cloud paid for a light march, most of a sample's
+        // cost. The steps are the same either way.
+        float dt;
+        vec3 p;
+        float footprint;
         CloudSample s;
-        bool anyCloud = CLOUD_REFERENCE != 0
-                            ? cloudSampleAtLla(p, latLonAltitude(params.geo, p), footprint, false,
-                                               CLOUD_NOISE_ALL, s)
-                            : cloudSampleAt(p, footprint, s);
-        if (!anyCloud) {
-          // Outside the region or far from any cover: nothing to sample; stride on (the coarse
-          // map is dilated by a whole block, kilometres, so a double step cannot jump a cloud).
-          // The reference takes no coarse map and no double steps.
-          tauView = 0.0;  // out of the layers or the map: the next cloud is entered afresh
-          depthLimit = CLOUD_NO_DEPTH_LIMIT;
-          t += CLOUD_REFERENCE != 0 ? dt : 2.0 * dt;
-          continue;
-        }
-        ++samples;
-        // A step deeper than CLOUD_STEP_MAX_TAU optical depths would take the density and
-        // light of its middle, tens of metres inside, for the whole step, though what the eye
-        // sees of an opaque cloud lies within an optical depth or two of its face. So each
-        // step is no longer than that depth at the density of the sample before it; where the
-        // density rises within a step the next one is shorter.
-        float limit =
-            s.density > 0.0
-                ? max(CLOUD_STEP_MAX_TAU / (params.extinction * s.density), CLOUD_STEP_MIN_M)
-                : CLOUD_NO_DEPTH_LIMIT;
-        if (s.density > 0.0 && (stretch > 1.0 || (tauView <= 0.0 && dt > 1.01 * limit))) {
-          // A cloud begins somewhere inside this step, a stretched one or one too deep for it:
-          // march it again from its start at the normal step no deeper than that, so cloud
-          // edges take neither the stretched step's coarse spacing nor a deep first sample.
-          stretch = 1.0;
-          depthLimit = limit;
-          continue;
-        }
-        depthLimit = limit;
-        // Stride only as far as the clearance says no cloud is near: a stretched step samples
-        // its middle alone and skips what lies between. Striding up to 4x right beside the
-        // clouds missed their thin fringes in the same way along whole rows of the view, whose
-        // rays cross the gap below a cloud in nearly the same steps: horizontal striations.
-        float strideCap = s.density > 0.0 || CLOUD_REFERENCE != 0
-                              ? 1.0
-                              : clamp(1.0 + 3.0 * s.clearance / CLOUD_STRIDE_CLEARANCE, 1.0, 4.0);
-        stretch = min(stretch * 1.5, strideCap);
-        if (s.density > 0.0) {
-          float sigmaT = params.extinction * s.density;
-          float stepT = exp(-sigmaT * dt);  // Lu (19)(20) over one step
-          // The step's integral of the in-scattered light S is weight x (S per unit of
-          // extinction): integrateStep is linear in S.
-          float weight = transmittance * (CLOUD_ENERGY_CONSERVING != 0
-                                              ? integrateStep(vec3(sigmaT), sigmaT, dt).x
-                                              : sigmaT * dt);
-          radiance += weight * cloudAmbientScattering(d, s, tauView + 0.5 * sigmaT * dt);
-          // In the tail of this cloud the light march of the sample before serves.
-          bool tail = CLOUD_REFERENCE == 0 && tauView > 0.0 && s.layer == light.layer &&
-                      transmittance < CLOUD_LIGHT_REUSE_T;
-          if (!tail) {
-            gFootprintM = footprint;
-            gLightOffset = fract(jitter + 0.6180339887 * float(samples));  // golden-ratio sequence
-            light = CloudLight(marchKeyLights(p, s), s.layer);
+        bool inCloud = false;
+        do {
+          stepLen = (params.stepM + params.stepGrowth * t) * stretch;  // Lu: grows with distance
+          // A stretched step's length is random (mean unchanged): what strides still skip turns
+          // into fine grain instead of lines where the strides of neighbouring rays line up.
+          if (stretch > 1.0) stepLen *= 0.5 + pixelHash(id, params.frameIndex, uint(samples) + 1u);
+          dt = min(min(stepLen, depthLimit), iv[k].y - t);
+          p = o + d * (t + 0.5 * dt);
+          // What one sample resolves: a pixel's width at this distance, or a quarter of the step
+          // along the ray, the larger (top-down: full detail, the cover is measured there).
+          footprint =
+              CLOUD_TOPDOWN != 0 ? 0.0 : max((t + 0.5 * dt) * params.view.forward.w, 0.25 * dt);
+          bool anyCloud = CLOUD_REFERENCE != 0
+                              ? cloudSampleAtLla(p, latLonAltitude(params.geo, p), footprint, false,
+                                                 CLOUD_NOISE_ALL, s)
+                              : cloudSampleAt(p, footprint, s);
+          if (!anyCloud) {
+            // Outside the region or far from any cover: nothing to sample; stride on (the coarse
+            // map is dilated by a whole block, kilometres, so a double step cannot jump a cloud).
+            // The reference takes no coarse map and no double steps.
+            tauView = 0.0;  // out of the layers or the map: the next cloud is entered afresh
+            depthLimit = CLOUD_NO_DEPTH_LIMIT;
+            t += CLOUD_REFERENCE != 0 ? dt : 2.0 * dt;
+            continue;
           }
-          radiance += weight * cloudKeyLightScattering(d, s.layer, s.type, light.tau);
-          depthSum += transmittance * (1.0 - stepT) * (t + 0.5 * dt);
-          transmittance *= stepT;
-          tauView += sigmaT * dt;
-        } else {
+          ++samples;
+          // A step deeper than CLOUD_STEP_MAX_TAU optical depths would take the density and
+          // light of its middle, tens of metres inside, for the whole step, though what the eye
+          // sees of an opaque cloud lies within an optical depth or two of its face. So each
+          // step is no longer than that depth at the density of the sample before it; where the
+          // density rises within a step the next one is shorter.
+          float limit =
+              s.density > 0.0
+                  ? max(CLOUD_STEP_MAX_TAU / (params.extinction * s.density), CLOUD_STEP_MIN_M)
+                  : CLOUD_NO_DEPTH_LIMIT;
+          if (s.density > 0.0 && (stretch > 1.0 || (tauView <= 0.0 && dt > 1.01 * limit))) {
+            // A cloud begins somewhere inside this step, a stretched one or one too deep for it:
+            // march it again from its start at the normal step no deeper than that, so cloud
+            // edges take neither the stretched step's coarse spacing nor a deep first sample.
+            stretch = 1.0;
+            depthLimit = limit;
+            continue;
+          }
+          depthLimit = limit;
+          // Stride only as far as the clearance says no cloud is near: a stretched step samples
+          // its middle alone and skips what lies between. Striding up to 4x right beside the
+          // clouds missed their thin fringes in the same way along whole rows of the view, whose
+          // rays cross the gap below a cloud in nearly the same steps: horizontal striations.
+          float strideCap = s.density > 0.0 || CLOUD_REFERENCE != 0
+                                ? 1.0
+                                : clamp(1.0 + 3.0 * s.clearance / CLOUD_STRIDE_CLEARANCE, 1.0, 4.0);
+          stretch = min(stretch * 1.5, strideCap);
+          if (s.density > 0.0) {
+            inCloud = true;
+            break;
+          }
           tauView = 0.0;  // out of this cloud: the next one is entered afresh
+          t += dt;
+        } while (t < iv[k].y && samples < maxSteps);
+        if (!inCloud) break;  // this interval ended in clear air
+        // A sample in a cloud: Lu (19)(20) over its step, lit by the sky and the key lights.
+        float sigmaT = params.extinction * s.density;
+        float stepT = exp(-sigmaT * dt);  // Lu (19)(20) over one step
+        // The step's integral of the in-scattered light S is weight x (S per unit of
+        // extinction): integrateStep is linear in S.
+        float weight = transmittance * (CLOUD_ENERGY_CONSERVING != 0
+                                            ? integrateStep(vec3(sigmaT), sigmaT, dt).x
+                                            : sigmaT * dt);
+        radiance += weight * cloudAmbientScattering(d, s, tauView + 0.5 * sigmaT * dt);
+        // In the tail of this cloud the light march of the sample before serves.
+        bool tail = CLOUD_REFERENCE == 0 && tauView > 0.0 && s.layer == light.layer &&
+                    transmittance < CLOUD_LIGHT_REUSE_T;
+        if (!tail) {
+          gFootprintM = footprint;
+          gLightOffset = fract(jitter + 0.6180339887 * float(samples));  // golden-ratio sequence
+          light = CloudLight(marchKeyLights(p, s), s.layer);
         }
+        radiance += weight * cloudKeyLightScattering(d, s.layer, s.type, light.tau);
+        depthSum += transmittance * (1.0 - stepT) * (t + 0.5 * dt);
+        transmittance *= stepT;
+        tauView += sigmaT * dt;
         t += dt;
       }
     }
