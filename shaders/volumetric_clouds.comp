@@ -25,6 +25,10 @@
 #ifndef CLOUD_LIGHT_NOISE_STEPS
 #define CLOUD_LIGHT_NOISE_STEPS 17
 #endif
+// Samples per short light step (CloudParams.lightSplit, clouds.light_split).
+#ifndef CLOUD_LIGHT_SPLIT
+#define CLOUD_LIGHT_SPLIT 1
+#endif
 // clouds.quality reference (CloudParams.reference): small fixed steps, no early exit, no
 // empty-space skipping, no light reused along the ray, and a uniform light march.
 #ifndef CLOUD_REFERENCE
@@ -130,10 +134,16 @@ vec2 marchKeyLights(vec3 p, CloudSample s) {
     tau[i] += textureLod(lightVolume, cloudLightVolumeCoord(params.lightVolume, params.geo, far),
                          0.0)[i];
 #else
+    // A short step's one sample is a random draw of its optical depth, and a noisy optical
+    // depth brightens on average (the mean of exp(-tau) exceeds exp(-mean tau)): split steps
+    // bring the shadowed parts of the clouds down to the reference's (clouds.light_split).
     tau[i] = params.extinction *
              (CLOUD_REFERENCE != 0
                   ? lightMarchDensityRefined(p, L, params.lightDistanceM, CLOUD_LIGHT_STEPS,
                                              CLOUD_REFERENCE_LIGHT_SPLIT, gLightOffset)
+              : CLOUD_LIGHT_SPLIT > 1
+                  ? lightMarchDensityRefined(p, L, params.lightDistanceM, CLOUD_LIGHT_STEPS,
+                                             CLOUD_LIGHT_SPLIT, gLightOffset)
                   : lightMarchDensity(p, L, params.lightDistanceM, CLOUD_LIGHT_STEPS,
                                       gLightOffset));
 #endif

@@ -247,6 +247,13 @@ void describe(V& v, CloudSettings& s) {
   // 1:32768 and more would overflow the shader's 1 << i.
   v.field("light_steps", s.lightSteps, NumberRange{1, 16},
           "short steps toward the light, followed by one long step");
+  // Each short step's one sample is a random draw of its optical depth, and a noisy optical
+  // depth brightens on average (Jensen: the mean of exp(-tau) exceeds exp of the mean): 2
+  // brings the default scene from 33 to 40 dB against the reference march for about a
+  // quarter more time (docs/clouds.md).
+  v.field("light_split", s.lightSplit, NumberRange{1, 4},
+          "samples per short light step, the long step taking twice as many (1: one each, "
+          "the long step three)");
   v.field("light_distance_m", s.lightDistanceM, NumberRange{1, 100000},
           "distance toward the light covered by the short steps, metres");
   v.field("transmittance_cutoff", s.transmittanceCutoff, NumberRange{0, 1},

@@ -64,6 +64,7 @@ CloudPipelines::CloudPipelines(const Context& ctx, ShaderCompiler& compiler, con
 const ComputePipeline& CloudPipelines::get(const shared::CloudParams& p) {
   return mVariants.get({{"CLOUD_TOPDOWN", p.frameKind == CLOUD_FRAME_TOPDOWN ? "1" : "0"},
                         {"CLOUD_LIGHT_STEPS", std::to_string(p.lightSteps)},
+                        {"CLOUD_LIGHT_SPLIT", std::to_string(p.lightSplit)},
                         {"CLOUD_OCTAVES", std::to_string(p.octaves)},
                         {"CLOUD_DUAL_LOBE", std::to_string(p.phaseKind)},
                         {"CLOUD_ENERGY_CONSERVING", std::to_string(p.energyConserving)},
@@ -122,6 +123,7 @@ shared::CloudParams cloudParams(const VolumetricCloudsSettings& settings,
   p.region = geoRegion(region);
   p.frameKind = g.topDown ? CLOUD_FRAME_TOPDOWN : CLOUD_FRAME_OBSERVER;
   p.lightSteps = static_cast<uint32_t>(c.lightSteps);
+  p.lightSplit = static_cast<uint32_t>(c.lightSplit);
   p.octaves = static_cast<uint32_t>(c.scatteringOctaves);
   p.phaseKind = c.phase == CloudPhase::DualLobe ? CLOUD_PHASE_DUAL_LOBE : CLOUD_PHASE_HG;
   p.energyConserving = c.energyConserving ? 1u : 0u;

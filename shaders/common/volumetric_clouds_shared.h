@@ -123,6 +123,14 @@ struct CloudParams {
   // steps). The shader never reads it; CloudPipelines picks the pipeline from it.
   uint reference;
 
+  // Samples per short light step (clouds.light_split): 1, the march of lightMarchDensity; more,
+  // lightMarchDensityRefined with each short step split this many ways and the long one twice
+  // as many. The shader variant CLOUD_LIGHT_SPLIT; the shader never reads it.
+  uint lightSplit;
+  uint unused0;
+  uint unused1;
+  uint unused2;
+
   // The camera in each noise texture's Earth-fixed frame (ECEF axes, m, wind drift taken
   // off), reduced by whole repeats of that texture so floats keep their precision.
   vec4 shapeOrigin;   // xyz: for the shape noise (repeat 1 / shapeRepeatsPerM)
@@ -153,7 +161,7 @@ SKY_SHARED_END
 
 #ifdef __cplusplus
 static_assert(sizeof(sky::shared::CloudParams) ==
-                  64 + 64 + 16 + 12 * 16 + 16 * 16 + 32 + CLOUD_COVERAGE_LUT_VEC4S * 16,
+                  64 + 64 + 16 + 13 * 16 + 16 * 16 + 32 + CLOUD_COVERAGE_LUT_VEC4S * 16,
               "std140 layout of CloudParams");
 #endif
 #endif

@@ -132,6 +132,7 @@ inline void expectSameScene(const Scene& a, const Scene& b) {
   EXPECT_EQ(ac.stepGrowth, bc.stepGrowth);
   EXPECT_EQ(ac.maxSteps, bc.maxSteps);
   EXPECT_EQ(ac.lightSteps, bc.lightSteps);
+  EXPECT_EQ(ac.lightSplit, bc.lightSplit);
   EXPECT_EQ(ac.lightDistanceM, bc.lightDistanceM);
   EXPECT_EQ(ac.transmittanceCutoff, bc.transmittanceCutoff);
   EXPECT_EQ(ac.energyConserving, bc.energyConserving);

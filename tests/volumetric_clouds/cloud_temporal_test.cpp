@@ -195,5 +195,35 @@ TEST_F(CloudTemporalTest, TheReferenceMarchAgreesWithTheStandardOne) {
   EXPECT_GT(samples(reference), 3.0 * samples(standard));
 }
 
+// One randomly placed sample in each light step is a noisy optical depth, and a noisy optical
+// depth brightens on average (the mean of exp(-tau) exceeds exp(-mean tau)): the clouds'
+// shadowed parts come out lighter than the reference's. clouds.light_split 2 takes two a step
+// and must come closer to the reference, and darker where the clouds are.
+TEST_F(CloudTemporalTest, ASplitLightMarchComesCloserToTheReference) {
+  const RenderedFrame one = render(scene(false));
+  const RenderedFrame two = render(scene(false, 200.0, {"clouds.light_split=2"}));
+  const RenderedFrame reference = render(scene(false, 200.0, {"clouds.quality=reference"}));
+  // The mean viewed brightness over the pixels the reference has clouds in, less the
+  // reference's.
+  const std::vector<float> alpha = test::CloudLayerView(reference).alpha();
+  auto excess = [&](const RenderedFrame& f) {
+    const std::vector<float> a = viewed(f), r = viewed(reference);
+    double sum = 0.0;
+    size_t n = 0;
+    for (size_t i = 0; i < alpha.size(); ++i)
+      if (alpha[i] > 0.5f) {
+        for (int c = 0; c < 3; ++c) sum += a[3 * i + c] - r[3 * i + c];
+        n += 3;
+      }
+    return n ? sum / static_cast<double>(n) : 0.0;
+  };
+  const double dbOne = psnrOf(one, reference), dbTwo = psnrOf(two, reference);
+  std::printf("light_split 1: %.1f dB, %+.4f brighter; 2: %.1f dB, %+.4f brighter\n", dbOne,
+              excess(one), dbTwo, excess(two));
+  EXPECT_GT(dbTwo, dbOne + 1.0);
+  EXPECT_LT(std::abs(excess(two)), 0.6 * std::abs(excess(one)));
+  EXPECT_GT(excess(one), 0.0) << "one sample a step errs toward light, not dark";
+}
+
 }  // namespace
 }  // namespace sky
