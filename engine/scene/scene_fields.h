@@ -279,6 +279,10 @@ void describe(V& v, CloudSettings& s) {
   v.section("low", s.low, "the low cloud layer (stratus, stratocumulus, cumulus)");
   v.section("mid", s.mid, "the mid cloud layer (altostratus, altocumulus)");
   v.check("mid", s.mid.baseM >= s.low.topM, "base_m must not lie below low.top_m");
+  // The light volume's near part is marched one sample a step (lightMarchDensityNear): a
+  // split asked for there would be silently ignored.
+  v.check("light_split", s.lightSplit == 1 || s.light == CloudLight::March,
+          "applies to light: march only (light: volume marches one sample a step)");
 }
 
 template <class V>
