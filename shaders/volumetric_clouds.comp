@@ -129,7 +129,7 @@ vec2 marchKeyLights(vec3 p, CloudSample s) {
     // at the point where this part ends (it holds the light's path from there on).
     tau[i] = params.extinction *
              lightMarchDensityNear(p, L, params.lightDistanceM, CLOUD_LIGHT_STEPS,
-                                   CLOUD_LIGHT_VOLUME_NEAR, gLightOffset);
+                                   CLOUD_LIGHT_VOLUME_NEAR, CLOUD_LIGHT_SPLIT, gLightOffset);
     vec3 far = p + L * params.lightVolume.startM;
     tau[i] += textureLod(lightVolume, cloudLightVolumeCoord(params.lightVolume, params.geo, far),
                          0.0)[i];
@@ -290,6 +290,8 @@ void main() {
   // Where the ray first reaches the shells, -1 if it never does (the ground comes first): the
   // temporal pass's upsampling compares rays by it (cloud_temporal.comp).
   float shellEntry = -1.0;
+  vec3 lastScattering = vec3(0.0);  // in-scattered light per unit of weight, last sample
+  float lastT = 0.0;
   if (params.anyCover > 0.0) {
     float R = params.geo.origin.w;
     vec2 iv[2];
@@ -387,7 +389,7 @@ void main() {
         float weight = transmittance * (CLOUD_ENERGY_CONSERVING != 0
                                             ? integrateStep(vec3(sigmaT), sigmaT, dt).x
                                             : sigmaT * dt);
-        radiance += weight * cloudAmbientScattering(d, s, tauView + 0.5 * sigmaT * dt);
+        vec3 scattering = cloudAmbientScattering(d, s, tauView + 0.5 * sigmaT * dt);
         // In the tail of this cloud the light march of the sample before serves.
         bool tail = CLOUD_REFERENCE == 0 && tauView > 0.0 && s.layer == light.layer &&
                     transmittance < CLOUD_LIGHT_REUSE_T;
@@ -396,13 +398,21 @@ void main() {
           gLightOffset = fract(jitter + 0.6180339887 * float(samples));  // golden-ratio sequence
           light = CloudLight(marchKeyLights(p, s), s.layer);
         }
-        radiance += weight * cloudKeyLightScattering(d, s.layer, s.type, light.tau);
+        scattering += cloudKeyLightScattering(d, s.layer, s.type, light.tau);
+        radiance += weight * scattering;
+        lastScattering = scattering;
+        lastT = t + 0.5 * dt;
         depthSum += transmittance * (1.0 - stepT) * (t + 0.5 * dt);
         transmittance *= stepT;
         tauView += sigmaT * dt;
         t += dt;
       }
     }
+  }
+  if (CLOUD_REFERENCE == 0 && transmittance <= params.transmittanceCutoff && transmittance > 0.0) {
+    radiance += transmittance * lastScattering;
+    depthSum += transmittance * lastT;
+    transmittance = 0.0;
   }
   float alpha = 1.0 - transmittance;
   imageStore(cloudImage, ip, vec4(radiance, alpha));

@@ -312,9 +312,9 @@ struct CloudSettings {
   double stepGrowth = 0.002;                // extra step length per metre of distance
   int maxSteps = 512;                       // per view ray
   int lightSteps = 5;                 // short steps toward the light (plus one long one), 1..16
-  int lightSplit = 1;                 // samples per short light step (the long one 2x), 1..4
+  int lightSplit = 2;                 // samples per short light step (the long one 2x), 1..4
   double lightDistanceM = 1200.0;     // length covered by the short light steps, metres
-  double transmittanceCutoff = 0.01;  // stop marching below this transmittance
+  double transmittanceCutoff = 0.05;  // stop marching below this transmittance
   bool energyConserving = true;       // Hillaire 2016's integration of each step
   int scatteringOctaves = 3;          // multiple-scattering octaves (Wrenninge); 1 = single
   double multipleScattering = 1.8;    // strength of the diffusion term, 0..4 (0: octaves only)

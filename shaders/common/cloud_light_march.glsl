@@ -41,13 +41,19 @@ float lightMarchDensity(vec3 p, vec3 L, float distance, int n, float offset) {
 
 // The first `k` of the n short steps of lightMarchDensity alone, [0, lightStepStart(k)]:
 // the part near the point, where the cloud's fine structure shadows itself, that a caller
-// reading the rest from the light volume (cloud_light_volume.glsl) marches itself.
-float lightMarchDensityNear(vec3 p, vec3 L, float distance, int n, int k, float offset) {
+// reading the rest from the light volume (cloud_light_volume.glsl) marches itself. Each step
+// split `split` ways as in lightMarchDensityRefined (1: one sample a step); a sub-step may
+// resolve noise its whole step cannot, so a split march tells the includer step 0.
+float lightMarchDensityNear(vec3 p, vec3 L, float distance, int n, int k, int split,
+                            float offset) {
   float ds = 0.0;
   for (int i = 0; i < k; ++i) {
     float start = lightStepStart(i, n, distance);
-    float len = lightStepLength(i, n, distance);
-    ds += cloudDensityForLight(p + L * (start + offset * len), len, i) * len;
+    float len = lightStepLength(i, n, distance) / float(split);
+    for (int j = 0; j < split; ++j)
+      ds += cloudDensityForLight(p + L * (start + (float(j) + offset) * len), len,
+                                 split > 1 ? 0 : i) *
+            len;
   }
   return ds;
 }

@@ -528,9 +528,6 @@ TEST(SceneErrors, CloudAndWeatherRules) {
             "x.yaml:4:12: clouds.low.top_m: must be above base_m");
   EXPECT_EQ(yamlError("clouds:\n  mid:\n    base_m: 2000\n"),
             "x.yaml:3:5: clouds.mid: base_m must not lie below low.top_m");
-  EXPECT_EQ(yamlError("clouds:\n  light: volume\n  light_split: 2\n"),
-            "x.yaml:3:16: clouds.light_split: applies to light: march only (light: volume "
-            "marches one sample a step)");
   EXPECT_EQ(yamlError("weather:\n  cover_low: 1.5\n"),
             "x.yaml:2:14: weather.cover_low: 1.5 is out of range [0, 1]");
   EXPECT_EQ(yamlError("weather:\n  region:\n    lat: [50, 45]\n    lon: [5, 12]\n"),
