@@ -409,6 +409,10 @@ void main() {
       }
     }
   }
+  // A ray stopped by the cutoff is taken as opaque: the rest of its transmittance goes to the
+  // light of its last sample, as if that sample's step ran on to infinite depth (Lu (19)(20):
+  // the step's weight tends to the transmittance left). Left out, 5 % of the sky showed through
+  // every opaque cloud and the light of its far side was missing (docs/clouds.md, "Cutoff").
   if (CLOUD_REFERENCE == 0 && transmittance <= params.transmittanceCutoff && transmittance > 0.0) {
     radiance += transmittance * lastScattering;
     depthSum += transmittance * lastT;

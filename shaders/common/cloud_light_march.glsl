@@ -62,15 +62,11 @@ float lightMarchDensityNear(vec3 p, vec3 L, float distance, int n, int k, int sp
 // many, every sample standing for its sub-step. The reference march takes it at every view
 // sample; the light volume once per texel.
 float lightMarchDensityRefined(vec3 p, vec3 L, float distance, int n, int split, float offset) {
-  float ds = 0.0;
-  for (int i = 0; i <= n; ++i) {
-    float start = i < n ? lightStepStart(i, n, distance) : distance;
-    int parts = i < n ? split : 2 * split;
-    float len = (i < n ? lightStepLength(i, n, distance) : lightLongStepLength(distance)) /
-                float(parts);
-    for (int j = 0; j < parts; ++j)
-      ds += cloudDensityForLight(p + L * (start + (float(j) + offset) * len), len, 0) * len;
-  }
+  float ds = lightMarchDensityNear(p, L, distance, n, n, split, offset);
+  int parts = 2 * split;
+  float len = lightLongStepLength(distance) / float(parts);
+  for (int j = 0; j < parts; ++j)
+    ds += cloudDensityForLight(p + L * (distance + (float(j) + offset) * len), len, 0) * len;
   return ds;
 }
 
