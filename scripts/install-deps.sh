@@ -28,6 +28,8 @@ PACKAGES=(
   # The benchmark harness (benchmarks/run.py) is Python; its plots are matplotlib's. CI runs
   # its smoke configuration, plots included.
   python3 python3-matplotlib
+  # skyview's panel is Dear ImGui (Debian's 1.86); its tests open the window under Xvfb.
+  libimgui-dev xvfb
 )
 for arg in "$@"; do
   case "$arg" in
