@@ -13,6 +13,8 @@
 #include <iostream>
 #include <memory>
 
+#include "apps/common/contact_sheet.h"
+#include "apps/common/debug_outputs.h"
 #include "cli_args.h"
 #include "default_scene.h"
 #include "engine/color/ocio_output.h"
@@ -20,6 +22,7 @@
 #include "engine/core/files.h"
 #include "engine/core/paths.h"
 #include "engine/gpu/context.h"
+#include "engine/io/png.h"
 #include "engine/lighting/lighting_state.h"
 #include "engine/render/render_files.h"
 #include "engine/render/renderer.h"
@@ -201,21 +204,22 @@ void warnIfCacheUnwritable() {
 int renderCommand(const std::vector<std::string>& argv) {
   CliArgs args("render", argv,
                {"--out", "--name", "--width", "--height", "--time", "--set", "--dump-graph",
-                "--gpu", "--ocio", "--debug-output"},
-               {"--set", "--debug-output"}, {});
+                "--gpu", "--ocio", "--debug-output", "--debug-passes"},
+               {"--set", "--debug-output"}, {"--debug-passes"});
   Scene scene = loadScene(args, false);
+  const DebugRequest debug = parseDebugOutputs(args.values("--debug-output"));
   RenderOptions renderOptions;
-  for (const std::string& v : args.values("--debug-output")) {
-    // Accepts "--debug-output a,b" as well as repeats.
-    size_t start = 0;
-    while (start <= v.size()) {
-      size_t comma = v.find(',', start);
-      if (comma == std::string::npos) comma = v.size();
-      renderOptions.debugOutputs.push_back(v.substr(start, comma - start));
-      start = comma + 1;
-    }
+  renderOptions.debugOutputs = debug.names;
+  renderOptions.allDebugOutputs = args.flag("--debug-passes");
+  if (debug.list) {
+    // The images of the scene's first frame, each of which --debug-output can name.
+    warnIfCacheUnwritable();
+    Context ctx(contextOptions(args));
+    ShaderCompiler compiler;
+    Renderer renderer(ctx, compiler);
+    std::fputs(debugImageTable(renderer.debugImages(scene, scene.time.start)).c_str(), stdout);
+    return 0;
   }
-  checkDebugOutputs(scene, renderOptions.debugOutputs);
 
   // Check everything the user controls before any GPU work, so bad input fails fast.
   std::optional<fs::path> ocioPath;
@@ -245,12 +249,31 @@ int renderCommand(const std::vector<std::string>& argv) {
   for (int64_t i = 0; i < count && !stop.signal(); ++i) {
     const IsoTime time = scene.time.frame(i);
     progress.show(i, time);
-    RenderedFrame frame = renderer.render(scene, time, renderOptions);
+    RenderedFrame frame;
+    try {
+      frame = renderer.render(scene, time, renderOptions);
+    } catch (const UnknownImageName& e) {
+      debugOutputError(e, debug, "--debug-output");
+    }
+    const std::string stem = frameStem(scene.output.name, i, count);
+    std::optional<DisplayTile> sheet;
+    if (renderOptions.allDebugOutputs) {
+      sheet = contactSheet(frame.debug, stem + "  " + time.format() + "  " + ctx.deviceName());
+      packDebugLayers(frame);
+    }
+    nameDebugImagesAsAsked(frame, debug);
     // The graph is the same every frame; the first one is written.
-    RenderFiles files =
-        writeRenderFiles(outDir, frameStem(scene.output.name, i, count), scene, frame,
-                         exposure.expose(scene, frame, time), ocio, ctx.deviceName(),
-                         i == 0 ? graphPath : std::nullopt);
+    RenderFiles files = writeRenderFiles(outDir, stem, scene, frame,
+                                         exposure.expose(scene, frame, time), ocio,
+                                         ctx.deviceName(), i == 0 ? graphPath : std::nullopt);
+    if (sheet) {
+      std::vector<float> codes(sheet->rgba.begin(), sheet->rgba.end());
+      for (float& c : codes) c /= 255.0f;
+      const fs::path path = outDir / (stem + ".passes.png");
+      writePng8(path, static_cast<int>(sheet->width), static_cast<int>(sheet->height), codes,
+                PngQuantize::Nearest);
+      if (i == 0) std::printf("wrote %s (every image of the frame)\n", path.string().c_str());
+    }
     folder.keep();
     if (i == 0) first = files;
     last = files;

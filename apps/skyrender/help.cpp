@@ -31,11 +31,14 @@ options:
                        sequence (e.g. --set camera.heading=250); repeatable;
                        validated exactly like the file
   --dump-graph FILE    also write the compiled frame graph as Graphviz (dot -Tsvg FILE)
-  --debug-output NAME  also write NAME.<name>.exr; repeatable or comma-separated:
-                       coefficients, normals (high clouds); transmittance_lut,
-                       multiscattering_lut, sky_view_sun_lut, sky_view_moon_lut,
-                       aerial_perspective (sky.model physical); cloud_steps,
-                       cloud_density_slice, weather_map (with low or mid clouds)
+  --debug-output NAME  also write NAME.<name>.exr: any image of the frame's graph by its
+                       name; repeatable or comma-separated. `--debug-output list` prints
+                       the scene's images (which pass writes each, how it is shown, its
+                       size, what it holds) and renders nothing
+  --debug-passes       every image of the frame: NAME.passes.png, a labelled contact
+                       sheet (one tile per image with its pass and GPU ms), the images of
+                       the frame's size as EXR layers debug.<name>, the others as
+                       NAME.<name>.exr
   --gpu NAME|INDEX     Vulkan device by index or name substring (default: a GPU if
                        present, else lavapipe)
   --ocio FILE          OpenColorIO config (default: $OCIO, else configs/ocio/config.ocio)

@@ -12,12 +12,28 @@ class Context;
 
 enum class ImageDim : uint8_t { Tex2D, Tex3D };
 
+// How a debug view shows an image. Every frame-graph image can be requested by its name
+// (skyrender --debug-output, skyview's debug view); the pass that creates it says here how
+// to look at it, so a new pass's images are viewable with nothing added anywhere else.
+enum class DebugView : uint8_t {
+  Color,    // radiance or colour data: exposed to its own brightness
+  Scalar,   // the first channel in false colour, with a legend of its range
+  Normals,  // xyz in -1..1 shown as 0..1
+  Depth,    // a distance (m) in the first channel: near bright, far dark, none black
+  Heat,     // a count per pixel (samples, steps) in false colour, with a legend
+};
+
 struct ImageDesc {
-  std::string name;  // debug output only
+  std::string name;  // for debug output: the name the image is requested by, unique in a frame
   ImageDim dim = ImageDim::Tex2D;
   VkFormat format = VK_FORMAT_R16G16B16A16_SFLOAT;
   uint32_t width = 1, height = 1, depth = 1;
   VkImageUsageFlags usage = 0;  // the frame graph derives this from declared accesses
+  // For debug output only (see DebugView): how to show it, its channels' names in an EXR
+  // ("view,light": the first channels only; empty: R, G, B, A) and one line on what it holds.
+  DebugView view = DebugView::Color;
+  std::string channels;
+  std::string about;
 };
 
 // Bytes per texel of the formats the engine uses; 0 for anything else.

@@ -46,9 +46,10 @@ void HistoryImage::ensure(const Context& ctx, const ImageDesc& wanted) {
     return;
   for (int i = 0; i < 2; ++i) {
     ImageDesc d = desc;
-    d.name = desc.name + (i == 0 ? " (history a)" : " (history b)");
+    d.name = desc.name + (i == 0 ? "_history_a" : "_history_b");
     mImages[i] = PersistentImage{Image(ctx, d), {}};
   }
+  mName = desc.name;
   mWrite = 0;
   mValid = false;
 }
@@ -58,8 +59,13 @@ HistoryIds FrameGraph::importHistory(HistoryImage& history) {
   if (std::find(mHistories.begin(), mHistories.end(), &history) != mHistories.end())
     internalError("frame graph: a history imported twice into one frame");
   mHistories.push_back(&history);
-  return {importImage(history.mImages[1 - history.mWrite]),
-          importImage(history.mImages[history.mWrite]), history.mValid};
+  const HistoryIds ids{importImage(history.mImages[1 - history.mWrite]),
+                       importImage(history.mImages[history.mWrite]), history.mValid};
+  // Named by their part in this frame, not by which of the two images they are, so a debug
+  // view asks for the same name every frame.
+  mDesc.resources[ids.previous.id].name = history.mName + "_history_previous";
+  mDesc.resources[ids.next.id].name = history.mName + "_history";
+  return ids;
 }
 
 BufferId FrameGraph::importBuffer(PersistentBuffer& buffer) {
@@ -184,6 +190,44 @@ void FrameGraph::requestOutput(ImageId image, std::string label) {
     if (o.second == label) internalError("frame graph: output '" + label + "' requested twice");
   mOutputs.emplace_back(image, std::move(label));
 }
+
+std::vector<GraphImage> FrameGraph::images() const {
+  std::vector<GraphImage> out;
+  for (uint32_t r = 0; r < mDesc.resources.size(); ++r) {
+    const ResourceNode& node = mDesc.resources[r];
+    if (node.kind != ResourceKind::Image) continue;
+    const int writer = mResources[r].lastWriter;
+    out.push_back({node.name, ImageId{r, node.versions - 1},
+                   writer >= 0 ? mDesc.passes[static_cast<size_t>(writer)].name : std::string(),
+                   &node.image});
+  }
+  return out;
+}
+
+GraphImage FrameGraph::image(std::string_view name) const {
+  std::vector<GraphImage> all = images();
+  for (GraphImage& g : all)
+    if (g.name == name) return g;
+  std::vector<std::string> known;
+  for (const GraphImage& g : all) known.push_back(g.name);
+  throw UnknownImageName(std::string(name), std::move(known));
+}
+
+namespace {
+
+std::string knownList(const std::vector<std::string>& known) {
+  std::string s;
+  for (const std::string& k : known) s += (s.empty() ? "" : ", ") + k;
+  return s;
+}
+
+}  // namespace
+
+UnknownImageName::UnknownImageName(std::string name, std::vector<std::string> known)
+    : Error(ErrorKind::BadInput,
+            "no image named '" + name + "' in this frame (it has: " + knownList(known) + ")"),
+      mName(std::move(name)),
+      mKnown(std::move(known)) {}
 
 const ReadbackImage& FrameResult::output(std::string_view label) const {
   for (const ReadbackImage& o : outputs)

@@ -10,6 +10,7 @@
 #include <string_view>
 #include <vector>
 
+#include "engine/core/error.h"
 #include "engine/graph/compile.h"
 #include "engine/graph/graph_desc.h"
 #include "engine/graph/graph_runtime.h"
@@ -50,6 +51,9 @@ public:
 private:
   friend class FrameGraph;
   PersistentImage mImages[2];
+  // The desc's name: a frame names its two images NAME_history (this frame's) and
+  // NAME_history_previous (the frame before's).
+  std::string mName;
   uint32_t mWrite = 0;  // the image this frame writes; the other one it reads
   bool mValid = false;
 };
@@ -106,6 +110,28 @@ struct FrameResult {
   const ReadbackImage& output(std::string_view label) const;
 };
 
+// An image of a frame's graph, as a debug view finds it: by its name (ImageDesc::name).
+struct GraphImage {
+  std::string name;
+  ImageId latest;      // its last version in the graph: what the frame ends up holding
+  std::string writer;  // the pass that wrote that version; "" for an imported image no pass
+                       // of this frame writes (uploaded, baked or kept from an earlier frame)
+  const ImageDesc* desc = nullptr;  // valid while the graph lives
+};
+
+// A name no image of the graph has. BadInput: names come from users (--debug-output, the
+// window's debug view); what() names it and lists the graph's images.
+class UnknownImageName : public Error {
+public:
+  UnknownImageName(std::string name, std::vector<std::string> known);
+  const std::string& name() const { return mName; }
+  const std::vector<std::string>& known() const { return mKnown; }
+
+private:
+  std::string mName;
+  std::vector<std::string> mKnown;
+};
+
 struct CompiledGraph {
   std::vector<bool> alive;
   std::vector<uint32_t> order;
@@ -137,6 +163,11 @@ public:
   }
   // Reads `image` back to the host after the frame under `label` (main image, AOVs, debug).
   void requestOutput(ImageId image, std::string label);
+  // Every image added so far, in the order they were added (the debug views' registry: any
+  // image a pass declares can be requested by its name, with nothing added for it).
+  std::vector<GraphImage> images() const;
+  // The image named `name`; UnknownImageName when there is none.
+  GraphImage image(std::string_view name) const;
 
   const GraphDesc& desc() const { return mDesc; }
   // Runs the compile stages; idempotent. Nothing may be added afterwards.

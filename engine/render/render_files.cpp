@@ -131,7 +131,7 @@ RenderFiles writeRenderFiles(const std::filesystem::path& dir, const std::string
       {"given", scene.weather.region.has_value()},
       {"texels", {frame.weatherTexels.x, frame.weatherTexels.y}}};
   for (const DebugImage& d : frame.debug)
-    files.debug.push_back(dir / (stem + "." + d.name + ".exr"));
+    files.debug.push_back(dir / (stem + "." + d.info.name + ".exr"));
   nlohmann::ordered_json debug = nlohmann::ordered_json::array();
   for (const std::filesystem::path& p : files.debug) debug.push_back(p.filename().string());
   report["debug_outputs"] = debug;

@@ -8,68 +8,37 @@
 #include "engine/gpu/context.h"
 #include "engine/lighting/light_model.h"
 #include "engine/render/camera.h"
+#include "engine/render/frame_layers.h"
 #include "engine/scene/scene_io.h"
 #include "engine/weather/geo.h"
 
 namespace sky {
 namespace {
 
-// Splits interleaved read-back into a layer with the first `channels` channels. A 3D image
-// is laid out with its depth slices side by side (width * depth across).
-ImageLayer toLayer(const ReadbackImage& img, std::string name, std::vector<std::string> channels,
-                   bool fullFloat = false) {
-  ImageLayer layer{std::move(name), std::move(channels), {}, fullFloat};
-  const size_t w = img.width, h = img.height, d = img.depth, c = layer.channels.size();
-  layer.pixels.resize(w * h * d * c);
-  for (size_t z = 0; z < d; ++z)
-    for (size_t y = 0; y < h; ++y)
-      for (size_t x = 0; x < w; ++x) {
-        const size_t src = ((z * h + y) * w + x) * img.channels;
-        const size_t dst = (y * w * d + z * w + x) * c;
-        for (size_t k = 0; k < c; ++k) layer.pixels[dst + k] = img.pixels[src + k];
-      }
-  return layer;
+DebugImageInfo debugImageInfo(const GraphImage& g) {
+  const ImageDesc& d = *g.desc;
+  return {g.name,
+          g.writer,
+          d.about,
+          d.view,
+          d.width,
+          d.height,
+          d.dim == ImageDim::Tex3D ? d.depth : 1u,
+          d.format};
 }
 
-const std::vector<std::string> kRgb = {"R", "G", "B"};
-const std::vector<std::string> kRgba = {"R", "G", "B", "A"};
-const std::vector<std::string> kSteps = {"view", "light"};
-const std::vector<std::string> kShadow = {"transmittance"};
-
-// The "clouds" layer: premultiplied radiance, opacity and the transmittance-weighted depth
-// (m); all zero when the scene has no volumetric clouds.
-ImageLayer cloudLayer(const ReadbackImage* clouds, const ReadbackImage* depth, uint32_t width,
-                      uint32_t height) {
-  // FLOAT: the depth of horizon clouds (up to ~200 km) is past half's 65504, and moonlit
-  // clouds' radiance (1e-7) below its normal range.
-  ImageLayer layer{"clouds", {"R", "G", "B", "A", "depth"}, {}, true};
-  const size_t n = size_t(width) * height;
-  layer.pixels.assign(n * 5, 0.0f);
-  if (!clouds || !depth) return layer;
-  for (size_t i = 0; i < n; ++i) {
-    for (size_t k = 0; k < 4; ++k)
-      layer.pixels[i * 5 + k] = clouds->pixels[i * clouds->channels + k];
-    layer.pixels[i * 5 + 4] = depth->pixels[i * depth->channels];
-  }
-  return layer;
-}
-
-// The "weather" layer of a top-down render: the map's low and mid cover at each pixel's
-// centre (row 0 the north edge, column 0 the west edge), for `skyrender dsc`.
-ImageLayer weatherCoverLayer(const WeatherMap& map, const WeatherRegion& region, uint32_t width,
-                             uint32_t height) {
-  ImageLayer layer{"weather", {"cover_low", "cover_mid"}, {}};
-  layer.pixels.resize(size_t(width) * height * 2);
-  for (uint32_t y = 0; y < height; ++y)
-    for (uint32_t x = 0; x < width; ++x) {
-      const double lat = region.lat[1] + (region.lat[0] - region.lat[1]) * (y + 0.5) / height;
-      const double lon = region.lon[0] + (region.lon[1] - region.lon[0]) * (x + 0.5) / width;
-      const glm::vec4 w = map.sample(lat, lon);
-      const size_t i = (size_t(y) * width + x) * 2;
-      layer.pixels[i] = w.r;
-      layer.pixels[i + 1] = w.g;
-    }
-  return layer;
+// A read-back debug image with what its view needs: how to show it, its channels' names and
+// the pass that wrote it with that pass's GPU time.
+DebugImage debugImage(const ReadbackImage& readback, const GraphImage& g,
+                      const FrameResult& result) {
+  DebugImage d;
+  d.info = debugImageInfo(g);
+  for (const PassTiming& t : result.passes)
+    if (t.name == g.writer) d.gpuMs += t.gpuMs;
+  d.image.width = static_cast<int>(readback.width * readback.depth);
+  d.image.height = static_cast<int>(readback.height);
+  d.image.layers.push_back(imageLayer(readback, "", channelNames(*g.desc)));
+  return d;
 }
 
 }  // namespace
@@ -92,54 +61,6 @@ AtmosphereSettings physicalAtmosphere(const Scene& scene) {
     a.mieAnisotropy = kContinentalAerosolG;
   }
   return a;
-}
-
-const std::vector<DebugOutputInfo>& debugOutputs() {
-  static const std::vector<DebugOutputInfo> outputs = {
-      {"coefficients", "high-cloud coefficient texture (R thin lit, G dense, B clear, A edges)",
-       false, false},
-      {"normals", "high-cloud tangent-space normal map (xyz in -1..1)", false, false},
-      {"transmittance_lut", "transmittance to the top of the atmosphere, 256x64", true, false},
-      {"multiscattering_lut", "multiple-scattering contribution Psi_ms, 32x32", true, false},
-      {"sky_view_sun_lut", "sky radiance lit by the sun, 192x108", true, false},
-      {"sky_view_moon_lut", "sky radiance lit by the moon, 192x108", true, false},
-      {"aerial_perspective",
-       "in-scattering (rgb) and transmittance (a), 32x32x32, slices "
-       "side by side",
-       true, false},
-      {"cloud_steps",
-       "volumetric clouds: density samples per pixel along the view ray (R) and in the light "
-       "marches (G), a heat map of the raymarch's cost",
-       false, true},
-      {"cloud_density_slice",
-       "volumetric clouds: a vertical cut along the camera's heading, 60 km ahead (across) by "
-       "sea level to above the clouds (down), 512x128: R density, G cover, B type, A layer",
-       false, true},
-      {"weather_map",
-       "the weather map over its region: R low cover, G mid cover, B type, A density", false, true},
-      {"cloud_shadow",
-       "volumetric clouds: transmittance toward the key light from the ground, 384x384 around "
-       "the point below the camera (east right, north up; ground distance r u|u| from the "
-       "centre, r in the report's cloud_shadow.radius_m)",
-       false, true},
-  };
-  return outputs;
-}
-
-void checkDebugOutputs(const Scene& scene, const std::vector<std::string>& names) {
-  for (const std::string& name : names) {
-    auto it = std::find_if(debugOutputs().begin(), debugOutputs().end(),
-                           [&](const DebugOutputInfo& o) { return name == o.name; });
-    if (it == debugOutputs().end()) {
-      std::string known;
-      for (const DebugOutputInfo& o : debugOutputs())
-        known += (known.empty() ? "" : ", ") + std::string(o.name);
-      inputError("--debug-output " + name + ": unknown (known: " + known + ")");
-    }
-    if (it->physicalOnly && scene.sky.model != SkyModel::Physical)
-      inputError("--debug-output " + name + ": needs sky.model physical (the scene uses " +
-                 enumName(scene.sky.model) + ")");
-  }
 }
 
 Renderer::Renderer(const Context& ctx, ShaderCompiler& compiler)
@@ -221,9 +142,13 @@ Renderer::HistoryStep Renderer::stepHistory(const Scene& scene, const IsoTime& t
   desc.height = height;
   desc.format = VK_FORMAT_R32G32B32A32_SFLOAT;
   desc.name = "clouds";
+  desc.about = "the clouds after temporal reuse: premultiplied radiance (RGB), opacity (A)";
   mCloudHistory.ensure(ctx, desc);
   desc.format = VK_FORMAT_R32G32_SFLOAT;
   desc.name = "clouds_depth";
+  desc.about = "the clouds' distance (m, R) and shell entry (m, G) after temporal reuse";
+  desc.view = DebugView::Depth;
+  desc.channels = "depth,shell_entry";
   mDepthHistory.ensure(ctx, desc);
 
   HistoryStep step;
@@ -240,9 +165,9 @@ Renderer::HistoryStep Renderer::stepHistory(const Scene& scene, const IsoTime& t
   const glm::dvec3 here = ecefFromLatLonAltitude(next.latDeg, next.lonDeg, next.altitudeM);
   const glm::dvec3 there = ecefFromLatLonAltitude(last.latDeg, last.lonDeg, last.altitudeM);
   const double gap = time.secondsSince(last.time);
-  step.valid = mCloudHistory.valid() && mDepthHistory.valid() &&
-               next.settings == last.settings && next.mapRevision == last.mapRevision &&
-               std::abs(gap) <= kHistoryMaxGapS && glm::length(here - there) <= kHistoryMaxMoveM;
+  step.valid = mCloudHistory.valid() && mDepthHistory.valid() && next.settings == last.settings &&
+               next.mapRevision == last.mapRevision && std::abs(gap) <= kHistoryMaxGapS &&
+               glm::length(here - there) <= kHistoryMaxMoveM;
   next.frame = step.valid ? last.frame + 1 : 0;
   // A cut marches every pixel, so the first frame of a sequence is the still.
   if (step.valid) {
@@ -257,37 +182,38 @@ Renderer::HistoryStep Renderer::stepHistory(const Scene& scene, const IsoTime& t
   return step;
 }
 
-RenderedFrame Renderer::render(const Scene& scene, const IsoTime& time,
-                               const RenderOptions& options) {
-  checkDebugOutputs(scene, options.debugOutputs);
-  if (options.readBack == ReadBack::Display && !options.gpuDisplay)
-    internalError("ReadBack::Display without RenderOptions::gpuDisplay");
-  const bool layers = options.readBack == ReadBack::Layers;
-  RenderedFrame out;
-  const CloudSetup setup = cloudSetup(scene, time);
-  const WeatherMap& weather = *setup.weather;
-  const Scene& cloudScene = setup.cloudScene;
-  const CloudFrameGeometry& geometry = setup.geometry;
-  out.lighting = setup.lighting;
-  out.localWeather = setup.localWeather;
-  out.weatherRegion = weather.region;
-  out.weatherTexels = glm::uvec2(weather.width, weather.height);
-  const uint32_t width = static_cast<uint32_t>(scene.output.width);
-  const uint32_t height = static_cast<uint32_t>(scene.output.height);
-  const shared::ViewState view = makeViewState(scene.camera, width, height);
-  const bool physical = scene.sky.model == SkyModel::Physical;
-  const bool topDown = geometry.topDown;
-  const glm::vec2 maxCover = weather.maxCover();
-  out.clouds = maxCover.x > 0.0f || maxCover.y > 0.0f;
-  for (const std::string& name : options.debugOutputs)
-    for (const DebugOutputInfo& info : debugOutputs())
-      if (name == info.name && info.cloudsOnly && !out.clouds)
-        inputError("--debug-output " + name +
-                   ": the scene has no low or mid clouds (weather cover is 0 everywhere)");
+// What every part of a frame's graph is built from: the scene, the time, the clouds' setup
+// and the view.
+struct Renderer::FrameInputs {
+  const Scene& scene;
+  const IsoTime& time;
+  const CloudSetup& setup;
+  shared::ViewState view;
+  uint32_t width, height;
+  bool physical, topDown;
+};
 
-  FrameGraph graph(mRuntime);
+// The sky, the high clouds and the stars of a frame, as the composite reads them.
+struct Renderer::SkyImages {
+  SkyHighCloudsPass::Outputs sky;
+  AtmosphereLuts::Outputs luts{};
+  std::optional<StarFieldPass::Outputs> stars;
+  std::optional<double> highAltitudeM;  // a forecast's high layer (the middle of its gh range)
+};
+
+// The volumetric clouds of a frame at the view's size, their shadow map and their textures.
+struct Renderer::CloudImages {
+  ImageId clouds, depth;
+  CloudShadowPass::Outputs shadow{};
+  CloudLayers::Frame frame;
+};
+
+Renderer::SkyImages Renderer::addSky(FrameGraph& graph, const FrameInputs& f, RenderedFrame& out) {
+  const Scene& scene = f.scene;
+  const WeatherMap& weather = *f.setup.weather;
+  SkyImages s;
   StarFieldPass::Frame stars;
-  stars.view = view;
+  stars.view = f.view;
   stars.j2000ToEnu = glm::mat3(out.lighting.ephemeris.equatorialJ2000ToEnu);
   stars.extinction = static_cast<float>(scene.lighting.starExtinction);
   // No star passes by day: the brightest star over a pixel of this view against the sky.
@@ -296,8 +222,8 @@ RenderedFrame Renderer::render(const Scene& scene, const IsoTime& time,
   const bool starsShow =
       out.lighting.dayFactor < 1.0 ||
       starsVisible(mStars.brightestVmag(), out.lighting.gpu.night.z,
-                   double(view.forward.w) * double(view.forward.w), skyLuminance);
-  const std::optional<StarFieldPass::Outputs> starOut = mStars.addTo(graph, stars, starsShow);
+                   double(f.view.forward.w) * double(f.view.forward.w), skyLuminance);
+  s.stars = mStars.addTo(graph, stars, starsShow);
 
   // The high-cloud textures: kept from the last frame, loaded, or baked (before this graph).
   // With a forecast's high layer the cover comes from the map per pixel, at the data's
@@ -306,17 +232,16 @@ RenderedFrame Renderer::render(const Scene& scene, const IsoTime& time,
   const HighCloudTextures::Outputs textures =
       mHighCloudTextures.addTo(graph, scene, highFromWeather);
   out.highClouds = mHighCloudTextures.lastActivity();
-  std::optional<double> highAltitudeM;
   if (highFromWeather && weather.highAltitudeM)
-    highAltitudeM = 0.5 * (weather.highAltitudeM->x + weather.highAltitudeM->y);
+    s.highAltitudeM = 0.5 * (weather.highAltitudeM->x + weather.highAltitudeM->y);
 
   SkyHighCloudsPass::Inputs sky{};
   const bool cloudsPresent = highFromWeather || scene.highClouds.source == HighCloudSource::Image ||
                              scene.highClouds.cover > 0.0;
   const ImageDesc& fine = graph.desc().resources[textures.coefficients.id].image;
   const ImageDesc& coarse = graph.desc().resources[textures.coarse.id].image;
-  sky.params = skyHighCloudsParams(scene, out.lighting, time, view, cloudsPresent, fine.width,
-                                   coarse.width, textures.mean, highAltitudeM);
+  sky.params = skyHighCloudsParams(scene, out.lighting, f.time, f.view, cloudsPresent, fine.width,
+                                   coarse.width, textures.mean, s.highAltitudeM);
   if (highFromWeather) {
     setRegionalCover(sky.params, scene, weather.region, textures);
     sky.regional = {mRegionalCover.addTo(graph, weather, mClouds.mapRevision()),
@@ -325,159 +250,181 @@ RenderedFrame Renderer::render(const Scene& scene, const IsoTime& time,
   sky.lighting = out.lighting.gpu;
   sky.textures = {textures.coefficients, textures.normals, textures.coarse,
                   &mHighCloudTextures.sampler()};
-  AtmosphereLuts::Outputs luts{};
-  if (physical) {
-    AtmosphereLuts::Frame f;
-    f.atmosphere = physicalAtmosphere(scene);
-    f.cameraAltitudeM = scene.camera.altitudeM;
-    f.view = view;
-    f.sunDirection = glm::vec3(out.lighting.sun.direction);
-    f.moonDirection = glm::vec3(out.lighting.moon.direction);
-    f.sunIlluminance = glm::vec3(out.lighting.gpu.sunSpace);
-    f.moonIlluminance = glm::vec3(out.lighting.gpu.moonSpace);
-    luts = mAtmosphere.addTo(graph, f);
+  if (f.physical) {
+    AtmosphereLuts::Frame a;
+    a.atmosphere = physicalAtmosphere(scene);
+    a.cameraAltitudeM = scene.camera.altitudeM;
+    a.view = f.view;
+    a.sunDirection = glm::vec3(out.lighting.sun.direction);
+    a.moonDirection = glm::vec3(out.lighting.moon.direction);
+    a.sunIlluminance = glm::vec3(out.lighting.gpu.sunSpace);
+    a.moonIlluminance = glm::vec3(out.lighting.gpu.moonSpace);
+    s.luts = mAtmosphere.addTo(graph, a);
     sky.physical = true;
-    sky.atmosphere = {mAtmosphere.params(), luts.transmittance, luts.skyViewSun, luts.skyViewMoon,
-                      &mAtmosphere.sampler()};
+    sky.atmosphere = {mAtmosphere.params(), s.luts.transmittance, s.luts.skyViewSun,
+                      s.luts.skyViewMoon, &mAtmosphere.sampler()};
   }
-  const SkyHighCloudsPass::Outputs skyOut = graph.add(mSky, sky);
+  s.sky = graph.add(mSky, sky);
+  return s;
+}
 
-  // The volumetric clouds, when the map has any low or mid cover.
-  VolumetricCloudsPass::Outputs clouds{};
-  CloudShadowPass::Outputs shadow{};
-  shared::CloudShadowMap shadowMap{};
-  CloudLayers::Frame cloudFrame;
-  std::optional<CloudHistory> pendingHistory;  // becomes mHistory once the frame has run
-  if (out.clouds) {
-    cloudFrame = mClouds.addTo(graph, cloudScene, time);
-    out.cloudNoise = mClouds.noiseActivity();
-    // Temporal reuse: a sequence's frames march a share of the pixels and reproject the rest,
-    // at the view's size or at half its width and height.
-    const bool temporal = scene.clouds.temporal.mode == CloudTemporalMode::On &&
-                          scene.clouds.quality == CloudQuality::Standard && !topDown;
-    const bool half =
-        temporal && scene.clouds.temporal.resolution == CloudTemporalResolution::Half;
-    const uint32_t cloudWidth = half ? (width + 1) / 2 : width;
-    const uint32_t cloudHeight = half ? (height + 1) / 2 : height;
-    const shared::ViewState cloudView =
-        half ? makeViewState(scene.camera, cloudWidth, cloudHeight) : view;
-    VolumetricCloudsPass::Inputs in;
-    in.params = cloudParams(setup.volumetric, out.lighting, time, cloudView, cloudFrame.maxCover,
-                            cloudFrame.weatherSize, cloudFrame.coverage, cloudFrame.noiseMeans,
-                            cloudFrame.lowRolls);
-    in.lighting = out.lighting.gpu;
-    in.textures = cloudFrame.textures;
-    // What the light volume and the shadow map are made from: kept while it holds.
-    CloudFieldKey field;
-    field.clouds = settingsWithoutPose(cloudScene);
-    field.mapRevision = mClouds.mapRevision();
-    field.camera = glm::dvec3(geometry.latDeg, geometry.lonDeg, geometry.altitudeM);
-    field.sun = glm::vec3(in.params.sunDirection);
-    field.moon = glm::vec3(in.params.moonDirection);
-    field.lights =
-        (in.params.sunMarched != 0.0f ? 1u : 0u) | (in.params.moonMarched != 0.0f ? 2u : 0u);
-    field.drift = cloudWindDriftM(scene.clouds, time.secondsSince(scene.time.start));
-    // The light through the clouds from the light volume (the reference marches it).
-    if (scene.clouds.light == CloudLight::Volume &&
-        scene.clouds.quality == CloudQuality::Standard) {
-      CloudLightVolumePass::Inputs v;
-      v.params = in.params;
-      v.params.lightVolume = cloudLightVolumePlace(in.params, geometry.altitudeM);
-      v.textures = in.textures;
-      v.key = field;
-      const CloudLightVolumePass::Outputs volume = mLightVolume.addTo(graph, v);
-      in.params.lightVolume = volume.place;
-      in.lightVolume = volume.volume;
-      in.lightVolumeSampler = &mLightVolume.sampler();
-    }
-    std::optional<HistoryStep> step;
-    if (temporal) {
-      step = stepHistory(scene, time, cloudView, cloudWidth, cloudHeight);
-      in.params.marchBlock = step->block;
-      in.params.marchOffsetX = step->offset.x;
-      in.params.marchOffsetY = step->offset.y;
-      // A new jitter every frame, so a pixel marched again averages differently.
-      in.params.frameIndex = (in.params.frameIndex + static_cast<uint32_t>(step->next.frame) *
-                                                         0x9E3779B9u) & 0x7fffffffu;
-    }
-    clouds = graph.add(mVolumetric, in);
-    if (temporal) {
-      CloudTemporalPass::Inputs t;
-      t.params = cloudTemporalParams(cloudView, mHistory.view, step->motion, step->block,
-                                     step->offset, step->valid, in.params.geo.origin.w,
-                                     scene.camera.altitudeM, in.params.shellBaseM,
-                                     in.params.shellTopM);
-      t.marched = clouds.clouds;
-      t.marchedDepth = clouds.depth;
-      t.clouds = graph.importHistory(mCloudHistory);
-      t.depth = graph.importHistory(mDepthHistory);
-      t.historySampler = &mHistorySampler;
-      const CloudTemporalPass::Outputs resolved = graph.add(mTemporal, t);
-      clouds.clouds = resolved.clouds;
-      clouds.depth = resolved.depth;
-      pendingHistory = std::move(step->next);
-    }
-    if (half) {
-      CloudUpsamplePass::Inputs u;
-      u.params.view = view;
-      u.params.source = cloudView;
-      u.params.planetRadiusM = in.params.geo.origin.w;
-      u.params.cameraAltitudeM = static_cast<float>(scene.camera.altitudeM);
-      u.params.shellBaseM = in.params.shellBaseM;
-      u.params.shellTopM = in.params.shellTopM;
-      u.clouds = clouds.clouds;
-      u.depth = clouds.depth;
-      const CloudUpsamplePass::Outputs full = graph.add(mUpsample, u);
-      clouds.clouds = full.clouds;
-      clouds.depth = full.depth;
-    }
-    if (layers) {
-      graph.requestOutput(clouds.clouds, "clouds");
-      graph.requestOutput(clouds.depth, "clouds_depth");
-    }
-    // The clouds' shadows on the ground around the observer (a top-down render draws no
-    // ground, but the composite's cloud variant binds a map all the same).
-    shadow = mShadow.addTo(graph, CloudShadowPass::Inputs{
-                                      in.params, cloudShadowMap(in.params, geometry.altitudeM),
-                                      in.textures, field});
-    shadowMap = shadow.map;
-    out.cloudShadow = shadowMap;
-    for (const std::string& name : options.debugOutputs) {
-      if (name == "cloud_steps") graph.requestOutput(clouds.steps, "debug:" + name);
-      if (name == "weather_map") graph.requestOutput(cloudFrame.textures.weather, "debug:" + name);
-      if (name == "cloud_shadow") graph.requestOutput(shadow.shadow, "debug:" + name);
-      if (name == "cloud_density_slice") {
-        CloudDensitySlicePass::Inputs slice{in.params, in.textures};
-        graph.requestOutput(graph.add(mSlice, slice).slice, "debug:" + name);
-      }
-    }
+Renderer::CloudImages Renderer::addClouds(FrameGraph& graph, const FrameInputs& f,
+                                          RenderedFrame& out,
+                                          std::optional<CloudHistory>& pendingHistory) {
+  const Scene& scene = f.scene;
+  const Scene& cloudScene = f.setup.cloudScene;
+  const CloudFrameGeometry& geometry = f.setup.geometry;
+  CloudImages c;
+  c.frame = mClouds.addTo(graph, cloudScene, f.time);
+  out.cloudNoise = mClouds.noiseActivity();
+  // Temporal reuse: a sequence's frames march a share of the pixels and reproject the rest,
+  // at the view's size or at half its width and height.
+  const bool temporal = scene.clouds.temporal.mode == CloudTemporalMode::On &&
+                        scene.clouds.quality == CloudQuality::Standard && !f.topDown;
+  const bool half = temporal && scene.clouds.temporal.resolution == CloudTemporalResolution::Half;
+  const uint32_t cloudWidth = half ? (f.width + 1) / 2 : f.width;
+  const uint32_t cloudHeight = half ? (f.height + 1) / 2 : f.height;
+  const shared::ViewState cloudView =
+      half ? makeViewState(scene.camera, cloudWidth, cloudHeight) : f.view;
+  VolumetricCloudsPass::Inputs in;
+  in.params =
+      cloudParams(f.setup.volumetric, out.lighting, f.time, cloudView, c.frame.maxCover,
+                  c.frame.weatherSize, c.frame.coverage, c.frame.noiseMeans, c.frame.lowRolls);
+  in.lighting = out.lighting.gpu;
+  in.textures = c.frame.textures;
+  // What the light volume and the shadow map are made from: kept while it holds.
+  CloudFieldKey field;
+  field.clouds = settingsWithoutPose(cloudScene);
+  field.mapRevision = mClouds.mapRevision();
+  field.camera = glm::dvec3(geometry.latDeg, geometry.lonDeg, geometry.altitudeM);
+  field.sun = glm::vec3(in.params.sunDirection);
+  field.moon = glm::vec3(in.params.moonDirection);
+  field.lights =
+      (in.params.sunMarched != 0.0f ? 1u : 0u) | (in.params.moonMarched != 0.0f ? 2u : 0u);
+  field.drift = cloudWindDriftM(scene.clouds, f.time.secondsSince(scene.time.start));
+  // The light through the clouds from the light volume (the reference marches it).
+  if (scene.clouds.light == CloudLight::Volume && scene.clouds.quality == CloudQuality::Standard) {
+    CloudLightVolumePass::Inputs v;
+    v.params = in.params;
+    v.params.lightVolume = cloudLightVolumePlace(in.params, geometry.altitudeM);
+    v.textures = in.textures;
+    v.key = field;
+    const CloudLightVolumePass::Outputs volume = mLightVolume.addTo(graph, v);
+    in.params.lightVolume = volume.place;
+    in.lightVolume = volume.volume;
+    in.lightVolumeSampler = &mLightVolume.sampler();
   }
+  std::optional<HistoryStep> step;
+  if (temporal) {
+    step = stepHistory(scene, f.time, cloudView, cloudWidth, cloudHeight);
+    in.params.marchBlock = step->block;
+    in.params.marchOffsetX = step->offset.x;
+    in.params.marchOffsetY = step->offset.y;
+    // A new jitter every frame, so a pixel marched again averages differently.
+    in.params.frameIndex =
+        (in.params.frameIndex + static_cast<uint32_t>(step->next.frame) * 0x9E3779B9u) &
+        0x7fffffffu;
+  }
+  const VolumetricCloudsPass::Outputs marched = graph.add(mVolumetric, in);
+  c.clouds = marched.clouds;
+  c.depth = marched.depth;
+  if (temporal) {
+    CloudTemporalPass::Inputs t;
+    t.params = cloudTemporalParams(
+        cloudView, mHistory.view, step->motion, step->block, step->offset, step->valid,
+        in.params.geo.origin.w, scene.camera.altitudeM, in.params.shellBaseM, in.params.shellTopM);
+    t.marched = c.clouds;
+    t.marchedDepth = c.depth;
+    t.clouds = graph.importHistory(mCloudHistory);
+    t.depth = graph.importHistory(mDepthHistory);
+    t.historySampler = &mHistorySampler;
+    const CloudTemporalPass::Outputs resolved = graph.add(mTemporal, t);
+    c.clouds = resolved.clouds;
+    c.depth = resolved.depth;
+    pendingHistory = std::move(step->next);
+  }
+  if (half) {
+    CloudUpsamplePass::Inputs u;
+    u.params.view = f.view;
+    u.params.source = cloudView;
+    u.params.planetRadiusM = in.params.geo.origin.w;
+    u.params.cameraAltitudeM = static_cast<float>(scene.camera.altitudeM);
+    u.params.shellBaseM = in.params.shellBaseM;
+    u.params.shellTopM = in.params.shellTopM;
+    u.clouds = c.clouds;
+    u.depth = c.depth;
+    const CloudUpsamplePass::Outputs full = graph.add(mUpsample, u);
+    c.clouds = full.clouds;
+    c.depth = full.depth;
+  }
+  // The clouds' shadows on the ground around the observer (a top-down render draws no
+  // ground, but the composite's cloud variant binds a map all the same).
+  c.shadow = mShadow.addTo(
+      graph, CloudShadowPass::Inputs{in.params, cloudShadowMap(in.params, geometry.altitudeM),
+                                     in.textures, field});
+  out.cloudShadow = c.shadow.map;
+  // A cut through the density field for the debug view: culled unless it is asked for.
+  graph.add(mSlice, CloudDensitySlicePass::Inputs{in.params, in.textures});
+  return c;
+}
+
+Renderer::FramePlan Renderer::buildFrame(FrameGraph& graph, const Scene& scene, const IsoTime& time,
+                                         const RenderOptions& options, RenderedFrame& out) {
+  const CloudSetup setup = cloudSetup(scene, time);
+  const WeatherMap& weather = *setup.weather;
+  out.lighting = setup.lighting;
+  out.localWeather = setup.localWeather;
+  out.weatherRegion = weather.region;
+  out.weatherTexels = glm::uvec2(weather.width, weather.height);
+  const glm::vec2 maxCover = weather.maxCover();
+  out.clouds = maxCover.x > 0.0f || maxCover.y > 0.0f;
+  const uint32_t width = static_cast<uint32_t>(scene.output.width);
+  const uint32_t height = static_cast<uint32_t>(scene.output.height);
+  const FrameInputs f{scene,
+                      time,
+                      setup,
+                      makeViewState(scene.camera, width, height),
+                      width,
+                      height,
+                      scene.sky.model == SkyModel::Physical,
+                      setup.geometry.topDown};
+  FramePlan plan;
+  plan.topDown = f.topDown;
+  const SkyImages sky = addSky(graph, f, out);
+  std::optional<CloudImages> clouds;
+  if (out.clouds) clouds = addClouds(graph, f, out, plan.pendingHistory);
 
   AtmosphereCompositeSettings compositeSettings;
   compositeSettings.ground = scene.ground;
   compositeSettings.planetRadiusM = skyPlanetRadiusM(scene);
   compositeSettings.cameraAltitudeM = scene.camera.altitudeM;
   compositeSettings.turbidity = scene.lighting.turbidity;
-  compositeSettings.observer = !topDown;
+  compositeSettings.observer = !f.topDown;
   // High clouds lie in front of the volumetric ones when the camera flies above them.
   compositeSettings.aboveHighClouds =
-      !topDown && scene.camera.altitudeM > highAltitudeM.value_or(scene.highClouds.altitudeM);
+      !f.topDown && scene.camera.altitudeM > sky.highAltitudeM.value_or(scene.highClouds.altitudeM);
   compositeSettings.belowClouds = scene.camera.altitudeM < setup.volumetric.clouds.low.baseM;
   AtmosphereCompositePass::Inputs composite{};
-  composite.params = atmosphereCompositeParams(compositeSettings, out.lighting, view);
-  if (out.clouds)
-    composite.clouds = AtmosphereCompositePass::Clouds{clouds.clouds, clouds.depth, shadow.shadow,
-                                                       shadowMap,
-                                                       cloudFrame.textures.weatherSampler};
-  if (physical)
-    composite.atmosphere = AtmosphereCompositePass::Atmosphere{
-        mAtmosphere.params(), luts.transmittance, luts.aerialPerspective, &mAtmosphere.sampler()};
+  composite.params = atmosphereCompositeParams(compositeSettings, out.lighting, f.view);
+  if (clouds)
+    composite.clouds =
+        AtmosphereCompositePass::Clouds{clouds->clouds, clouds->depth, clouds->shadow.shadow,
+                                        clouds->shadow.map, clouds->frame.textures.weatherSampler};
+  if (f.physical)
+    composite.atmosphere =
+        AtmosphereCompositePass::Atmosphere{mAtmosphere.params(), sky.luts.transmittance,
+                                            sky.luts.aerialPerspective, &mAtmosphere.sampler()};
   composite.lighting = out.lighting.gpu;
-  if (starOut) composite.starFlux = starOut->flux;
-  composite.sky = skyOut.sky;
-  composite.highClouds = skyOut.highClouds;
-  AtmosphereCompositePass::Outputs composited = graph.add(mComposite, composite);
-  if (options.readBack != ReadBack::Display) graph.requestOutput(composited.beauty, "beauty");
+  if (sky.stars) composite.starFlux = sky.stars->flux;
+  composite.sky = sky.sky.sky;
+  composite.highClouds = sky.sky.highClouds;
+  plan.beauty = graph.add(mComposite, composite).beauty;
+  plan.sky = sky.sky.sky;
+  plan.highClouds = sky.sky.highClouds;
+  if (clouds) {
+    plan.clouds = clouds->clouds;
+    plan.cloudsDepth = clouds->depth;
+  }
   if (options.gpuDisplay) {
     if (scene.output.exposure == ExposureMode::Histogram)
       internalError("the GPU display path has no histogram exposure (it meters the frame)");
@@ -486,85 +433,107 @@ RenderedFrame Renderer::render(const Scene& scene, const IsoTime& time,
                   (scene.output.exposure == ExposureMode::Auto ? out.lighting.nightLiftEv : 0.0) +
                       scene.output.exposureEv,
                   scene.output.nightLook};
-    d.beauty = composited.beauty;
+    d.beauty = plan.beauty;
     d.width = width;
     d.height = height;
     out.displayEv = d.settings.exposureEv;
-    graph.requestOutput(mDisplay.addTo(graph, d).display, "display");
+    plan.display = mDisplay.addTo(graph, d).display;
   }
-  if (layers) {
-    graph.requestOutput(skyOut.sky, "sky");
-    graph.requestOutput(skyOut.highClouds, "high_clouds");
+  if (f.topDown && options.readBack == ReadBack::Layers) plan.weather = &weather;
+  return plan;
+}
+
+namespace {
+constexpr const char* kDebugLabel = "debug:";
+}  // namespace
+
+void Renderer::requestOutputs(FrameGraph& graph, const FramePlan& plan,
+                              const RenderOptions& options) {
+  if (options.readBack != ReadBack::Display) graph.requestOutput(plan.beauty, "beauty");
+  if (options.readBack == ReadBack::Layers) {
+    graph.requestOutput(plan.sky, "sky");
+    graph.requestOutput(plan.highClouds, "high_clouds");
+    if (plan.clouds.valid()) {
+      graph.requestOutput(plan.clouds, "clouds");
+      graph.requestOutput(plan.cloudsDepth, "clouds_depth");
+    }
   }
+  if (plan.display.valid()) graph.requestOutput(plan.display, "display");
+  // The debug images, by the names their passes gave them (the graph is the registry).
+  std::vector<std::string> names = options.debugOutputs;
+  if (options.allDebugOutputs)
+    for (const GraphImage& image : graph.images())
+      if (std::find(names.begin(), names.end(), image.name) == names.end())
+        names.push_back(image.name);
+  for (const std::string& name : names)
+    graph.requestOutput(graph.image(name).latest, kDebugLabel + name);
+}
 
-  struct DebugSource {
-    const char* name;
-    ImageId image;
-    const std::vector<std::string>* channels;
-    bool requested = false;  // already requested where its pass was added
-  };
-  // The cloud debug images were requested above (they exist only with clouds).
-  const DebugSource sources[] = {
-      {"coefficients", textures.coefficients, &kRgba},
-      {"normals", textures.normals, &kRgb},
-      {"transmittance_lut", luts.transmittance, &kRgb},
-      {"multiscattering_lut", luts.multiScattering, &kRgb},
-      {"sky_view_sun_lut", luts.skyViewSun, &kRgb},
-      {"sky_view_moon_lut", luts.skyViewMoon, &kRgb},
-      {"aerial_perspective", luts.aerialPerspective, &kRgba},
-      {"cloud_steps", clouds.steps, &kSteps, true},
-      {"cloud_density_slice", ImageId{}, &kRgba, true},
-      {"weather_map", cloudFrame.textures.weather, &kRgba, true},
-      {"cloud_shadow", shadow.shadow, &kShadow, true},
-  };
-  for (const std::string& name : options.debugOutputs)
-    for (const DebugSource& s : sources)
-      if (name == s.name && !s.requested) graph.requestOutput(s.image, "debug:" + name);
+void Renderer::collectOutputs(RenderedFrame& out, const FrameGraph& graph, const FramePlan& plan,
+                              const RenderOptions& options) {
+  const FrameResult& result = out.frame;
+  const uint32_t width = graph.desc().resources[plan.beauty.id].image.width;
+  const uint32_t height = graph.desc().resources[plan.beauty.id].image.height;
+  out.image.width = static_cast<int>(width);
+  out.image.height = static_cast<int>(height);
+  if (options.readBack != ReadBack::Display)
+    out.image.layers.push_back(beautyLayer(result.output("beauty")));
+  if (options.readBack == ReadBack::Layers) {
+    const bool clouds = plan.clouds.valid();
+    appendAovLayers(out.image, result.output("sky"), result.output("high_clouds"),
+                    clouds ? &result.output("clouds") : nullptr,
+                    clouds ? &result.output("clouds_depth") : nullptr);
+    if (plan.weather)
+      out.image.layers.push_back(
+          weatherCoverLayer(*plan.weather, plan.weather->region, width, height));
+  }
+  const std::string prefix = kDebugLabel;
+  for (const ReadbackImage& o : result.outputs) {
+    if (o.label.rfind(prefix, 0) != 0) continue;
+    const GraphImage image = graph.image(o.label.substr(prefix.size()));
+    out.debug.push_back(debugImage(o, image, result));
+  }
+  if (plan.display.valid()) {
+    const std::vector<float>& codes = result.output("display").pixels;
+    out.display.resize(codes.size());
+    for (size_t i = 0; i < codes.size(); ++i)
+      out.display[i] = static_cast<uint8_t>(std::lround(codes[i] * 255.0f));
+  }
+  for (ReadbackImage& o : out.frame.outputs) o.pixels = {};  // the layers hold the data now
+}
 
+RenderedFrame Renderer::render(const Scene& scene, const IsoTime& time,
+                               const RenderOptions& options) {
+  if (options.readBack == ReadBack::Display && !options.gpuDisplay)
+    internalError("ReadBack::Display without RenderOptions::gpuDisplay");
+  RenderedFrame out;
+  FrameGraph graph(mRuntime);
+  FramePlan plan = buildFrame(graph, scene, time, options, out);
   try {
+    requestOutputs(graph, plan, options);
     out.frame = graph.execute();
   } catch (...) {
     mLightVolume.invalidate();  // they may not have been made
     mShadow.invalidate();
     throw;
   }
-  if (pendingHistory) mHistory = std::move(*pendingHistory);
+  if (plan.pendingHistory) mHistory = std::move(*plan.pendingHistory);
   out.graphDot = graph.toDot(&out.frame);
-
-  out.image.width = static_cast<int>(width);
-  out.image.height = static_cast<int>(height);
-  // FLOAT: physical values span from a moonless night (1e-8) to the sun's disc (1e5), past
-  // both ends of half's range.
-  if (options.readBack != ReadBack::Display)
-    out.image.layers.push_back(toLayer(out.frame.output("beauty"), "", kRgba, true));
-  if (layers) {
-    out.image.layers.push_back(toLayer(out.frame.output("sky"), "sky", kRgb, true));
-    out.image.layers.push_back(
-        toLayer(out.frame.output("high_clouds"), "high_clouds", kRgba, true));
-    out.image.layers.push_back(cloudLayer(
-        out.clouds ? &out.frame.output("clouds") : nullptr,
-        out.clouds ? &out.frame.output("clouds_depth") : nullptr, width, height));
-  }
-  if (topDown && layers)
-    out.image.layers.push_back(weatherCoverLayer(weather, weather.region, width, height));
-  for (const std::string& name : options.debugOutputs)
-    for (const DebugSource& s : sources)
-      if (name == s.name) {
-        const ReadbackImage& img = out.frame.output("debug:" + name);
-        DebugImage d{name, {}};
-        d.image.width = static_cast<int>(img.width * img.depth);
-        d.image.height = static_cast<int>(img.height);
-        d.image.layers.push_back(toLayer(img, "", *s.channels));
-        out.debug.push_back(std::move(d));
-      }
-  if (options.gpuDisplay) {
-    const std::vector<float>& codes = out.frame.output("display").pixels;
-    out.display.resize(codes.size());
-    for (size_t i = 0; i < codes.size(); ++i)
-      out.display[i] = static_cast<uint8_t>(std::lround(codes[i] * 255.0f));
-  }
-  for (ReadbackImage& o : out.frame.outputs) o.pixels = {};  // the layers hold the data now
+  collectOutputs(out, graph, plan, options);
   return out;
+}
+
+std::vector<DebugImageInfo> Renderer::debugImages(const Scene& scene, const IsoTime& time,
+                                                  const RenderOptions& options) {
+  RenderedFrame out;
+  FrameGraph graph(mRuntime);
+  buildFrame(graph, scene, time, options, out);
+  // Built, never run: what the light volume and the shadow map think they hold is not made.
+  mLightVolume.invalidate();
+  mShadow.invalidate();
+  std::vector<DebugImageInfo> list;
+  for (const GraphImage& g : graph.images()) list.push_back(debugImageInfo(g));
+  return list;
 }
 
 CloudVolume Renderer::exportCloudVolume(const Scene& scene, const IsoTime& time,

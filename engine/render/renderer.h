@@ -38,18 +38,17 @@ class Context;
 class OcioOutput;
 class ShaderCompiler;
 
-// Extra images a render can write besides the frame (the debug view): the high-cloud
-// coefficient texture and normal map, the physical sky's LUTs, and the volumetric clouds'
-// step counts, density slice and weather map.
-struct DebugOutputInfo {
-  const char* name;
-  const char* description;
-  bool physicalOnly;  // exists only with sky.model physical
-  bool cloudsOnly;    // exists only when the weather map has low or mid cover
+// An image of a frame's graph that a debug view can ask for by its name: every image a pass
+// declares (the graph is the one registry; ImageDesc says how to show it).
+struct DebugImageInfo {
+  std::string name;   // e.g. "atmosphere_transmittance"
+  std::string pass;   // the pass that writes it; "" for an image no pass of the frame writes
+                      // (uploaded, baked before the frame, or kept from an earlier frame)
+  std::string about;  // one line on what it holds
+  DebugView view = DebugView::Color;
+  uint32_t width = 0, height = 0, depth = 1;
+  VkFormat format = VK_FORMAT_UNDEFINED;
 };
-const std::vector<DebugOutputInfo>& debugOutputs();
-// BadInput naming the first unknown name, or one that `scene` does not produce.
-void checkDebugOutputs(const Scene& scene, const std::vector<std::string>& names);
 
 // What a frame reads back to the host. Each 32-bit layer at 1280 x 720 is 15 MB to copy and
 // convert: a still wants the EXR's layers, a viewer or a benchmark frame only a picture.
@@ -60,7 +59,10 @@ enum class ReadBack {
 };
 
 struct RenderOptions {
-  std::vector<std::string> debugOutputs;  // names from debugOutputs(), checked
+  // Images of the frame's graph to read back by name (Renderer::debugImages lists them);
+  // a name the frame does not have is an UnknownImageName error (BadInput).
+  std::vector<std::string> debugOutputs;
+  bool allDebugOutputs = false;  // every image of the frame (skyrender --debug-passes)
   ReadBack readBack = ReadBack::Layers;
   // The GPU display path (passes/display_transform): with an OCIO config here, the frame's
   // display image comes back as RenderedFrame::display, through the scene's display, view,
@@ -70,8 +72,9 @@ struct RenderOptions {
 };
 
 struct DebugImage {
-  std::string name;    // e.g. "transmittance_lut"
-  LayeredImage image;  // main layer; a 3D image has its depth slices side by side
+  DebugImageInfo info;
+  double gpuMs = 0.0;  // the GPU time of the pass that wrote it, this frame
+  LayeredImage image;  // main layer, channels named; a 3D image has its slices side by side
 };
 
 struct RenderedFrame {
@@ -123,6 +126,11 @@ public:
   // marches every pixel; the others 1 / block^2 of them (passes/cloud_temporal).
   // The first (or only) frame of the scene's time.
   RenderedFrame render(const Scene& scene) { return render(scene, scene.time.start); }
+  // The images the frame of `scene` at `time` would have, each of which can be asked for in
+  // RenderOptions::debugOutputs: builds the frame's graph (baking what it needs) but does not
+  // run it.
+  std::vector<DebugImageInfo> debugImages(const Scene& scene, const IsoTime& time,
+                                          const RenderOptions& options = {});
   // Called with the share done (0..1) while a high-cloud texture bakes.
   void setBakeProgress(std::function<void(double)> progress);
   // The cloud density field of `scene` at `time` inside `box` (default:
@@ -167,6 +175,26 @@ private:
   HistoryStep stepHistory(const Scene& scene, const IsoTime& time, const shared::ViewState& view,
                           uint32_t width, uint32_t height);
 
+  // A frame in four steps: build the graph (sky, clouds, composite, display), request its
+  // outputs (the EXR's layers, the display image, debug images by name), execute, collect.
+  struct FrameInputs;
+  struct SkyImages;
+  struct CloudImages;
+  struct FramePlan {  // what the outputs are read from
+    ImageId beauty, sky, highClouds, clouds, cloudsDepth, display;
+    bool topDown = false;
+    const WeatherMap* weather = nullptr;         // a top-down view's map, for its "weather" layer
+    std::optional<CloudHistory> pendingHistory;  // becomes mHistory once the frame has run
+  };
+  FramePlan buildFrame(FrameGraph& graph, const Scene& scene, const IsoTime& time,
+                       const RenderOptions& options, RenderedFrame& out);
+  SkyImages addSky(FrameGraph& graph, const FrameInputs& f, RenderedFrame& out);
+  CloudImages addClouds(FrameGraph& graph, const FrameInputs& f, RenderedFrame& out,
+                        std::optional<CloudHistory>& pendingHistory);
+  void requestOutputs(FrameGraph& graph, const FramePlan& plan, const RenderOptions& options);
+  void collectOutputs(RenderedFrame& out, const FrameGraph& graph, const FramePlan& plan,
+                      const RenderOptions& options);
+
   GraphRuntime mRuntime;
   StarFieldPass mStars;
   HighCloudTextures mHighCloudTextures;
@@ -180,10 +208,10 @@ private:
   CloudUpsamplePass mUpsample;
   CloudLightVolumePass mLightVolume;
   DisplayTransformPass mDisplay;
-  Sampler mHistorySampler;      // linear, clamp
-  HistoryImage mCloudHistory;   // RGBA32F: premultiplied radiance and opacity, the view's size
-  HistoryImage mDepthHistory;   // RG32F: transmittance-weighted distance (m) in r
-  CloudHistory mHistory;        // the frame they hold
+  Sampler mHistorySampler;     // linear, clamp
+  HistoryImage mCloudHistory;  // RGBA32F: premultiplied radiance and opacity, the view's size
+  HistoryImage mDepthHistory;  // RG32F: transmittance-weighted distance (m) in r
+  CloudHistory mHistory;       // the frame they hold
   CloudDensitySlicePass mSlice;
   CloudVolumeExportPass mVolumeExport;
   AtmosphereCompositePass mComposite;

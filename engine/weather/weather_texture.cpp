@@ -30,9 +30,11 @@ std::span<const float> floats(const std::vector<glm::vec4>& texels) {
   return {&texels.front().x, texels.size() * 4};
 }
 
-PersistentImage makeImage(const Context& ctx, const char* name, uint32_t width, uint32_t height) {
+PersistentImage makeImage(const Context& ctx, const char* name, const char* about, uint32_t width,
+                          uint32_t height) {
   ImageDesc desc;
   desc.name = name;
+  desc.about = about;
   desc.format = VK_FORMAT_R16G16B16A16_SFLOAT;
   desc.width = width;
   desc.height = height;
@@ -96,8 +98,13 @@ void WeatherTexture::upload(const WeatherMap& map) {
   const WeatherMap coarse = coarseCoverMap(map);  // also checks the map is well formed
   if (!mMap.image || mMap.image.desc().width != map.width ||
       mMap.image.desc().height != map.height) {
-    mMap = makeImage(mCtx, "weather_map", map.width, map.height);
-    mCoarse = makeImage(mCtx, "weather_coarse", coarse.width, coarse.height);
+    mMap = makeImage(mCtx, "weather_map",
+                     "the weather map over its region: R low cover, G mid cover, B cloud type, "
+                     "A density",
+                     map.width, map.height);
+    mCoarse = makeImage(mCtx, "weather_coarse",
+                        "the weather map's maximum cover over coarse cells (empty-space skip)",
+                        coarse.width, coarse.height);
   }
   uploadImage(mCtx, mMap.image, mMap.state, floats(map.texels));
   uploadImage(mCtx, mCoarse.image, mCoarse.state, floats(coarse.texels));

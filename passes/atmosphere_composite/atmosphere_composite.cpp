@@ -105,6 +105,7 @@ AtmosphereCompositePass::Outputs AtmosphereCompositePass::setup(GraphBuilder& b,
   desc.width = in.params.view.size.x;
   desc.height = in.params.view.size.y;
   desc.name = "beauty";
+  desc.about = "the frame: sky, clouds and ground through the atmosphere (scene-linear)";
   mOutputs.beauty = b.write(b.create(desc), Access::StorageWriteCompute);
   return mOutputs;
 }

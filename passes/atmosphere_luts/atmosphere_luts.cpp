@@ -25,9 +25,11 @@ ComputePipeline buildPipeline(const Context& ctx, ShaderCompiler& compiler, cons
   return buildComputePipeline(ctx, compiler, std::string(name) + ".comp", name);
 }
 
-ImageDesc lutDesc(const char* name, uint32_t width, uint32_t height, uint32_t depth = 1) {
+ImageDesc lutDesc(const char* name, const char* about, uint32_t width, uint32_t height,
+                  uint32_t depth = 1) {
   ImageDesc d;
   d.name = name;
+  d.about = about;
   d.dim = depth > 1 ? ImageDim::Tex3D : ImageDim::Tex2D;
   d.format = kLutFormat;
   d.width = width;
@@ -36,9 +38,9 @@ ImageDesc lutDesc(const char* name, uint32_t width, uint32_t height, uint32_t de
   return d;
 }
 
-PersistentImage persistentLut(const Context& ctx, const char* name, uint32_t width,
-                              uint32_t height) {
-  ImageDesc d = lutDesc(name, width, height);
+PersistentImage persistentLut(const Context& ctx, const char* name, const char* about,
+                              uint32_t width, uint32_t height) {
+  ImageDesc d = lutDesc(name, about, width, height);
   // Written by its own pass, sampled by the others, readable as a debug output.
   d.usage =
       VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
@@ -111,9 +113,11 @@ AtmosphereLuts::AtmosphereLuts(const Context& ctx, ShaderCompiler& compiler)
       mSkyProbe(buildPipeline(ctx, compiler, kSkyProbeName)),
       mSampler(ctx, SamplerWrap::Clamp, true),
       mTransmittanceLut(persistentLut(ctx, "atmosphere_transmittance",
+                                      "transmittance to the top of the atmosphere (Hillaire 2020)",
                                       ATMOSPHERE_TRANSMITTANCE_WIDTH,
                                       ATMOSPHERE_TRANSMITTANCE_HEIGHT)),
       mMultiScatteringLut(persistentLut(ctx, "atmosphere_multiscattering",
+                                        "multiple-scattering contribution Psi_ms (Hillaire 2020)",
                                         ATMOSPHERE_MULTISCATTERING_SIZE,
                                         ATMOSPHERE_MULTISCATTERING_SIZE)) {}
 
@@ -179,12 +183,14 @@ AtmosphereLuts::Outputs AtmosphereLuts::addTo(FrameGraph& graph, const Frame& fr
   });
   s.read(out.transmittance, Access::SampledCompute);
   s.read(out.multiScattering, Access::SampledCompute);
-  out.skyViewSun = s.write(s.create(lutDesc("atmosphere_sky_view_sun", ATMOSPHERE_SKY_VIEW_WIDTH,
-                                            ATMOSPHERE_SKY_VIEW_HEIGHT)),
-                           Access::StorageWriteCompute);
-  out.skyViewMoon = s.write(s.create(lutDesc("atmosphere_sky_view_moon", ATMOSPHERE_SKY_VIEW_WIDTH,
-                                             ATMOSPHERE_SKY_VIEW_HEIGHT)),
-                            Access::StorageWriteCompute);
+  out.skyViewSun = s.write(
+      s.create(lutDesc("atmosphere_sky_view_sun", "sky radiance lit by the sun (Hillaire 2020)",
+                       ATMOSPHERE_SKY_VIEW_WIDTH, ATMOSPHERE_SKY_VIEW_HEIGHT)),
+      Access::StorageWriteCompute);
+  out.skyViewMoon =
+      s.write(s.create(lutDesc("atmosphere_sky_view_moon", "sky radiance lit by the moon",
+                               ATMOSPHERE_SKY_VIEW_WIDTH, ATMOSPHERE_SKY_VIEW_HEIGHT)),
+              Access::StorageWriteCompute);
 
   GraphBuilder a = graph.addPass(kAerialPerspectiveName, [this, h, p](PassContext& ctx) {
     ctx.dispatch(
@@ -199,8 +205,9 @@ AtmosphereLuts::Outputs AtmosphereLuts::addTo(FrameGraph& graph, const Frame& fr
   a.read(out.transmittance, Access::SampledCompute);
   a.read(out.multiScattering, Access::SampledCompute);
   out.aerialPerspective =
-      a.write(a.create(lutDesc("atmosphere_aerial_perspective", ATMOSPHERE_AP_SIZE,
-                               ATMOSPHERE_AP_SIZE, ATMOSPHERE_AP_SLICES)),
+      a.write(a.create(lutDesc("atmosphere_aerial_perspective",
+                               "in-scattering (RGB) and transmittance (A) along view rays, 3D",
+                               ATMOSPHERE_AP_SIZE, ATMOSPHERE_AP_SIZE, ATMOSPHERE_AP_SLICES)),
               Access::StorageWriteCompute);
   return out;
 }
@@ -223,7 +230,9 @@ ImageId AtmosphereLuts::addSkyProbe(FrameGraph& graph, const Outputs& luts, uint
       });
   b.read(h->sun, Access::SampledCompute);
   b.read(h->moon, Access::SampledCompute);
-  ImageDesc d = lutDesc("atmosphere_sky_probe", width, height);
+  ImageDesc d =
+      lutDesc("atmosphere_sky_probe",
+              "the whole sky, equirectangular (north at column 0, zenith at row 0)", width, height);
   h->probe = b.write(b.create(d), Access::StorageWriteCompute);
   return h->probe;
 }

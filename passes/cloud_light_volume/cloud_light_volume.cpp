@@ -22,12 +22,15 @@ constexpr double kMaxRadiusM = 400000.0;
 PersistentImage makeVolume(const Context& ctx) {
   ImageDesc d;
   d.name = "cloud_light_volume";
+  d.about = "light through the clouds toward the sun (R) and the moon (G), slices up the shells";
+  d.view = DebugView::Scalar;
+  d.channels = "sun,moon";
   d.dim = ImageDim::Tex3D;
   d.format = VK_FORMAT_R16G16_SFLOAT;
   d.width = d.height = CLOUD_LIGHT_VOLUME_SIZE;
   d.depth = CLOUD_LIGHT_VOLUME_SLICES;
-  d.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
-            VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+  d.usage =
+      VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
   return PersistentImage{Image(ctx, d), {}};
 }
 

@@ -39,9 +39,11 @@ uint32_t detailSizeOf(uint32_t modelId) {
                                                : CLOUD_NOISE_DETAIL_SIZE_LU2023;
 }
 
-PersistentImage makeImage(const Context& ctx, const char* name, ImageDim dim, uint32_t size) {
+PersistentImage makeImage(const Context& ctx, const char* name, const char* about, ImageDim dim,
+                          uint32_t size) {
   ImageDesc desc;
   desc.name = name;
+  desc.about = about;
   desc.dim = dim;
   desc.format = kFormat;
   desc.width = desc.height = size;
@@ -103,11 +105,17 @@ std::string CloudNoise::cacheKey(CloudModel model) const {
 
 void CloudNoise::allocate(uint32_t detailSize) {
   if (!mShape.image)
-    mShape = makeImage(mCtx, "cloud_noise_shape", ImageDim::Tex3D, CLOUD_NOISE_SHAPE_SIZE);
+    mShape = makeImage(mCtx, "cloud_noise_shape",
+                       "cloud shape noise: Perlin-Worley or simplex (R), Worley fbm (GBA), 3D",
+                       ImageDim::Tex3D, CLOUD_NOISE_SHAPE_SIZE);
   if (!mCurl.image)
-    mCurl = makeImage(mCtx, "cloud_noise_curl", ImageDim::Tex2D, CLOUD_NOISE_CURL_SIZE);
+    mCurl = makeImage(mCtx, "cloud_noise_curl",
+                      "curl noise that distorts the detail noise (RGB: a 3D offset, 0.5 none)",
+                      ImageDim::Tex2D, CLOUD_NOISE_CURL_SIZE);
   if (!mDetail.image || mDetail.image.desc().width != detailSize)
-    mDetail = makeImage(mCtx, "cloud_noise_detail", ImageDim::Tex3D, detailSize);
+    mDetail = makeImage(mCtx, "cloud_noise_detail",
+                        "cloud detail noise: Worley fbm (RGB) and Lu (14) NDfbm (A), 3D",
+                        ImageDim::Tex3D, detailSize);
 }
 
 void CloudNoise::load(CloudModel model) {

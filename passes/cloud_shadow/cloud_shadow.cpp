@@ -26,6 +26,12 @@ PersistentImage makeShadowImage(const Context& ctx) {
   desc.height = CLOUD_SHADOW_SIZE;
   desc.format = VK_FORMAT_R16_SFLOAT;
   desc.name = "cloud_shadow";
+  desc.about =
+      "transmittance toward the key light from the ground, around the point below the camera "
+      "(east right, north up; ground distance r u|u| from the centre, r in the report's "
+      "cloud_shadow.radius_m)";
+  desc.view = DebugView::Scalar;
+  desc.channels = "transmittance";
   desc.usage =
       VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
   return PersistentImage{Image(ctx, desc), {}};

@@ -14,9 +14,15 @@ CloudUpsamplePass::Outputs CloudUpsamplePass::setup(GraphBuilder& b, const Input
   desc.height = in.params.view.size.y;
   desc.format = VK_FORMAT_R32G32B32A32_SFLOAT;
   desc.name = "clouds_upsampled";
+  desc.about = "the clouds at the view's size: premultiplied radiance (RGB) and opacity (A)";
   mOutputs.clouds = b.write(b.create(desc), Access::StorageWriteCompute);
   desc.format = VK_FORMAT_R32G32_SFLOAT;
   desc.name = "clouds_depth_upsampled";
+  desc.about =
+      "the clouds' transmittance-weighted distance (m, R) and shell entry (m, G) at the view's "
+      "size";
+  desc.view = DebugView::Depth;
+  desc.channels = "depth,shell_entry";
   mOutputs.depth = b.write(b.create(desc), Access::StorageWriteCompute);
   return mOutputs;
 }

@@ -22,10 +22,12 @@ DisplayTransformPass::Outputs DisplayTransformPass::addTo(FrameGraph& graph, con
     if (!mLut.image) {
       ImageDesc d;
       d.name = "display_lut";
+      d.about = "the OCIO view baked as a 3D LUT over log2 radiance (slices side by side)";
       d.dim = ImageDim::Tex3D;
       d.format = VK_FORMAT_R32G32B32A32_SFLOAT;
       d.width = d.height = d.depth = DisplayLut::kSize;
-      d.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+      d.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT |
+                VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
       mLut.image = Image(mCtx, d);
     }
     uploadImage(mCtx, mLut.image, mLut.state, lut.rgba);
@@ -47,6 +49,7 @@ DisplayTransformPass::Outputs DisplayTransformPass::setup(GraphBuilder& b, const
   b.read(mLutId, Access::SampledCompute);
   ImageDesc d;
   d.name = "display";
+  d.about = "the display image: 8-bit codes through the OCIO view, as the PNG holds them";
   d.format = VK_FORMAT_R8G8B8A8_UNORM;
   d.width = in.width;
   d.height = in.height;

@@ -82,10 +82,13 @@ std::vector<float> constantTexture(uint32_t size, glm::vec4 value) {
   return out;
 }
 
-PersistentImage makeImage(const Context& ctx, const char* name, VkFormat format, uint32_t width,
-                          uint32_t height, VkImageUsageFlags usage, uint32_t depth = 1) {
+PersistentImage makeImage(const Context& ctx, const char* name, const char* about, VkFormat format,
+                          uint32_t width, uint32_t height, VkImageUsageFlags usage,
+                          uint32_t depth = 1, DebugView view = DebugView::Color) {
   ImageDesc desc;
   desc.name = name;
+  desc.about = about;
+  desc.view = view;
   desc.dim = depth > 1 ? ImageDim::Tex3D : ImageDim::Tex2D;
   desc.format = format;
   desc.width = width;
@@ -194,18 +197,29 @@ void HighCloudTextures::allocate(uint32_t size, bool rankShape, bool coverCoarse
   const VkFormat f = VK_FORMAT_R16G16B16A16_SFLOAT;
   const uint32_t c = coarseSizeOf(size);
   if (mSize != size || !mCoefficients.image) {
-    mCoefficients = makeImage(mCtx, "high_cloud_coefficients", f, size, size, kTextureUsage);
-    mNormals = makeImage(mCtx, "high_cloud_normals", f, size, size, kTextureUsage);
-    mCoarse = makeImage(mCtx, "high_cloud_coarse", f, c, c, kTextureUsage);
+    mCoefficients = makeImage(
+        mCtx, "high_cloud_coefficients",
+        "high-cloud coefficient texture (R thin lit, G dense, B clear, A edges), Kozlov 3.1", f,
+        size, size, kTextureUsage);
+    mNormals =
+        makeImage(mCtx, "high_cloud_normals", "high-cloud tangent-space normal map (xyz in -1..1)",
+                  f, size, size, kTextureUsage, 1, DebugView::Normals);
+    mCoarse = makeImage(mCtx, "high_cloud_coarse",
+                        "the coefficient texture's mean over coarse cells (distant clouds)", f, c,
+                        c, kTextureUsage);
     mRankShape = {};
     mCoverCoarse = {};
     mSize = size;
   }
   if (rankShape && !mRankShape.image)
-    mRankShape = makeImage(mCtx, "high_cloud_rank_shape", f, size, size, kTextureUsage);
+    mRankShape = makeImage(mCtx, "high_cloud_rank_shape",
+                           "each texel's rank (R: the cover at which it turns cloudy) and optical depth factor (G)",
+                           f,
+                           size, size, kTextureUsage);
   if (coverCoarse && !mCoverCoarse.image)
-    mCoverCoarse =
-        makeImage(mCtx, "high_cloud_cover_coarse", f, c, c, kTextureUsage, HIGH_CLOUD_COVER_STEPS);
+    mCoverCoarse = makeImage(mCtx, "high_cloud_cover_coarse",
+                             "coarse coefficients by cover step (slices side by side)", f, c, c,
+                             kTextureUsage, HIGH_CLOUD_COVER_STEPS);
 }
 
 void HighCloudTextures::makeClear() {
@@ -267,8 +281,11 @@ void HighCloudTextures::bake(const Scene& scene, uint32_t size, const std::strin
                              : Texture{1, 1, 1, {1.0f}};
   if (!mCoverMap.image || mCoverMap.image.desc().width != map.width ||
       mCoverMap.image.desc().height != map.height)
-    mCoverMap = makeImage(mCtx, "high_cloud_cover_map", VK_FORMAT_R16_SFLOAT, map.width, map.height,
-                          VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
+    mCoverMap = makeImage(mCtx, "high_cloud_cover_map", "high_clouds.cover_map, 0..1",
+                          VK_FORMAT_R16_SFLOAT, map.width, map.height,
+                          VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT |
+                              VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+                          1, DebugView::Scalar);
   uploadImage(mCtx, mCoverMap.image, mCoverMap.state, map.pixels);
   allocate(size, true, regionalCover);
 

@@ -22,6 +22,8 @@ ImageId RegionalCoverTexture::addTo(FrameGraph& graph, const WeatherMap& map, ui
         mCover.image.desc().height != map.height) {
       ImageDesc desc;
       desc.name = "high_cloud_regional_cover";
+      desc.about = "the weather map's high cover, 0..1, over its region";
+      desc.view = DebugView::Scalar;
       desc.format = VK_FORMAT_R16_SFLOAT;
       desc.width = map.width;
       desc.height = map.height;

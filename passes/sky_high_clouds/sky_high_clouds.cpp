@@ -146,8 +146,10 @@ SkyHighCloudsPass::Outputs SkyHighCloudsPass::setup(GraphBuilder& b, const Input
   desc.width = in.params.view.size.x;
   desc.height = in.params.view.size.y;
   desc.name = "sky";
+  desc.about = "the clear sky's radiance, without clouds";
   mOutputs.sky = b.write(b.create(desc), Access::StorageWriteCompute);
   desc.name = "high_clouds";
+  desc.about = "the high clouds: premultiplied radiance (RGB) and opacity (A)";
   mOutputs.highClouds = b.write(b.create(desc), Access::StorageWriteCompute);
   return mOutputs;
 }

@@ -288,12 +288,23 @@ VolumetricCloudsPass::Outputs VolumetricCloudsPass::setup(GraphBuilder& b, const
   // 32-bit: physical radiance, ~1e-7 by moonlight, below half float's normal range.
   desc.format = VK_FORMAT_R32G32B32A32_SFLOAT;
   desc.name = "clouds";
+  desc.about = "the marched clouds: premultiplied radiance (RGB) and opacity (A)";
   mOutputs.clouds = b.write(b.create(desc), Access::StorageWriteCompute);
   desc.format = VK_FORMAT_R32G32_SFLOAT;
   desc.name = "clouds_depth";
+  desc.about =
+      "the clouds' transmittance-weighted distance (m, R) and where the ray enters the shells "
+      "(m, G)";
+  desc.view = DebugView::Depth;
+  desc.channels = "depth,shell_entry";
   mOutputs.depth = b.write(b.create(desc), Access::StorageWriteCompute);
   desc.format = VK_FORMAT_R16G16B16A16_SFLOAT;
   desc.name = "cloud_steps";
+  desc.about =
+      "density samples per pixel along the view ray (R) and in the light marches (G): "
+      "the raymarch's cost";
+  desc.view = DebugView::Heat;
+  desc.channels = "view,light";
   mOutputs.steps = b.write(b.create(desc), Access::StorageWriteCompute);
   return mOutputs;
 }
@@ -319,13 +330,17 @@ CloudDensitySlicePass::CloudDensitySlicePass(const Context& ctx, ShaderCompiler&
 
 CloudDensitySlicePass::Outputs CloudDensitySlicePass::setup(GraphBuilder& b, const Inputs& in) {
   mInputs = in;
-  mPipeline = &mPipelines.get(in.params);
   readCloudTextures(b, in.textures);
   ImageDesc desc;
   desc.width = kWidth;
   desc.height = kHeight;
   desc.format = VK_FORMAT_R16G16B16A16_SFLOAT;
   desc.name = "cloud_density_slice";
+  desc.about =
+      "a vertical cut along the camera's heading, 60 km ahead (across) by sea level to above "
+      "the clouds (down): R density, G cover, B type, A layer";
+  desc.view = DebugView::Scalar;  // the density: the other channels explain it
+  desc.channels = "density,cover,type,layer";
   mOutputs.slice = b.write(b.create(desc), Access::StorageWriteCompute);
   return mOutputs;
 }
@@ -335,7 +350,8 @@ void CloudDensitySlicePass::execute(PassContext& ctx) const {
   bindings.insert(bindings.end(),
                   {Binding::of(VOLUMETRIC_CLOUDS_BINDING_PARAMS, ctx.uniform(mInputs.params)),
                    Binding::of(CLOUD_SLICE_BINDING_IMAGE, mOutputs.slice)});
-  ctx.dispatch(*mPipeline, bindings, mPipeline->groupsX(kWidth), mPipeline->groupsY(kHeight));
+  const ComputePipeline& pipeline = mPipelines.get(mInputs.params);
+  ctx.dispatch(pipeline, bindings, pipeline.groupsX(kWidth), pipeline.groupsY(kHeight));
 }
 
 }  // namespace sky

@@ -98,8 +98,9 @@ public:
   void execute(PassContext& ctx) const;
 
 private:
-  CloudPipelines mPipelines;
-  const ComputePipeline* mPipeline = nullptr;
+  // Every frame with clouds adds this pass for the debug view, and nearly every frame culls
+  // it: its variant is compiled when it first runs, in execute(), not in setup().
+  mutable CloudPipelines mPipelines;
   Inputs mInputs{};
   Outputs mOutputs;
 };

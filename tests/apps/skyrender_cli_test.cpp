@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <set>
 #include <sstream>
 #include <string>
 #include <sys/wait.h>
@@ -353,9 +354,10 @@ TEST_F(SkyrenderCli, BadHighCloudAndAtmosphereInputExitsTwo) {
                  {"atmosphere.mie_scale_height_km", "out of range"});
   expectBadInput(tiny + "--set high_clouds.resolution=300",
                  {"high_clouds.resolution", "power of two"});
+  // The Kozlov sky has no atmosphere LUTs: the frame's own images are the valid names.
   expectBadInput(tiny + "--debug-output transmittance_lut",
-                 {"transmittance_lut", "sky.model physical"});
-  expectBadInput(tiny + "--debug-output nope", {"--debug-output nope", "known"});
+                 {"--debug-output transmittance_lut", "no such image", "valid: ", "beauty"});
+  expectBadInput(tiny + "--debug-output nope", {"--debug-output nope", "valid: ", "beauty"});
 }
 
 TEST_F(SkyrenderCli, DebugOutputsAreWrittenBesideTheFrame) {
@@ -420,7 +422,7 @@ TEST_F(SkyrenderCli, BadCloudAndWeatherInputExitsTwoWithFileLineAndKey) {
 TEST_F(SkyrenderCli, CloudDebugOutputWithoutCloudsIsBadInput) {
   // The default scene has cumulus; without cover there is no cloud pass to look into.
   expectBadInput("--width 16 --height 9 --set weather.cover_low=0 --debug-output cloud_steps",
-                 {"--debug-output cloud_steps", "no low or mid clouds"});
+                 {"--debug-output cloud_steps", "no such image", "valid: ", "beauty"});
 }
 
 // A uniformly 70 % covered cumulus layer overhead: the frame carries the clouds layer, the
@@ -527,7 +529,8 @@ TEST_F(SkyrenderCli, HelpDocumentsEveryOption) {
   EXPECT_EQ(r.rc, 0);
   for (const char* opt :
        {"--out", "--name", "--width", "--height", "--time", "--set", "--dump-graph", "--gpu",
-        "--ocio", "START/END/STEP", "--debug-output", "high_clouds.R/G/B/A", "aerial_perspective"})
+        "--ocio", "START/END/STEP", "--debug-output", "high_clouds.R/G/B/A", "--debug-passes",
+        "--debug-output list"})
     EXPECT_THAT(r.out, HasSubstr(opt));
   r = run("ephemeris --help");
   EXPECT_EQ(r.rc, 0);
@@ -595,6 +598,112 @@ TEST_F(SkyrenderCli, WeatherCommandWritesTheForecastMapAndFigures) {
   EXPECT_THAT(bad.err, HasSubstr("weather.file: "));
   EXPECT_THAT(bad.err, HasSubstr("bogus.grib2"));
   EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << bad.err;
+}
+
+}  // namespace
+}  // namespace sky
+
+namespace sky {
+namespace {
+
+// The names `render --debug-output list ARGS` prints, one per line after the header.
+std::vector<std::string> listedImages(const CliRun& r) {
+  std::vector<std::string> names;
+  std::istringstream lines(r.out);
+  std::string line;
+  std::getline(lines, line);  // the header
+  while (std::getline(lines, line)) names.push_back(line.substr(0, line.find(' ')));
+  return names;
+}
+
+// Issue 17: the frame graph is the one registry of debug outputs. Every image a default frame
+// has is listed, can be asked for by its name and comes back; a name it lacks is one error
+// line that lists the valid ones.
+TEST_F(SkyrenderCli, EveryImageOfTheDefaultFrameCanBeRequestedByName) {
+  const std::string tiny = " --width 32 --height 18 --set high_clouds.resolution=64";
+  CliRun list = run("render --debug-output list" + tiny);
+  ASSERT_EQ(list.rc, 0) << list.err;
+  const std::vector<std::string> names = listedImages(list);
+  for (const char* expected : {"beauty", "sky", "high_clouds", "clouds", "clouds_depth",
+                               "cloud_steps", "cloud_shadow", "cloud_density_slice",
+                               "weather_map", "high_cloud_coefficients", "cloud_noise_shape"})
+    EXPECT_NE(std::find(names.begin(), names.end(), expected), names.end()) << expected;
+  EXPECT_EQ(std::set<std::string>(names.begin(), names.end()).size(), names.size())
+      << "names are unique:\n"
+      << list.out;
+  EXPECT_TRUE(outEmpty()) << "list renders nothing";
+
+  std::string all;
+  for (const std::string& n : names) all += (all.empty() ? "" : ",") + n;
+  CliRun r = run("render --name f --debug-output " + all + tiny + " --out " + out());
+  ASSERT_EQ(r.rc, 0) << r.err;
+  for (const std::string& n : names) {
+    const fs::path file = fs::path(out()) / ("f." + n + ".exr");
+    ASSERT_TRUE(fs::exists(file)) << file;
+    const LayeredImage image = readExr(file);
+    EXPECT_GT(image.width, 0) << n;
+    ASSERT_FALSE(image.layers.empty()) << n;
+  }
+  EXPECT_EQ(readExr(fs::path(out()) / "f.beauty.exr").width, 32);
+  EXPECT_EQ(readExr(fs::path(out()) / "f.cloud_noise_shape.exr").width, 128 * 128)
+      << "a 3D image has its slices side by side";
+
+  // Unknown: one line naming it and every valid name, nothing written.
+  fs::remove_all(out());
+  fs::create_directories(out());
+  std::vector<std::string> fragments = {"--debug-output no_such_image", "valid: "};
+  fragments.insert(fragments.end(), names.begin(), names.end());
+  expectBadInput("--debug-output beauty,no_such_image" + tiny, fragments);
+}
+
+// With the physical sky and temporal reuse the frame has the atmosphere's LUTs and the
+// clouds' histories, named by their part in the frame, each once.
+TEST_F(SkyrenderCli, PhysicalTemporalFrameListsItsLutsAndHistories) {
+  CliRun list = run(
+      "render --debug-output list --width 32 --height 18 --set high_clouds.resolution=64 "
+      "--set sky.model=physical --set clouds.temporal.mode=on");
+  ASSERT_EQ(list.rc, 0) << list.err;
+  const std::vector<std::string> names = listedImages(list);
+  for (const char* expected :
+       {"atmosphere_transmittance", "atmosphere_multiscattering", "atmosphere_sky_view_sun",
+        "atmosphere_aerial_perspective", "clouds_history", "clouds_history_previous",
+        "clouds_depth_history"})
+    EXPECT_NE(std::find(names.begin(), names.end(), expected), names.end())
+        << expected << "\n"
+        << list.out;
+  EXPECT_EQ(std::set<std::string>(names.begin(), names.end()).size(), names.size())
+      << list.out;
+  EXPECT_THAT(list.out, HasSubstr("cloud_temporal"));  // the pass that writes the history
+}
+
+// --debug-passes: one labelled contact sheet of every image, the frame-sized ones as EXR
+// layers debug.<name>, the others in their own files.
+TEST_F(SkyrenderCli, DebugPassesWritesAContactSheetAndLayers) {
+  CliRun r = run(
+      "render --name f --debug-passes --width 32 --height 18 "
+      "--set high_clouds.resolution=64 --out " +
+      out());
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const fs::path dir = out();
+  const Image8 sheet = readPng(dir / "f.passes.png");
+  // Four tiles across, each 384 wide with 8 of padding; rows of labelled tiles.
+  EXPECT_EQ(sheet.width, 4 * (384 + 8) + 8);
+  EXPECT_GT(sheet.height, 4 * 250);
+  // Not blank: many distinct colours (images, false colour, text on the background).
+  std::set<uint32_t> colours;
+  for (size_t i = 0; i + 2 < sheet.pixels.size(); i += size_t(sheet.channels))
+    colours.insert(uint32_t(sheet.pixels[i]) << 16 | uint32_t(sheet.pixels[i + 1]) << 8 |
+                   sheet.pixels[i + 2]);
+  EXPECT_GT(colours.size(), 1000u);
+  const LayeredImage exr = readExr(dir / "f.exr");
+  for (const char* layer : {"debug.beauty", "debug.clouds", "debug.cloud_steps", "debug.sky"})
+    EXPECT_NE(exr.find(layer), nullptr) << layer;
+  ASSERT_NE(exr.find("debug.cloud_steps"), nullptr);
+  // Named as the pass names them (readExr lists channels other than R, G, B, A by name).
+  EXPECT_EQ(exr.find("debug.cloud_steps")->channels, (std::vector<std::string>{"light", "view"}));
+  EXPECT_TRUE(fs::exists(dir / "f.cloud_shadow.exr")) << "384 x 384: its own file";
+  EXPECT_TRUE(fs::exists(dir / "f.weather_map.exr"));
+  EXPECT_FALSE(fs::exists(dir / "f.beauty.exr")) << "a layer of f.exr";
 }
 
 }  // namespace

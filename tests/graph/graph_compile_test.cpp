@@ -247,5 +247,48 @@ TEST(GraphBuilder, UsageIsDerivedFromAccessesAndDotNamesEverything) {
   EXPECT_THROW(graph.addPass("late", [](PassContext&) {}), Error);
 }
 
+// The debug views' registry is the graph itself: every image by its name, at its last
+// version, with the pass that wrote that version; an unknown name lists the known ones.
+TEST(GraphImages, EveryImageByNameAtItsLastVersionWithItsWriter) {
+  FrameGraph graph;
+  ImageDesc d;
+  d.name = "marched";
+  d.view = DebugView::Heat;
+  ImageId marched;
+  {
+    GraphBuilder a = graph.addPass("march", [](PassContext&) {});
+    marched = a.write(a.create(d), kWrite);
+  }
+  {
+    GraphBuilder b = graph.addPass("refine", [](PassContext&) {});
+    marched = b.write(marched, kWrite);
+  }
+  {
+    GraphBuilder c = graph.addPass("resolve", [](PassContext&) {});
+    c.read(marched, kSample);
+    d.name = "resolved";
+    d.view = DebugView::Color;
+    (void)c.write(c.create(d), kWrite);
+  }
+  const std::vector<GraphImage> images = graph.images();
+  ASSERT_EQ(images.size(), 2u);
+  EXPECT_EQ(images[0].name, "marched");
+  EXPECT_EQ(images[0].latest, marched);
+  EXPECT_EQ(images[0].latest.version, 2u);
+  EXPECT_EQ(images[0].writer, "refine");
+  EXPECT_EQ(images[0].desc->view, DebugView::Heat);
+  EXPECT_EQ(graph.image("resolved").writer, "resolve");
+  try {
+    graph.image("steps");
+    FAIL() << "expected UnknownImageName";
+  } catch (const UnknownImageName& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::BadInput);
+    EXPECT_EQ(e.name(), "steps");
+    EXPECT_EQ(e.known(), (std::vector<std::string>{"marched", "resolved"}));
+    EXPECT_THAT(e.what(), HasSubstr("'steps'"));
+    EXPECT_THAT(e.what(), HasSubstr("marched, resolved"));
+  }
+}
+
 }  // namespace
 }  // namespace sky
