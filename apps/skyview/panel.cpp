@@ -49,9 +49,10 @@ bool slider(const char* key, double& value, double min, double max, const char* 
   return ImGui::SliderScalar(key, ImGuiDataType_Double, &value, &min, &max, format, flags);
 }
 
+// Two short lines: they must fit a 640-pixel window.
 constexpr const char* kHelp =
-    "drag: look  WASD: move  Q/E: down/up  [ ]: time  , .: date  Space: play  F12: screenshot  "
-    "Ctrl+S: save  Tab/V: debug view  F1: panel  Esc: quit";
+    "drag: look  WASD: move  Q/E: down/up  [ ]: time  , .: date  Space: play\n"
+    "F12: screenshot  Ctrl+S: save scene  Tab/V: debug view  F1: panel  Esc: quit";
 
 }  // namespace
 
@@ -86,17 +87,40 @@ PanelActions drawPanel(Scene& scene, PanelState& state, const PanelInfo& info,
   ImGui::End();
   if (!visible) return a;
 
+  // Per-pass GPU time, top right, small enough to leave the sky visible.
+  ImGui::SetNextWindowPos(
+      ImVec2(viewport->WorkPos.x + viewport->WorkSize.x - 4, viewport->WorkPos.y + 4),
+      ImGuiCond_Always, ImVec2(1, 0));
+  ImGui::SetNextWindowBgAlpha(0.45f);
+  ImGui::Begin("##passes", nullptr,
+               ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
+                   ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing |
+                   ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoInputs);
+  ImGui::Text("%ux%u  %.0f ms  %.1f fps", info.renderWidth, info.renderHeight, info.renderMs,
+              info.fps);
+  double total = 0.0;
+  for (const PassTiming& p : info.passes) {
+    ImGui::Text("%-24s %7.2f", p.name.c_str(), p.gpuMs);
+    total += p.gpuMs;
+  }
+  ImGui::Text("%-24s %7.2f", "GPU ms total", total);
+  ImGui::End();
+
+  // The panel: left, no taller than the window less the help lines.
   ImGui::SetNextWindowPos(ImVec2(viewport->WorkPos.x + 4, viewport->WorkPos.y + 4),
                           ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(380, 0), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowBgAlpha(0.8f);
+  ImGui::SetNextWindowSizeConstraints(ImVec2(200, 60),
+                                      ImVec2(420, std::max(60.0f, viewport->WorkSize.y - 64)));
+  ImGui::SetNextWindowSize(ImVec2(330, viewport->WorkSize.y * 0.75f), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowBgAlpha(0.75f);
   if (!ImGui::Begin("skyview")) {
     ImGui::End();
     return a;
   }
-  ImGui::Text("%ux%u  render %.0f ms  %.1f fps", info.renderWidth, info.renderHeight, info.renderMs,
-              info.fps);
-  ImGui::PushItemWidth(170);
+  a.screenshot = ImGui::Button("Screenshot (F12)");
+  ImGui::SameLine();
+  a.saveScene = ImGui::Button("Save scene (Ctrl+S)");
+  ImGui::PushItemWidth(140);
 
   if (ImGui::CollapsingHeader("time", ImGuiTreeNodeFlags_DefaultOpen)) {
     ImGui::TextUnformatted(scene.time.start.format().c_str());
@@ -127,7 +151,7 @@ PanelActions drawPanel(Scene& scene, PanelState& state, const PanelInfo& info,
     a.sceneChanged |= slider("high_clouds.cover", scene.highClouds.cover, 0.0, 1.0, "%.2f");
     a.sceneChanged |= enumCombo("high_clouds.style", scene.highClouds.style);
   }
-  if (ImGui::CollapsingHeader("sky and view", ImGuiTreeNodeFlags_DefaultOpen)) {
+  if (ImGui::CollapsingHeader("sky and exposure", ImGuiTreeNodeFlags_DefaultOpen)) {
     a.sceneChanged |= enumCombo("sky.model", scene.sky.model);
     a.sceneChanged |= enumCombo("output.exposure", scene.output.exposure);
     a.sceneChanged |= slider("output.exposure_ev", scene.output.exposureEv, -10.0, 10.0, "%.2f");
@@ -153,17 +177,6 @@ PanelActions drawPanel(Scene& scene, PanelState& state, const PanelInfo& info,
   if (slider("render scale", state.renderScale, 0.1, 1.0, "%.2f")) a.sceneChanged = true;
   ImGui::PopItemWidth();
 
-  if (ImGui::CollapsingHeader("GPU ms per pass", ImGuiTreeNodeFlags_DefaultOpen)) {
-    double total = 0.0;
-    for (const PassTiming& p : info.passes) {
-      ImGui::Text("%-28s %8.2f", p.name.c_str(), p.gpuMs);
-      total += p.gpuMs;
-    }
-    ImGui::Text("%-28s %8.2f", "total", total);
-  }
-  a.screenshot = ImGui::Button("Screenshot (F12)");
-  ImGui::SameLine();
-  a.saveScene = ImGui::Button("Save scene (Ctrl+S)");
   ImGui::End();
   return a;
 }
