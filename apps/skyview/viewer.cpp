@@ -377,9 +377,9 @@ void Viewer::drawUi() {
     ImGui::TextUnformatted(t->caption.c_str());
     ImGui::End();
   }
-  if (a.screenshot) screenshot();
-  if (a.saveScene)
-    saveScene(mOptions.savePath.value_or(mOptions.outDir / (mScene.output.name + ".yaml")));
+  // The buttons do what their keys do, errors included.
+  if (a.screenshot) handleKey(GLFW_KEY_F12, 0, false);
+  if (a.saveScene) handleKey(GLFW_KEY_S, GLFW_MOD_CONTROL, false);
 }
 
 }  // namespace sky::view

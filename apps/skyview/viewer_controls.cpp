@@ -156,9 +156,15 @@ void Viewer::handleKey(int key, int mods, bool fromScript) {
     case GLFW_KEY_E:
       return step ? moveCamera(0, 0, kClimbMs * step) : void();
     case GLFW_KEY_S:
-      if (ctrl)
-        saveScene(mOptions.savePath.value_or(mOptions.outDir / (mScene.output.name + ".yaml")));
-      else if (step)
+      if (ctrl) {
+        try {
+          saveScene(mOptions.savePath.value_or(mOptions.outDir / (mScene.output.name + ".yaml")));
+        } catch (const Error& e) {
+          // A person sees the message and can fix the folder; a script stops on it.
+          say(std::string("saving the scene failed: ") + e.what());
+          if (fromScript) throw;
+        }
+      } else if (step)
         moveCamera(-kMoveMs * step, 0, 0);
       return;
     case GLFW_KEY_LEFT_BRACKET:
