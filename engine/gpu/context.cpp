@@ -123,7 +123,7 @@ Context::Context(const ContextOptions& options) : mOnValidation(options.onValida
   try {
     createInstance(options);
     pickDevice(options.gpu);
-    createDevice();
+    createDevice(options.deviceExtensions);
   } catch (...) {
     destroy();  // members are destroyed by unwinding; only the Vulkan objects need freeing
     throw;
@@ -171,6 +171,11 @@ void Context::createInstance(const ContextOptions& options) {
   if (mValidation && !mDebugUtils)
     internalError("validation needs VK_EXT_debug_utils, which this Vulkan loader lacks");
   if (mDebugUtils) extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+  for (const std::string& e : options.instanceExtensions) {
+    if (!hasInstanceExtension(e.c_str()))
+      internalError("the Vulkan instance extension " + e + " is not available");
+    extensions.push_back(e.c_str());
+  }
 
   VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
   app.pApplicationName = "skylayers";
@@ -277,7 +282,20 @@ void Context::pickDevice(const std::string& request) {
     mShaderDefines.emplace_back("SKY_UNFOLDABLE_PARAMS_INDEX", "1");
 }
 
-void Context::createDevice() {
+void Context::createDevice(const std::vector<std::string>& extraExtensions) {
+  uint32_t extensionCount = 0;
+  vkEnumerateDeviceExtensionProperties(mPhysicalDevice, nullptr, &extensionCount, nullptr);
+  std::vector<VkExtensionProperties> available(extensionCount);
+  vkEnumerateDeviceExtensionProperties(mPhysicalDevice, nullptr, &extensionCount, available.data());
+  std::vector<const char*> extensions;
+  for (const std::string& e : extraExtensions) {
+    if (std::none_of(available.begin(), available.end(),
+                     [&](const VkExtensionProperties& p) { return e == p.extensionName; }))
+      internalError("the Vulkan device extension " + e + " is not available on " +
+                    std::string(mProperties.deviceName));
+    extensions.push_back(e.c_str());
+  }
+
   uint32_t n = 0;
   vkGetPhysicalDeviceQueueFamilyProperties(mPhysicalDevice, &n, nullptr);
   std::vector<VkQueueFamilyProperties> families(n);
@@ -322,6 +340,8 @@ void Context::createDevice() {
   info.pNext = &want;
   info.queueCreateInfoCount = 1;
   info.pQueueCreateInfos = &queue;
+  info.enabledExtensionCount = static_cast<uint32_t>(extensions.size());
+  info.ppEnabledExtensionNames = extensions.data();
   SKY_VK(vkCreateDevice(mPhysicalDevice, &info, nullptr, &mDevice));
   vkGetDeviceQueue(mDevice, mQueueFamily, 0, &mQueue);
 

@@ -21,6 +21,11 @@ struct ContextOptions {
   // Receives every validation message (warnings and errors). Default: print to stderr with the
   // prefix "Vulkan validation: ".
   std::function<void(std::string_view)> onValidationMessage;
+  // Extensions enabled on top of the engine's own, for a caller that needs more than compute
+  // (skyview: VK_KHR_surface and the platform's surface extension, VK_KHR_swapchain). Each must
+  // exist, else an Internal error naming it. Empty for every compute-only caller.
+  std::vector<std::string> instanceExtensions;
+  std::vector<std::string> deviceExtensions;
 
   static ContextOptions fromEnvironment();  // validation from $SKY_VALIDATION
 };
@@ -73,7 +78,7 @@ public:
 private:
   void createInstance(const ContextOptions& options);
   void pickDevice(const std::string& request);
-  void createDevice();
+  void createDevice(const std::vector<std::string>& extraExtensions);
   void destroy();
 
   VkInstance mInstance = VK_NULL_HANDLE;
