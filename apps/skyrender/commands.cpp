@@ -15,8 +15,8 @@
 
 #include "apps/common/contact_sheet.h"
 #include "apps/common/debug_outputs.h"
+#include "apps/common/default_scene.h"
 #include "cli_args.h"
-#include "default_scene.h"
 #include "engine/color/ocio_output.h"
 #include "engine/core/error.h"
 #include "engine/core/files.h"

@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
+#include "apps/common/default_scene.h"
 #include "cli_args.h"
 #include "commands.h"
-#include "default_scene.h"
 #include "engine/core/error.h"
 #include "engine/core/files.h"
 #include "engine/io/exr.h"

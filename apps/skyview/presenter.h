@@ -10,7 +10,7 @@
 
 #include <vulkan/vulkan.h>
 
-#include "debug_view.h"
+#include "debug_panel.h"
 #include "engine/gpu/buffer.h"
 
 namespace sky {

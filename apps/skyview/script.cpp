@@ -65,9 +65,11 @@ ScriptCommand parseCommand(const std::string& text, const std::string& source) {
     if (rest.find('=') == std::string::npos) inputError(where + ": expected set KEY=VALUE");
     c.op = ScriptOp::Set;
     c.argument = rest;
-  } else if (name == "save-scene" || name == "dump-frame") {
+  } else if (name == "save-scene" || name == "dump-frame" || name == "dump-debug") {
     if (rest.empty()) inputError(where + ": " + name + " takes a path");
-    c.op = name == "save-scene" ? ScriptOp::SaveScene : ScriptOp::DumpFrame;
+    c.op = name == "save-scene"   ? ScriptOp::SaveScene
+           : name == "dump-frame" ? ScriptOp::DumpFrame
+                                  : ScriptOp::DumpDebug;
     c.argument = rest;
   } else if (name == "resize") {
     args(2);
@@ -78,16 +80,15 @@ ScriptCommand parseCommand(const std::string& text, const std::string& source) {
       inputError(where + ": resize takes a width and a height in whole pixels, 1..16384");
     c.width = static_cast<int>(width);
     c.height = static_cast<int>(height);
-  } else if (name == "iconify" || name == "restore" || name == "debug-pattern" || name == "quit") {
+  } else if (name == "iconify" || name == "restore" || name == "quit") {
     args(0);
-    c.op = name == "iconify"         ? ScriptOp::Iconify
-           : name == "restore"       ? ScriptOp::Restore
-           : name == "debug-pattern" ? ScriptOp::DebugPattern
-                                     : ScriptOp::Quit;
+    c.op = name == "iconify"   ? ScriptOp::Iconify
+           : name == "restore" ? ScriptOp::Restore
+                               : ScriptOp::Quit;
   } else {
     inputError(where +
                ": unknown command (commands: wait, pan, key, screenshot, set, save-scene, "
-               "dump-frame, resize, iconify, restore, debug-pattern, quit)");
+               "dump-frame, dump-debug, resize, iconify, restore, quit)");
   }
   return c;
 }

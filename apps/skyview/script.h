@@ -17,17 +17,17 @@ enum class ScriptOp {
   Set,           // set KEY=VALUE: a scene key, as skyrender's --set
   SaveScene,     // save-scene PATH
   DumpFrame,     // dump-frame PATH: the frame on screen as a PNG (its 8-bit codes, no dither)
+  DumpDebug,     // dump-debug PATH: the debug view's image on screen as a PNG
   Resize,        // resize W H: the window's size
   Iconify,       // iconify: minimise (and treat the framebuffer as 0 x 0 until restore)
   Restore,       // restore
-  DebugPattern,  // debug-pattern: two test images for the debug view (until the registry lands)
   Quit,          // quit
 };
 
 struct ScriptCommand {
   ScriptOp op;
   std::string text;           // the command as written, for messages
-  std::string argument;       // Key, Set, SaveScene, DumpFrame
+  std::string argument;       // Key, Set, SaveScene, DumpFrame, DumpDebug
   double number = 0.0;        // Wait (frames), Pan (degrees per frame)
   int width = 0, height = 0;  // Resize
 };

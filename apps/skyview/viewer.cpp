@@ -10,7 +10,8 @@
 #include <cstdio>
 #include <iostream>
 
-#include "default_scene.h"
+#include "apps/common/debug_view.h"
+#include "apps/common/default_scene.h"
 #include "engine/core/error.h"
 #include "engine/core/files.h"
 #include "engine/core/paths.h"
@@ -59,12 +60,20 @@ void makeInstant(Scene& scene) {
   scene.time.stepSeconds = 0.0;
 }
 
-Scene loadStartScene(const ViewerOptions& o) {
-  Scene scene = o.scenePath ? loadSceneFile(*o.scenePath, o.overrides)
-                            : loadSceneText(defaultSceneText(), ConfigFormat::Yaml,
-                                            "<default scene>", o.overrides);
+// A scene as the window opens it: one instant, and the clouds of each frame reused by the
+// next (clouds.temporal.mode on). A window is a sequence; reuse is what makes a pan run at
+// interactive rates on lavapipe, and the first frame (and any after a cut) is the full march,
+// so a saved scene still renders as the window's still. The panel can switch it off.
+Scene windowScene(Scene scene) {
   makeInstant(scene);
+  scene.clouds.temporal.mode = CloudTemporalMode::On;
   return scene;
+}
+
+Scene loadStartScene(const ViewerOptions& o) {
+  return windowScene(o.scenePath ? loadSceneFile(*o.scenePath, o.overrides)
+                                 : loadSceneText(skyDefaultSceneText(), ConfigFormat::Yaml,
+                                                 "<default scene>", o.overrides));
 }
 
 }  // namespace
@@ -112,22 +121,38 @@ int Viewer::run() {
   using Clock = std::chrono::steady_clock;
   const auto start = Clock::now();
   auto last = start;
+  // The rate once the first frame is on screen: the first marches every pixel (and may bake
+  // or compile), the ones after are what a person panning sees.
+  std::optional<Clock::time_point> steadyStart;
+  int64_t steadyFrom = 0;
   while (!mQuit) {
     const auto now = Clock::now();
     const double dt = std::min(std::chrono::duration<double>(now - last).count(), 0.5);
     last = now;
     if (!frame(dt)) break;
     ++mFrames;
+    if (!steadyStart && mPresented > 0) {
+      steadyStart = Clock::now();
+      steadyFrom = mPresented;
+    }
     if (mOptions.frames && mFrames >= *mOptions.frames) break;
   }
   if (mCtx) vkDeviceWaitIdle(mCtx->device());
-  const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
-  if (mOptions.reportFps)
-    std::printf("skyview: %lld frames in %.1f s, %.1f fps (render %.0f ms/frame, %lld rendered)\n",
-                static_cast<long long>(mPresented), seconds,
-                seconds > 0 ? static_cast<double>(mPresented) / seconds : 0.0,
-                mRendered ? mRenderMsTotal / static_cast<double>(mRendered) : 0.0,
-                static_cast<long long>(mRendered));
+  const auto end = Clock::now();
+  const double seconds = std::chrono::duration<double>(end - start).count();
+  if (mOptions.reportFps) {
+    const double steadySeconds =
+        steadyStart ? std::chrono::duration<double>(end - *steadyStart).count() : 0.0;
+    const int64_t steadyFrames = mPresented - steadyFrom;
+    std::printf(
+        "skyview: %lld frames in %.1f s, %.1f fps (render %.0f ms/frame, %lld rendered); after "
+        "the first: %.2f fps\n",
+        static_cast<long long>(mPresented), seconds,
+        seconds > 0 ? static_cast<double>(mPresented) / seconds : 0.0,
+        mRendered ? mRenderMsTotal / static_cast<double>(mRendered) : 0.0,
+        static_cast<long long>(mRendered),
+        steadySeconds > 0 ? static_cast<double>(steadyFrames) / steadySeconds : 0.0);
+  }
   std::fflush(stdout);
   return 0;
 }
@@ -210,7 +235,16 @@ RenderedFrame Viewer::renderWith(Renderer& renderer) {
   const bool histogram = mScene.output.exposure == ExposureMode::Histogram;
   options.readBack = histogram ? ReadBack::Beauty : ReadBack::Display;
   options.gpuDisplay = histogram ? nullptr : &mOcio;
-  return renderer.render(mScene, mScene.time.start, options);
+  // The debug view's image comes back with the frame, by its name in the frame's graph.
+  if (const std::optional<std::string> wanted = mDebug.wanted()) options.debugOutputs = {*wanted};
+  try {
+    return renderer.render(mScene, mScene.time.start, options);
+  } catch (const UnknownImageName&) {
+    // The scene changed under the debug view (no clouds any more, another sky model): the
+    // frame without it, and show() moves the selection to an image the frame has.
+    options.debugOutputs.clear();
+    return renderer.render(mScene, mScene.time.start, options);
+  }
 }
 
 void Viewer::show(RenderedFrame& frame) {
@@ -226,6 +260,27 @@ void Viewer::show(RenderedFrame& frame) {
   } else {
     mDisplay = std::move(frame.display);
   }
+  if (!frame.debug.empty()) {
+    const DebugImage& d = frame.debug.front();
+    const DisplayTile shown = debugDisplay(d);
+    // "cloud_steps  (volumetric_clouds, 182.31 ms; heat 0..208)", as the contact sheet says.
+    char detail[160];
+    if (d.info.pass.empty())
+      std::snprintf(detail, sizeof detail, "imported; %s", debugViewName(d.info.view));
+    else
+      std::snprintf(detail, sizeof detail, "%s, %.2f ms; %s", d.info.pass.c_str(), d.gpuMs,
+                    debugViewName(d.info.view));
+    std::string caption = d.info.name + "  (" + detail;
+    if (shown.legend) {
+      char range[96];
+      std::snprintf(range, sizeof range, " %.4g..%.4g%s", double(shown.low), double(shown.high),
+                    shown.unit);
+      caption += range;
+    }
+    mDebug.setTile({caption + ")", shown.width, shown.height, shown.rgba});
+  }
+  // A selection the new frame lacks moves to one it has: fetch that with the next frame.
+  if (mDebug.setImages(frame.images)) mDirty = true;
   mPasses = frame.frame.passes;
   mRenderMs = frame.frame.wallMs;
   mRenderMsTotal += frame.frame.wallMs;
@@ -283,9 +338,8 @@ void Viewer::reloadShaders() {
 
 void Viewer::reloadScene() {
   try {
-    Scene scene = loadSceneFile(*mOptions.scenePath, mOptions.overrides);
+    Scene scene = windowScene(loadSceneFile(*mOptions.scenePath, mOptions.overrides));
     mOcio.checkDisplayView(scene.output.display, scene.output.view);
-    makeInstant(scene);
     scene.output.width = mScene.output.width;
     scene.output.height = mScene.output.height;
     mScene = scene;
@@ -335,6 +389,15 @@ void Viewer::dumpFrame(const fs::path& path) const {
   std::vector<float> values(mDisplay.size());
   for (size_t i = 0; i < mDisplay.size(); ++i) values[i] = mDisplay[i] / 255.0f;
   writePng8(path, static_cast<int>(mDisplayW), static_cast<int>(mDisplayH), values,
+            PngQuantize::Nearest);
+}
+
+void Viewer::dumpDebug(const fs::path& path) const {
+  const DebugTile* tile = mDebug.current();
+  if (!tile) inputError("dump-debug: the debug view shows no image (Tab shows one)");
+  std::vector<float> values(tile->rgba.size());
+  for (size_t i = 0; i < tile->rgba.size(); ++i) values[i] = tile->rgba[i] / 255.0f;
+  writePng8(path, static_cast<int>(tile->width), static_cast<int>(tile->height), values,
             PngQuantize::Nearest);
 }
 

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "debug_view.h"
+#include "debug_panel.h"
 #include "engine/color/ocio_output.h"
 #include "engine/graph/frame_graph.h"
 #include "engine/render/exposure.h"
@@ -56,6 +56,7 @@ private:
   void screenshot();
   void saveScene(const std::filesystem::path& path);
   void dumpFrame(const std::filesystem::path& path) const;
+  void dumpDebug(const std::filesystem::path& path) const;
   void applySet(const std::string& assignment);
   void drawUi();
   // Prints one line (stdout) and shows it in the window.
@@ -66,7 +67,6 @@ private:
   void runScriptCommand(const ScriptCommand& command);
   void moveCamera(double forwardM, double rightM, double upM);
   void advanceTime(double dt);
-  void setDebugPattern();
 
   ViewerOptions mOptions;
   OcioOutput mOcio;
@@ -85,7 +85,7 @@ private:
 
   FileWatcher mShaderWatch;
   FileWatcher mSceneWatch;
-  DebugView mDebug;
+  DebugPanel mDebug;
   uint64_t mTileRevision = ~0ull;
   PanelState mPanel;
   bool mPanelVisible = true;

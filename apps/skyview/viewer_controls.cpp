@@ -198,13 +198,16 @@ void Viewer::handleKey(int key, int mods, bool fromScript) {
       }
       return;
     case GLFW_KEY_TAB:
+      // The frame reads the image it shows back: a new selection renders again.
       if (shift)
         mDebug.hide();
       else
         say(mDebug.next());
+      mDirty = true;
       return;
     case GLFW_KEY_V:
       say(mDebug.toggleLayout());
+      mDirty = true;
       return;
     case GLFW_KEY_F1:
     case GLFW_KEY_H:
@@ -246,6 +249,10 @@ void Viewer::runScriptCommand(const ScriptCommand& c) {
     case ScriptOp::SaveScene:
       saveScene(c.argument);
       return;
+    case ScriptOp::DumpDebug:
+      dumpDebug(c.argument);
+      say("wrote " + c.argument);
+      return;
     case ScriptOp::DumpFrame:
       dumpFrame(c.argument);
       say("wrote " + c.argument);
@@ -259,35 +266,10 @@ void Viewer::runScriptCommand(const ScriptCommand& c) {
     case ScriptOp::Restore:
       mWindow->restore();
       return;
-    case ScriptOp::DebugPattern:
-      setDebugPattern();
-      return;
     case ScriptOp::Quit:
       mQuit = true;
       return;
   }
-}
-
-void Viewer::setDebugPattern() {
-  // Two images of other sizes than the frame: a checkerboard and a gradient, enough to see
-  // the layouts and the captions until the frame graph's registry feeds real resources.
-  std::vector<DebugTile> tiles(2);
-  tiles[0] = {"test pattern: checkerboard 64x48", 64, 48, {}};
-  tiles[1] = {"test pattern: gradient 200x100", 200, 100, {}};
-  for (DebugTile& t : tiles) {
-    t.rgba.resize(size_t(t.width) * t.height * 4);
-    for (uint32_t y = 0; y < t.height; ++y)
-      for (uint32_t x = 0; x < t.width; ++x) {
-        uint8_t* p = &t.rgba[(size_t(y) * t.width + x) * 4];
-        const bool check = ((x / 8) + (y / 8)) % 2;
-        p[0] = t.width == 64 ? (check ? 255 : 30) : static_cast<uint8_t>(255 * x / t.width);
-        p[1] = t.width == 64 ? (check ? 255 : 30) : static_cast<uint8_t>(255 * y / t.height);
-        p[2] = t.width == 64 ? (check ? 255 : 30) : 128;
-        p[3] = 255;
-      }
-  }
-  mDebug.setImages(std::move(tiles));
-  say("debug view: " + std::to_string(2) + " test images (Tab shows them)");
 }
 
 }  // namespace sky::view

@@ -117,7 +117,8 @@ keys:
   F1 or H              show / hide the panel; Esc quits
 
 script commands (--script): wait N, pan DEG_PER_FRAME, key NAME, screenshot, set KEY=VALUE,
-  save-scene PATH, dump-frame PATH, resize W H, iconify, restore, debug-pattern, quit
+  save-scene PATH, dump-frame PATH, dump-debug PATH,
+  resize W H, iconify, restore, quit
 
 Shaders (SKY_SHADER_DIR or shaders/) and the scene file are watched: an edit rebuilds the
 pipelines or reloads the scene; an error is shown in the window and the last good state kept.

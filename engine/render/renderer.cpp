@@ -487,6 +487,7 @@ void Renderer::collectOutputs(RenderedFrame& out, const FrameGraph& graph, const
       out.image.layers.push_back(
           weatherCoverLayer(*plan.weather, plan.weather->region, width, height));
   }
+  for (const GraphImage& g : graph.images()) out.images.push_back(debugImageInfo(g));
   const std::string prefix = kDebugLabel;
   for (const ReadbackImage& o : result.outputs) {
     if (o.label.rfind(prefix, 0) != 0) continue;

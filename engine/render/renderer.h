@@ -96,6 +96,8 @@ struct RenderedFrame {
   WeatherRegion weatherRegion;
   glm::uvec2 weatherTexels{0};
   std::vector<DebugImage> debug;  // as requested in RenderOptions
+  // Every image of the frame's graph: the names RenderOptions::debugOutputs can ask for.
+  std::vector<DebugImageInfo> images;
   // With RenderOptions::gpuDisplay: the display image, 8-bit RGBA codes (row 0 the top), and
   // the exposure it was made with (EV).
   std::vector<uint8_t> display;

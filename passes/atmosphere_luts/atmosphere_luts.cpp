@@ -119,7 +119,13 @@ AtmosphereLuts::AtmosphereLuts(const Context& ctx, ShaderCompiler& compiler)
       mMultiScatteringLut(persistentLut(ctx, "atmosphere_multiscattering",
                                         "multiple-scattering contribution Psi_ms (Hillaire 2020)",
                                         ATMOSPHERE_MULTISCATTERING_SIZE,
-                                        ATMOSPHERE_MULTISCATTERING_SIZE)) {}
+                                        ATMOSPHERE_MULTISCATTERING_SIZE)),
+      mSkyViewSunLut(persistentLut(ctx, "atmosphere_sky_view_sun",
+                                   "sky radiance lit by the sun (Hillaire 2020)",
+                                   ATMOSPHERE_SKY_VIEW_WIDTH, ATMOSPHERE_SKY_VIEW_HEIGHT)),
+      mSkyViewMoonLut(persistentLut(ctx, "atmosphere_sky_view_moon",
+                                    "sky radiance lit by the moon", ATMOSPHERE_SKY_VIEW_WIDTH,
+                                    ATMOSPHERE_SKY_VIEW_HEIGHT)) {}
 
 AtmosphereLuts::Outputs AtmosphereLuts::addTo(FrameGraph& graph, const Frame& frame) {
   shared::AtmosphereParams p = atmosphereParams(frame.atmosphere);
@@ -169,28 +175,31 @@ AtmosphereLuts::Outputs AtmosphereLuts::addTo(FrameGraph& graph, const Frame& fr
     out.multiScattering = m.write(out.multiScattering, Access::StorageWriteCompute);
   }
 
-  GraphBuilder s = graph.addPass(kSkyViewName, [this, h, p](PassContext& ctx) {
-    ctx.dispatch(
-        mSkyView,
-        {Binding::of(ATMOSPHERE_BINDING_PARAMS, ctx.uniform(p)),
-         Binding::of(ATMOSPHERE_SKY_VIEW_BINDING_TRANSMITTANCE, h->out.transmittance, &mSampler),
-         Binding::of(ATMOSPHERE_SKY_VIEW_BINDING_MULTISCATTERING, h->out.multiScattering,
-                     &mSampler),
-         Binding::of(ATMOSPHERE_SKY_VIEW_BINDING_SUN, h->out.skyViewSun),
-         Binding::of(ATMOSPHERE_SKY_VIEW_BINDING_MOON, h->out.skyViewMoon)},
-        mSkyView.groupsX(ATMOSPHERE_SKY_VIEW_WIDTH), mSkyView.groupsY(ATMOSPHERE_SKY_VIEW_HEIGHT),
-        2);  // z: 0 the sun, 1 the moon
-  });
-  s.read(out.transmittance, Access::SampledCompute);
-  s.read(out.multiScattering, Access::SampledCompute);
-  out.skyViewSun = s.write(
-      s.create(lutDesc("atmosphere_sky_view_sun", "sky radiance lit by the sun (Hillaire 2020)",
-                       ATMOSPHERE_SKY_VIEW_WIDTH, ATMOSPHERE_SKY_VIEW_HEIGHT)),
-      Access::StorageWriteCompute);
-  out.skyViewMoon =
-      s.write(s.create(lutDesc("atmosphere_sky_view_moon", "sky radiance lit by the moon",
-                               ATMOSPHERE_SKY_VIEW_WIDTH, ATMOSPHERE_SKY_VIEW_HEIGHT)),
-              Access::StorageWriteCompute);
+  out.skyViewSun = graph.importImage(mSkyViewSunLut);
+  out.skyViewMoon = graph.importImage(mSkyViewMoonLut);
+  const SkyViewKey key{frame.atmosphere,     frame.cameraAltitudeM, frame.sunDirection,
+                       frame.moonDirection,  frame.sunIlluminance,  frame.moonIlluminance};
+  // A new transmittance or multiple scattering changes the atmosphere, hence the key.
+  if (!mSkyViewKey || *mSkyViewKey != key) {
+    GraphBuilder s = graph.addPass(kSkyViewName, [this, h, p, key](PassContext& ctx) {
+      ctx.dispatch(
+          mSkyView,
+          {Binding::of(ATMOSPHERE_BINDING_PARAMS, ctx.uniform(p)),
+           Binding::of(ATMOSPHERE_SKY_VIEW_BINDING_TRANSMITTANCE, h->out.transmittance, &mSampler),
+           Binding::of(ATMOSPHERE_SKY_VIEW_BINDING_MULTISCATTERING, h->out.multiScattering,
+                       &mSampler),
+           Binding::of(ATMOSPHERE_SKY_VIEW_BINDING_SUN, h->out.skyViewSun),
+           Binding::of(ATMOSPHERE_SKY_VIEW_BINDING_MOON, h->out.skyViewMoon)},
+          mSkyView.groupsX(ATMOSPHERE_SKY_VIEW_WIDTH), mSkyView.groupsY(ATMOSPHERE_SKY_VIEW_HEIGHT),
+          2);  // z: 0 the sun, 1 the moon
+      // Recorded: later frames with the same lights and altitude keep the LUTs.
+      mSkyViewKey = key;
+    });
+    s.read(out.transmittance, Access::SampledCompute);
+    s.read(out.multiScattering, Access::SampledCompute);
+    out.skyViewSun = s.write(out.skyViewSun, Access::StorageWriteCompute);
+    out.skyViewMoon = s.write(out.skyViewMoon, Access::StorageWriteCompute);
+  }
 
   GraphBuilder a = graph.addPass(kAerialPerspectiveName, [this, h, p](PassContext& ctx) {
     ctx.dispatch(

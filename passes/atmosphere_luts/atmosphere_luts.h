@@ -67,8 +67,10 @@ public:
 
   // Adds the passes to `graph`. Transmittance and multiple scattering live in persistent
   // images and are recomputed (their passes added) only when `frame.atmosphere` differs from
-  // the settings they were last recorded with; sky-view and aerial perspective depend on the
-  // lights and camera and run every frame. Must outlive graph.execute().
+  // the settings they were last recorded with. The sky-view LUTs are persistent too: they
+  // depend on the atmosphere, the camera's altitude and the lights, not on where the camera
+  // looks, so a pan (a window, a benchmark) keeps them. Aerial perspective follows the view
+  // and runs every frame. Must outlive graph.execute().
   Outputs addTo(FrameGraph& graph, const Frame& frame);
 
   // Adds the sky probe: a width x height RGBA32F equirectangular image of the whole sphere
@@ -90,6 +92,17 @@ private:
   PersistentImage mMultiScatteringLut;
   // The settings the persistent LUTs were last recorded for (set when their passes record).
   std::optional<AtmosphereSettings> mBaked;
+  // What the sky-view LUTs were last recorded for, likewise.
+  struct SkyViewKey {
+    AtmosphereSettings atmosphere;
+    double cameraAltitudeM = 0.0;
+    glm::vec3 sunDirection{0.0f}, moonDirection{0.0f}, sunIlluminance{0.0f},
+        moonIlluminance{0.0f};
+    bool operator==(const SkyViewKey&) const = default;
+  };
+  PersistentImage mSkyViewSunLut;
+  PersistentImage mSkyViewMoonLut;
+  std::optional<SkyViewKey> mSkyViewKey;
   shared::AtmosphereParams mParams{};
 };
 

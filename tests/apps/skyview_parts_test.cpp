@@ -8,7 +8,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "debug_view.h"
+#include "debug_panel.h"
 #include "engine/core/error.h"
 #include "file_watcher.h"
 #include "script.h"
@@ -53,28 +53,54 @@ TEST(SkyviewScript, RejectsWhatItCannotRun) {
   EXPECT_THAT(message("explode"), HasSubstr("unknown command"));
 }
 
-TEST(SkyviewDebugView, PlacesFrameAndTile) {
-  DebugView v;
+DebugImageInfo info(const char* name, uint32_t width, uint32_t height) {
+  DebugImageInfo i;
+  i.name = name;
+  i.width = width;
+  i.height = height;
+  return i;
+}
+
+DebugTile tile(const char* name, uint32_t width, uint32_t height) {
+  return {name, width, height, std::vector<uint8_t>(size_t(width) * height * 4)};
+}
+
+// The debug view steps through the frame's images by name, asks the next frame for the one
+// it shows, and places the frame and that image side by side or full screen.
+TEST(SkyviewDebugPanel, FollowsTheFramesImagesAndPlacesFrameAndTile) {
+  DebugPanel v;
   EXPECT_EQ(v.next(), "no debug resources");
   EXPECT_EQ(v.layout(), DebugLayout::Hidden);
-  // Hidden: the frame fills the window.
+  // Hidden: the frame fills the window, and no image is read back.
   EXPECT_EQ(v.place(640, 360, 320, 180).frame, (Rect{0, 0, 640, 360}));
-  v.setImages({{"a", 100, 100, std::vector<uint8_t>(100 * 100 * 4)},
-               {"b", 200, 50, std::vector<uint8_t>(200 * 50 * 4)}});
+  EXPECT_FALSE(v.setImages({info("a", 100, 100), info("b", 200, 50)}));
+  EXPECT_EQ(v.wanted(), std::nullopt);
   EXPECT_EQ(v.next(), "a (1/2, 100x100, side by side)");
+  EXPECT_EQ(v.wanted(), "a");
+  EXPECT_EQ(v.current(), nullptr) << "not read back yet";
+  v.setTile(tile("a", 100, 100));
   DebugPlacement p = v.place(640, 360, 640, 360);
   EXPECT_EQ(p.frame, (Rect{0, 90, 320, 180}));
   EXPECT_EQ(p.tile, (Rect{320 + 0, 20, 320, 320}));
   EXPECT_EQ(v.next(), "b (2/2, 200x50, side by side)");
+  EXPECT_EQ(v.wanted(), "b");
+  v.setTile(tile("b", 200, 50));
   EXPECT_EQ(v.toggleLayout(), "b (2/2, 200x50, full screen)");
   p = v.place(640, 360, 640, 360);
   EXPECT_EQ(p.frame.width, 0u);
   EXPECT_EQ(p.tile, (Rect{0, 100, 640, 160}));
+  // The next frame has "b" still (elsewhere in its list): the selection stays.
+  EXPECT_FALSE(v.setImages({info("c", 8, 8), info("b", 200, 50)}));
+  EXPECT_EQ(v.status(), "b (2/2, 200x50, full screen)");
+  // A frame without "b": the first image is wanted now, and the old tile is gone.
   const uint64_t revision = v.revision();
-  v.hide();
+  EXPECT_TRUE(v.setImages({info("c", 8, 8)}));
+  EXPECT_EQ(v.wanted(), "c");
   EXPECT_EQ(v.current(), nullptr);
-  v.setImages({});
   EXPECT_GT(v.revision(), revision);
+  v.hide();
+  EXPECT_EQ(v.wanted(), std::nullopt);
+  v.setImages({});
   EXPECT_EQ(v.status(), "no debug resources");
 }
 

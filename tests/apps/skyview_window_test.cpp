@@ -41,11 +41,23 @@ void expectNotBlank(const fs::path& png) {
 }
 
 TEST_F(SkyviewTest, ScreenshotMatchesSkyrender) {
+  // A few frames, the debug view cycled through the frame graph's images (the fifth is the
+  // clear sky) and shown full screen, then hidden again for the screenshot.
   const fs::path out = mDir / "out";
   ViewRun r = run("--width 160 --height 90 --out " + out.string() +
-                  " --script 'wait 2; screenshot; dump-frame " + (mDir / "screen.png").string() +
-                  "; wait 1; quit'");
+                  " --script 'wait 2; key tab; wait 1; key tab; key tab; key tab; key tab; "
+                  "wait 2; dump-debug " +
+                  (mDir / "debug.png").string() +
+                  "; key v; wait 1; key shift+tab; wait 1; screenshot; dump-frame " +
+                  (mDir / "screen.png").string() + "; wait 1; quit'");
   ASSERT_EQ(r.rc, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("skyview: high_cloud_coefficients (1/"));
+  EXPECT_THAT(r.out, HasSubstr("skyview: sky (5/"));
+  EXPECT_THAT(r.out, HasSubstr("160x90, full screen)"));
+  const Image8 debug = readPng(mDir / "debug.png");
+  EXPECT_EQ(debug.width, 160) << "the sky image, read back at the frame's size";
+  EXPECT_EQ(debug.height, 90);
+  expectNotBlank(mDir / "debug.png");
   EXPECT_THAT(r.out, HasSubstr("wrote " + (out / "sky_0001.exr").string()));
   for (const char* ext : {".exr", ".png", ".json"})
     EXPECT_TRUE(fs::exists(out / (std::string("sky_0001") + ext))) << ext;
@@ -128,12 +140,13 @@ TEST_F(SkyviewTest, ResizeMinimiseAndDebugLayoutsStayValid) {
   ViewRun r =
       run("--width 160 --height 90 --log-frames --report-fps --script '"
           "wait 2; resize 240 120; wait 3; iconify; wait 5; restore; wait 3; "
-          "key tab; debug-pattern; key tab; wait 2; key v; wait 2; key tab; wait 1; "
+          "key tab; wait 2; key v; wait 2; key tab; wait 1; "
           "key shift+tab; resize 120 60; wait 2; quit'");
   ASSERT_EQ(r.rc, 0) << r.err;
   EXPECT_THAT(r.out, HasSubstr("(240x120,"));
   EXPECT_THAT(r.out, HasSubstr("(120x60,"));
-  EXPECT_THAT(r.out, HasSubstr("skyview: no debug resources"));
+  EXPECT_THAT(r.out, HasSubstr("(1/"));
+  EXPECT_THAT(r.out, HasSubstr("(2/"));
   EXPECT_THAT(r.out, HasSubstr("side by side)"));
   EXPECT_THAT(r.out, HasSubstr("full screen)"));
   EXPECT_TRUE(std::regex_search(

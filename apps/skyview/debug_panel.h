@@ -1,11 +1,15 @@
 #pragma once
-// The debug view's presentation: a list of 8-bit images (frame-graph resources, once the
-// registry feeds them) shown beside the frame or over the whole window, with a caption.
-// Tab steps through the images, V switches side by side / full screen, Shift+Tab hides.
-// Plain data and arithmetic only: the presenter uploads and blits what this says.
+// skyview's debug view: the frame graph's images by name (RenderedFrame::images, the one
+// registry; docs/debug-view.md), one of them read back with each frame and shown beside the
+// frame or over the whole window, with a caption. Tab steps through the images, V switches
+// side by side / full screen, Shift+Tab hides. Plain data and arithmetic: the viewer asks for
+// wanted() with its next frame and hands the result to setTile(); the presenter blits.
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
+
+#include "engine/render/renderer.h"
 
 namespace sky::view {
 
@@ -30,23 +34,29 @@ struct DebugPlacement {
   Rect tile;
 };
 
-class DebugView {
+class DebugPanel {
 public:
-  // Replaces the images (any time between frames); keeps the selection when it is still in range.
-  void setImages(std::vector<DebugTile> tiles);
-  // Tab: the next image, showing the view side by side if it was hidden. Returns the status line.
+  // The images of the frame just rendered. Keeps the selection by name; when that image is
+  // gone (the scene changed), selects the first and drops the tile. Returns whether wanted()
+  // changed, so the viewer renders again to fetch it.
+  bool setImages(const std::vector<DebugImageInfo>& images);
+  // The image the next frame should read back: the selection, while the view is shown.
+  std::optional<std::string> wanted() const;
+  // The selection as read back with the last frame (apps/common/debug_view's picture).
+  void setTile(DebugTile tile);
+  // Tab: the next image, showing the view side by side if it was hidden. Returns the status.
   std::string next();
   // V: side by side <-> full screen (shows the view if hidden). Returns the status line.
   std::string toggleLayout();
   // Shift+Tab: hides the view.
-  void hide() { mLayout = DebugLayout::Hidden; }
+  void hide();
 
   DebugLayout layout() const { return current() ? mLayout : DebugLayout::Hidden; }
-  // The image on screen, nullptr when hidden or there is none.
+  // The image on screen, nullptr when hidden or not read back yet.
   const DebugTile* current() const;
   // Bumped whenever the image on screen changes, so the presenter uploads it once.
   uint64_t revision() const { return mRevision; }
-  // "no debug resources", or "<caption> (i/n, side by side)".
+  // "no debug resources", or "<name> (i/n, side by side)".
   std::string status() const;
 
   // Places a frame of frameW x frameH and the current tile (if shown) in a window of
@@ -54,9 +64,10 @@ public:
   DebugPlacement place(uint32_t windowW, uint32_t windowH, uint32_t frameW, uint32_t frameH) const;
 
 private:
-  std::vector<DebugTile> mTiles;
+  std::vector<DebugImageInfo> mImages;
   size_t mIndex = 0;
   DebugLayout mLayout = DebugLayout::Hidden;
+  std::optional<DebugTile> mTile;  // of mImages[mIndex], once read back
   uint64_t mRevision = 0;
 };
 

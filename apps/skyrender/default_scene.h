@@ -1,3 +1,0 @@
-#pragma once
-// configs/default.yaml, embedded at build time.
-const char* skyDefaultSceneText();
