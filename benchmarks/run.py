@@ -6,6 +6,8 @@
     benchmarks/run.py --compare still temporal --scene peer_view --resolution 640x360
     benchmarks/run.py --baseline OTHER/skybench    # this build against another, frame by frame
 
+It also times skyview's slow pan in a window under Xvfb (the matrix's "window" entry).
+
 See benchmarks/README.md. It drives skybench (benchmarks/skybench.cpp), a frame server that
 keeps a build's Vulkan context warm, over JSON lines; Debian's /usr/bin/python3 and its
 python3-matplotlib (scripts/install-deps.sh) are all it needs.
@@ -277,6 +279,42 @@ def run_peer(resolution, frames, log):
     return result
 
 
+def run_window(spec, skyview, env, log):
+    """skyview as a person uses it: a window (under Xvfb) over a slow pan, its frame rate
+    after the first frame (which marches every pixel) from its --report-fps line."""
+    if not os.path.isfile(skyview):
+        log(f"window: {skyview} is not built; no window figures")
+        return None
+    if not shutil.which("xvfb-run"):
+        log("window: xvfb-run is missing (scripts/install-deps.sh installs xvfb); no window figures")
+        return None
+    width, height = parse_resolution(spec["resolution"])
+    cmd = ["xvfb-run", "-a", "-s", "-screen 0 1920x1200x24", skyview,
+           os.path.join(ROOT, spec["scene"]), "--width", str(width), "--height", str(height),
+           "--frames", str(spec["frames"]), "--report-fps",
+           "--script", f"pan {spec['pan_deg_per_frame']}"]
+    for kv in spec.get("set", []):
+        cmd += ["--set", kv]
+    log(f"window: skyview {spec['scene']} {spec['resolution']}, {spec['frames']} frames of a "
+        f"{spec['pan_deg_per_frame']} deg/frame pan")
+    proc = subprocess.run(cmd, capture_output=True, text=True, env=env, timeout=900)
+    if proc.returncode != 0:
+        raise HarnessError(f"skyview failed (exit {proc.returncode}): "
+                           f"{(proc.stderr.strip().splitlines() or ['?'])[-1]}")
+    m = re.search(r"skyview: (\d+) frames in ([0-9.]+) s, ([0-9.]+) fps \(render (\d+) ms/frame, "
+                  r"(\d+) rendered\); after the first: ([0-9.]+) fps", proc.stdout)
+    if not m:
+        raise HarnessError(f"skyview printed no --report-fps line: {proc.stdout[-300:]!r}")
+    validation = [line for line in proc.stderr.splitlines() if "validation" in line.lower()]
+    return {"scene": spec["scene"], "resolution": spec["resolution"], "set": spec.get("set", []),
+            "pan_deg_per_frame": spec["pan_deg_per_frame"], "frames": int(m.group(1)),
+            "seconds": float(m.group(2)), "fps_all": float(m.group(3)),
+            "render_ms_mean": float(m.group(4)), "fps_after_first": float(m.group(6)),
+            "goal_fps": spec.get("goal_fps"), "validation_messages": validation,
+            "command": " ".join(cmd[:4] + [os.path.relpath(c, ROOT) if c.startswith(ROOT) else c
+                                          for c in cmd[4:]])}
+
+
 def fit_exponent(points):
     """Least-squares slope of log(time) against log(pixels)."""
     if len(points) < 2:
@@ -456,6 +494,11 @@ def goals(result):
         c = by.get((still["scene"], still["resolution"], still["variant"]))
         if c and c["quality"]:
             g.setdefault("still_vs_baseline", {})["psnr_db"] = c["quality"][-1]["psnr_db"]
+    window = result.get("window")
+    if window and window.get("goal_fps"):
+        g["window_pan_fps"] = {"fps": window["fps_after_first"], "goal": window["goal_fps"],
+                               "met": window["fps_after_first"] >= window["goal_fps"],
+                               "case": f"skyview {window['scene']} {window['resolution']}"}
     fits = [f for f in result["scaling"] if f["variant"] == spec.get("scaling_variant", "still")]
     if fits:
         g["scaling_exponents"] = {f["scene"]: f["exponent"] for f in fits}
@@ -467,6 +510,9 @@ def main():
     ap.add_argument("--matrix", default=os.path.join(ROOT, "benchmarks", "matrix.json"))
     ap.add_argument("--skybench", default=os.path.join(ROOT, "build", "release", "benchmarks",
                                                        "skybench"))
+    ap.add_argument("--skyview", default=os.path.join(ROOT, "build", "release", "apps", "skyview",
+                                                      "skyview"),
+                    help="the window whose slow pan the matrix's 'window' entry times")
     ap.add_argument("--baseline", help="a second build's skybench: the matrix's compare "
                     "entries run this build (A) against it (B), frame by frame")
     ap.add_argument("--out", help="results folder (default benchmarks/results/DATE_DEVICE)")
@@ -515,10 +561,10 @@ def main():
         os.makedirs(os.path.join(out_dir, "images"), exist_ok=True)
         h = Harness(matrix, workers, out_dir, log)
 
+        only = set(args.only.split(",")) if args.only else None
         if args.compare:
             h.compare(args.scene, args.resolution, *args.compare)
         else:
-            only = set(args.only.split(",")) if args.only else None
             for i, run in enumerate(matrix.get("runs", [])):
                 # Each group of cases in a fresh skybench: a process that has made and freed
                 # a dozen renderers (1080p transients, JIT code) runs later cases up to 30 %
@@ -554,7 +600,12 @@ def main():
                 shutil.copy(peer["screenshot_path"],
                             os.path.join(out_dir, "images", "peer_" + spec["resolution"] + ".png"))
 
+        window = None
+        if matrix.get("window") and not args.compare and (not only or "window" in only):
+            window = run_window(matrix["window"], args.skyview, env, log)
         validation = h.validation_seen + [m for w in workers.values() for m in w.validation]
+        if window:
+            validation += window["validation_messages"]
         result = {
             "date": datetime.datetime.now().isoformat(timespec="seconds"),
             "device": workers["a"].device, "build": git_build(),
@@ -564,7 +615,7 @@ def main():
                      "python": platform.python_version()},
             "environment": {"MESA_SHADER_CACHE_DISABLE": "true"},
             "matrix": matrix, "cases": h.cases, "comparisons": h.comparisons,
-            "scaling": scaling(h.cases, matrix["scenes"]), "peer": peer,
+            "scaling": scaling(h.cases, matrix["scenes"]), "peer": peer, "window": window,
             "validation_messages": validation,
             "harness_wall_s": time.monotonic() - started,
         }
