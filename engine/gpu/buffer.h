@@ -6,17 +6,32 @@
 
 #include <vulkan/vulkan.h>
 
+#include "engine/gpu/image.h"
+
 namespace sky {
 
 class Context;
 
 enum class BufferMemory : uint8_t { Device, HostVisible };
 
+// For debug output only: a buffer that holds an image (one 32-bit unsigned value per texel,
+// row 0 the top, from `offset` bytes on) can be asked for by name like an image and is shown
+// as one (`view`), each value times `scale`. Width 0: the buffer holds no image and is not
+// viewable (a star catalogue, a list).
+struct BufferImage {
+  uint32_t width = 0, height = 0;
+  VkDeviceSize offset = 0;
+  float scale = 1.0f;
+  DebugView view = DebugView::Scalar;
+  std::string about;
+};
+
 struct BufferDesc {
   std::string name;
   VkDeviceSize size = 0;
   VkBufferUsageFlags usage = 0;
   BufferMemory memory = BufferMemory::Device;
+  BufferImage image;
 };
 
 class Buffer {

@@ -187,19 +187,45 @@ void FrameGraph::requestOutput(ImageId image, std::string label) {
   if (image.id >= mDesc.resources.size() || mDesc.resources[image.id].kind != ResourceKind::Image)
     internalError("frame graph: output '" + label + "' is not an image");
   for (const auto& o : mOutputs)
-    if (o.second == label) internalError("frame graph: output '" + label + "' requested twice");
-  mOutputs.emplace_back(image, std::move(label));
+    if (o.label == label) internalError("frame graph: output '" + label + "' requested twice");
+  mOutputs.push_back({image.id, image.version, std::move(label)});
+}
+
+void FrameGraph::requestOutput(const GraphImage& image, std::string label) {
+  if (image.latest.valid()) return requestOutput(image.latest, std::move(label));
+  if (mCompiled) internalError("frame graph: output '" + label + "' requested after compile()");
+  if (!image.buffer.valid() ||
+      mDesc.resources[image.buffer.id].buffer.image.width == 0)
+    internalError("frame graph: output '" + label + "' is not an image");
+  for (const auto& o : mOutputs)
+    if (o.label == label) internalError("frame graph: output '" + label + "' requested twice");
+  mOutputs.push_back({image.buffer.id, image.buffer.version, std::move(label)});
 }
 
 std::vector<GraphImage> FrameGraph::images() const {
   std::vector<GraphImage> out;
   for (uint32_t r = 0; r < mDesc.resources.size(); ++r) {
     const ResourceNode& node = mDesc.resources[r];
-    if (node.kind != ResourceKind::Image) continue;
+    const bool image = node.kind == ResourceKind::Image;
+    if (!image && node.buffer.image.width == 0) continue;
     const int writer = mResources[r].lastWriter;
-    out.push_back({node.name, ImageId{r, node.versions - 1},
-                   writer >= 0 ? mDesc.passes[static_cast<size_t>(writer)].name : std::string(),
-                   &node.image});
+    GraphImage g;
+    g.name = node.name;
+    g.writer = writer >= 0 ? mDesc.passes[static_cast<size_t>(writer)].name : std::string();
+    if (image) {
+      g.latest = ImageId{r, node.versions - 1};
+      g.desc = node.image;
+    } else {
+      const BufferImage& b = node.buffer.image;
+      g.buffer = BufferId{r, node.versions - 1};
+      g.desc.name = node.name;
+      g.desc.format = VK_FORMAT_R32_SFLOAT;
+      g.desc.width = b.width;
+      g.desc.height = b.height;
+      g.desc.view = b.view;
+      g.desc.about = b.about;
+    }
+    out.push_back(std::move(g));
   }
   return out;
 }

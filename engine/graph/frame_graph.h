@@ -111,12 +111,14 @@ struct FrameResult {
 };
 
 // An image of a frame's graph, as a debug view finds it: by its name (ImageDesc::name).
+// A buffer that holds an image (BufferDesc::image) is one too, shown as an R32F image.
 struct GraphImage {
   std::string name;
   ImageId latest;      // its last version in the graph: what the frame ends up holding
+  BufferId buffer;     // instead of `latest`, for a buffer that holds an image
   std::string writer;  // the pass that wrote that version; "" for an imported image no pass
                        // of this frame writes (uploaded, baked or kept from an earlier frame)
-  const ImageDesc* desc = nullptr;  // valid while the graph lives
+  ImageDesc desc;      // the image's; a buffer's image as its BufferImage says
 };
 
 // A name no image of the graph has. BadInput: names come from users (--debug-output, the
@@ -163,6 +165,9 @@ public:
   }
   // Reads `image` back to the host after the frame under `label` (main image, AOVs, debug).
   void requestOutput(ImageId image, std::string label);
+  // The same for an image images() found: an image, or a buffer that holds one (read back
+  // as R32F, each value times its BufferImage::scale).
+  void requestOutput(const GraphImage& image, std::string label);
   // Every image added so far, in the order they were added (the debug views' registry: any
   // image a pass declares can be requested by its name, with nothing added for it).
   std::vector<GraphImage> images() const;
@@ -197,7 +202,11 @@ private:
   GraphDesc mDesc;
   std::vector<PassRecord> mPasses;
   std::vector<ResourceRecord> mResources;
-  std::vector<std::pair<ImageId, std::string>> mOutputs;
+  struct Output {
+    uint32_t resource = 0, version = 0;
+    std::string label;
+  };
+  std::vector<Output> mOutputs;
   std::vector<HistoryImage*> mHistories;  // flipped after execute
   std::optional<CompiledGraph> mCompiled;
   bool mExecuted = false;

@@ -52,19 +52,35 @@ const CompiledGraph& FrameGraph::compile() {
     // Readback is an ordinary side-effect pass, so its barriers come from the same rules.
     GraphBuilder b = addPass("readback", [this](PassContext& ctx) {
       for (size_t i = 0; i < mOutputs.size(); ++i) {
-        const Image& image = ctx.image(mOutputs[i].first);
+        const Output& o = mOutputs[i];
+        const VkBuffer target = mRuntime->readback(mUse)[i].buffer();
+        if (mDesc.resources[o.resource].kind == ResourceKind::Buffer) {
+          // A buffer that holds an image: its texels, from where they start.
+          const BufferImage& layout = mDesc.resources[o.resource].buffer.image;
+          const VkBufferCopy region{layout.offset, 0,
+                                    VkDeviceSize(layout.width) * layout.height * 4};
+          vkCmdCopyBuffer(ctx.cmd(), ctx.buffer(BufferId{o.resource, o.version}).buffer(),
+                          target, 1, &region);
+          continue;
+        }
+        const Image& image = ctx.image(ImageId{o.resource, o.version});
         const ImageDesc& d = image.desc();
         VkBufferImageCopy region{};
         region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
         region.imageExtent = {d.width, d.height, d.dim == ImageDim::Tex3D ? d.depth : 1};
         vkCmdCopyImageToBuffer(ctx.cmd(), image.image(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                               mRuntime->readback(mUse)[i].buffer(), 1, &region);
+                               target, 1, &region);
       }
     });
     b.sideEffect();
     std::set<uint32_t> declared;
-    for (const auto& [handle, label] : mOutputs)
-      if (declared.insert(handle.id).second) b.read(handle, Access::TransferSrc);
+    for (const Output& o : mOutputs) {
+      if (!declared.insert(o.resource).second) continue;
+      if (mDesc.resources[o.resource].kind == ResourceKind::Buffer)
+        b.read(BufferId{o.resource, o.version}, Access::TransferSrc);
+      else
+        b.read(ImageId{o.resource, o.version}, Access::TransferSrc);
+    }
   }
   CompiledGraph c;
   c.alive = cull(mDesc);
@@ -143,11 +159,14 @@ FrameResult FrameGraph::execute() {
   std::vector<Buffer>& readback = runtime.readback(mUse);
   readback.resize(mOutputs.size());
   for (size_t i = 0; i < mOutputs.size(); ++i) {
-    const ImageDesc& d = mDesc.resources[mOutputs[i].first.id].image;
-    VkDeviceSize bytes = texelBytes(d);
+    const ResourceNode& n = mDesc.resources[mOutputs[i].resource];
+    const VkDeviceSize bytes =
+        n.kind == ResourceKind::Buffer
+            ? VkDeviceSize(n.buffer.image.width) * n.buffer.image.height * 4
+            : texelBytes(n.image);
     if (!readback[i] || readback[i].size() != bytes)
       readback[i] =
-          Buffer(ctx, {"readback " + mOutputs[i].second, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+          Buffer(ctx, {"readback " + mOutputs[i].label, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                        BufferMemory::HostVisible});
   }
 
@@ -221,11 +240,25 @@ FrameResult FrameGraph::execute() {
     result.gpuMs += passMs;
   }
   for (size_t i = 0; i < mOutputs.size(); ++i) {
-    const ImageDesc& d = mDesc.resources[mOutputs[i].first.id].image;
+    const ResourceNode& n = mDesc.resources[mOutputs[i].resource];
     const Buffer& buf = readback[i];
     buf.invalidate();
     ReadbackImage out;
-    out.label = mOutputs[i].second;
+    out.label = mOutputs[i].label;
+    if (n.kind == ResourceKind::Buffer) {
+      const BufferImage& layout = n.buffer.image;
+      out.width = layout.width;
+      out.height = layout.height;
+      out.channels = 1;
+      out.format = VK_FORMAT_R32_SFLOAT;
+      const uint32_t* values = static_cast<const uint32_t*>(buf.mapped());
+      out.pixels.resize(size_t(layout.width) * layout.height);
+      for (size_t k = 0; k < out.pixels.size(); ++k)
+        out.pixels[k] = static_cast<float>(values[k]) * layout.scale;
+      result.outputs.push_back(std::move(out));
+      continue;
+    }
+    const ImageDesc& d = n.image;
     out.width = d.width;
     out.height = d.height;
     out.depth = d.dim == ImageDim::Tex3D ? d.depth : 1;

@@ -16,7 +16,7 @@ namespace sky {
 namespace {
 
 DebugImageInfo debugImageInfo(const GraphImage& g) {
-  const ImageDesc& d = *g.desc;
+  const ImageDesc& d = g.desc;
   return {g.name,
           g.writer,
           d.about,
@@ -37,7 +37,7 @@ DebugImage debugImage(const ReadbackImage& readback, const GraphImage& g,
     if (t.name == g.writer) d.gpuMs += t.gpuMs;
   d.image.width = static_cast<int>(readback.width * readback.depth);
   d.image.height = static_cast<int>(readback.height);
-  d.image.layers.push_back(imageLayer(readback, "", channelNames(*g.desc)));
+  d.image.layers.push_back(imageLayer(readback, "", channelNames(g.desc)));
   return d;
 }
 
@@ -466,7 +466,7 @@ void Renderer::requestOutputs(FrameGraph& graph, const FramePlan& plan,
       if (std::find(names.begin(), names.end(), image.name) == names.end())
         names.push_back(image.name);
   for (const std::string& name : names)
-    graph.requestOutput(graph.image(name).latest, kDebugLabel + name);
+    graph.requestOutput(graph.image(name), kDebugLabel + name);
 }
 
 void Renderer::collectOutputs(RenderedFrame& out, const FrameGraph& graph, const FramePlan& plan,

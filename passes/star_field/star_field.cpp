@@ -58,6 +58,13 @@ StarClearPass::Outputs StarClearPass::setup(GraphBuilder& b, const Inputs& in) {
   mInputs = in;
   BufferDesc desc;
   desc.name = "star_flux";
+  // Viewable as an image: the flux each pixel gathered, in V = 0 units (a star of magnitude
+  // 0 gives 1), after the header.
+  desc.image.width = in.width;
+  desc.image.height = in.height;
+  desc.image.offset = STAR_FLUX_HEADER_UINTS * sizeof(uint32_t);
+  desc.image.scale = static_cast<float>(1.0 / STAR_FLUX_FIXED_ONE);
+  desc.image.about = "the stars' flux gathered per pixel, in V = 0 units (10^(-0.4 V) a star)";
   desc.size = starFluxBufferBytes(in.width, in.height);
   mOutputs.flux = b.write(b.create(desc), Access::StorageWriteCompute);
   return mOutputs;

@@ -676,6 +676,30 @@ TEST_F(SkyrenderCli, PhysicalTemporalFrameListsItsLutsAndHistories) {
   EXPECT_THAT(list.out, HasSubstr("cloud_temporal"));  // the pass that writes the history
 }
 
+// A buffer that holds an image (the stars' flux per pixel, after a header) is listed and
+// read back like an image: one channel, the frame's size, the flux in V = 0 units.
+TEST_F(SkyrenderCli, ABufferThatHoldsAnImageIsViewableByName) {
+  const std::string night =
+      std::string(std::getenv("SKY_DATA_DIR")) + "/configs/tests/night_full_moon.yaml";
+  CliRun list = run("render " + night + " --debug-output list --width 64 --height 36");
+  ASSERT_EQ(list.rc, 0) << list.err;
+  EXPECT_THAT(list.out, HasSubstr("star_flux"));
+  CliRun r = run("render " + night + " --name n --debug-output star_flux --width 64 --height 36 "
+                 "--out " + out());
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const LayeredImage flux = readExr(fs::path(out()) / "n.star_flux.exr");
+  ASSERT_EQ(flux.width, 64);
+  ASSERT_EQ(flux.height, 36);
+  ASSERT_EQ(flux.layers.at(0).channels.size(), 1u);
+  float most = 0.0f;
+  for (float v : flux.layers[0].pixels) {
+    EXPECT_GE(v, 0.0f);
+    most = std::max(most, v);
+  }
+  // A wide night view holds stars down to magnitude 2 or so: flux 10^(-0.8) and more.
+  EXPECT_GT(most, 0.1f);
+}
+
 // --debug-passes: one labelled contact sheet of every image, the frame-sized ones as EXR
 // layers debug.<name>, the others in their own files.
 TEST_F(SkyrenderCli, DebugPassesWritesAContactSheetAndLayers) {

@@ -276,7 +276,7 @@ TEST(GraphImages, EveryImageByNameAtItsLastVersionWithItsWriter) {
   EXPECT_EQ(images[0].latest, marched);
   EXPECT_EQ(images[0].latest.version, 2u);
   EXPECT_EQ(images[0].writer, "refine");
-  EXPECT_EQ(images[0].desc->view, DebugView::Heat);
+  EXPECT_EQ(images[0].desc.view, DebugView::Heat);
   EXPECT_EQ(graph.image("resolved").writer, "resolve");
   try {
     graph.image("steps");
