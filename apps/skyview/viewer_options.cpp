@@ -91,6 +91,8 @@ usage: skyview [SCENE.yaml|json] [options]
 
 Without a scene, the default scene (configs/default.yaml) opens. The window renders at its
 own size (times --render-scale); the scene's output.width and output.height are ignored.
+Frames reuse each other's clouds (clouds.temporal.mode is on in the window; the panel can
+turn it off); --set clouds.temporal.resolution=half is faster still.
 
 options:
   --set KEY=VALUE      override a scene key, as skyrender render --set (repeatable)
