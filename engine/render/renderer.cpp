@@ -389,7 +389,6 @@ Renderer::FramePlan Renderer::buildFrame(FrameGraph& graph, const Scene& scene, 
                       scene.sky.model == SkyModel::Physical,
                       setup.geometry.topDown};
   FramePlan plan;
-  plan.topDown = f.topDown;
   const SkyImages sky = addSky(graph, f, out);
   std::optional<CloudImages> clouds;
   if (out.clouds) clouds = addClouds(graph, f, out, plan.pendingHistory);

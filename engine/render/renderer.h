@@ -184,7 +184,6 @@ private:
   struct CloudImages;
   struct FramePlan {  // what the outputs are read from
     ImageId beauty, sky, highClouds, clouds, cloudsDepth, display;
-    bool topDown = false;
     const WeatherMap* weather = nullptr;         // a top-down view's map, for its "weather" layer
     std::optional<CloudHistory> pendingHistory;  // becomes mHistory once the frame has run
   };
