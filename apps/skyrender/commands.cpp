@@ -267,11 +267,9 @@ int renderCommand(const std::vector<std::string>& argv) {
                                          exposure.expose(scene, frame, time), ocio,
                                          ctx.deviceName(), i == 0 ? graphPath : std::nullopt);
     if (sheet) {
-      std::vector<float> codes(sheet->rgba.begin(), sheet->rgba.end());
-      for (float& c : codes) c /= 255.0f;
       const fs::path path = outDir / (stem + ".passes.png");
-      writePng8(path, static_cast<int>(sheet->width), static_cast<int>(sheet->height), codes,
-                PngQuantize::Nearest);
+      writePngCodes(path, static_cast<int>(sheet->width), static_cast<int>(sheet->height),
+                    sheet->rgba);
       if (i == 0) std::printf("wrote %s (every image of the frame)\n", path.string().c_str());
     }
     folder.keep();

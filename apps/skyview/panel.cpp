@@ -67,19 +67,22 @@ IsoTime withLocalHours(const IsoTime& time, double hours) {
   return time.plusSeconds((hours - localHours(time)) * 3600.0);
 }
 
+void beginOverlay(const char* id, float x, float y, float pivotX, float pivotY) {
+  ImGui::SetNextWindowPos(ImVec2(x, y), ImGuiCond_Always, ImVec2(pivotX, pivotY));
+  ImGui::SetNextWindowBgAlpha(0.45f);
+  ImGui::Begin(id, nullptr,
+               ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
+                   ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing |
+                   ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoInputs);
+}
+
 PanelActions drawPanel(Scene& scene, PanelState& state, const PanelInfo& info,
                        const OcioOutput& ocio, bool visible) {
   PanelActions a;
   const ImGuiViewport* viewport = ImGui::GetMainViewport();
   // Messages and the help line sit on the frame itself, panel or not.
-  ImGui::SetNextWindowPos(
-      ImVec2(viewport->WorkPos.x + 4, viewport->WorkPos.y + viewport->WorkSize.y - 4),
-      ImGuiCond_Always, ImVec2(0, 1));
-  ImGui::SetNextWindowBgAlpha(0.45f);
-  ImGui::Begin("##status", nullptr,
-               ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
-                   ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing |
-                   ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoInputs);
+  beginOverlay("##status", viewport->WorkPos.x + 4, viewport->WorkPos.y + viewport->WorkSize.y - 4,
+               0, 1);
   for (const std::string& e : info.errors)
     ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.4f, 1.0f), "%s", e.c_str());
   if (!info.status.empty()) ImGui::TextUnformatted(info.status.c_str());
@@ -88,14 +91,8 @@ PanelActions drawPanel(Scene& scene, PanelState& state, const PanelInfo& info,
   if (!visible) return a;
 
   // Per-pass GPU time, top right, small enough to leave the sky visible.
-  ImGui::SetNextWindowPos(
-      ImVec2(viewport->WorkPos.x + viewport->WorkSize.x - 4, viewport->WorkPos.y + 4),
-      ImGuiCond_Always, ImVec2(1, 0));
-  ImGui::SetNextWindowBgAlpha(0.45f);
-  ImGui::Begin("##passes", nullptr,
-               ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
-                   ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing |
-                   ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoInputs);
+  beginOverlay("##passes", viewport->WorkPos.x + viewport->WorkSize.x - 4, viewport->WorkPos.y + 4,
+               1, 0);
   ImGui::Text("%ux%u  %.0f ms  %.1f fps", info.renderWidth, info.renderHeight, info.renderMs,
               info.fps);
   double total = 0.0;

@@ -42,6 +42,10 @@ struct PanelActions {
 PanelActions drawPanel(Scene& scene, PanelState& state, const PanelInfo& info,
                        const OcioOutput& ocio, bool visible);
 
+// Begins a small translucent text box over the frame (no title, no input) whose `pivot`
+// corner (0..1 each way) sits at window pixel (x, y); end it with ImGui::End().
+void beginOverlay(const char* id, float x, float y, float pivotX, float pivotY);
+
 // The local time of day (hours in the time's own zone) and the instant `hours` sets it to.
 double localHours(const IsoTime& time);
 IsoTime withLocalHours(const IsoTime& time, double hours);

@@ -386,19 +386,13 @@ void Viewer::saveScene(const fs::path& path) {
 
 void Viewer::dumpFrame(const fs::path& path) const {
   if (mDisplay.empty()) inputError("dump-frame: no frame rendered yet");
-  std::vector<float> values(mDisplay.size());
-  for (size_t i = 0; i < mDisplay.size(); ++i) values[i] = mDisplay[i] / 255.0f;
-  writePng8(path, static_cast<int>(mDisplayW), static_cast<int>(mDisplayH), values,
-            PngQuantize::Nearest);
+  writePngCodes(path, static_cast<int>(mDisplayW), static_cast<int>(mDisplayH), mDisplay);
 }
 
 void Viewer::dumpDebug(const fs::path& path) const {
   const DebugTile* tile = mDebug.current();
   if (!tile) inputError("dump-debug: the debug view shows no image (Tab shows one)");
-  std::vector<float> values(tile->rgba.size());
-  for (size_t i = 0; i < tile->rgba.size(); ++i) values[i] = tile->rgba[i] / 255.0f;
-  writePng8(path, static_cast<int>(tile->width), static_cast<int>(tile->height), values,
-            PngQuantize::Nearest);
+  writePngCodes(path, static_cast<int>(tile->width), static_cast<int>(tile->height), tile->rgba);
 }
 
 void Viewer::applySet(const std::string& assignment) {
@@ -431,12 +425,8 @@ void Viewer::drawUi() {
     // The caption over the debug image.
     const DebugPlacement p =
         mDebug.place(mSwapchain->extent().width, mSwapchain->extent().height, mDisplayW, mDisplayH);
-    ImGui::SetNextWindowPos(
-        ImVec2(static_cast<float>(p.tile.x) + 4, static_cast<float>(p.tile.y) + 4));
-    ImGui::SetNextWindowBgAlpha(0.5f);
-    ImGui::Begin("##debug", nullptr,
-                 ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
-                     ImGuiWindowFlags_NoInputs | ImGuiWindowFlags_NoNav);
+    beginOverlay("##debug", static_cast<float>(p.tile.x) + 4, static_cast<float>(p.tile.y) + 4, 0,
+                 0);
     ImGui::TextUnformatted(t->caption.c_str());
     ImGui::End();
   }

@@ -69,10 +69,17 @@ void writePng8(const fs::path& path, int width, int height, std::span<const floa
     }
     bytes[i] = toByte(displayRgba[i], offset);
   }
+  writePngCodes(path, width, height, bytes);
+}
 
+void writePngCodes(const fs::path& path, int width, int height, std::span<const uint8_t> rgba) {
+  if (width <= 0 || height <= 0 || rgba.size() != size_t(width) * size_t(height) * 4)
+    internalError("writePngCodes: " + path.string() + ": " + std::to_string(rgba.size()) +
+                  " codes for a " + std::to_string(width) + "x" + std::to_string(height) +
+                  " RGBA image");
   // Encoded in memory so the file itself goes through writeFileAtomic like every output.
   std::string encoded;
-  if (!stbi_write_png_to_func(appendBytes, &encoded, width, height, 4, bytes.data(), width * 4))
+  if (!stbi_write_png_to_func(appendBytes, &encoded, width, height, 4, rgba.data(), width * 4))
     internalError("writePng8: " + path.string() + ": PNG encoding failed");
   writeFileAtomic(path, encoded);
 }

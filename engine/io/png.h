@@ -27,6 +27,11 @@ enum class PngQuantize { Nearest, Dither };
 void writePng8(const std::filesystem::path& path, int width, int height,
                std::span<const float> displayRgba, PngQuantize quantize);
 
+// Writes interleaved RGBA 8-bit codes as they are (a display image already quantised: the GPU
+// display path's, a contact sheet). Atomic; errors as writePng8's.
+void writePngCodes(const std::filesystem::path& path, int width, int height,
+                   std::span<const uint8_t> rgba);
+
 // Reads an 8-bit (16-bit is reduced to 8) PNG with the channels it has; a missing or corrupt
 // file is a BadInput error naming the file.
 Image8 readPng(const std::filesystem::path& path);

@@ -486,12 +486,14 @@ void Renderer::collectOutputs(RenderedFrame& out, const FrameGraph& graph, const
       out.image.layers.push_back(
           weatherCoverLayer(*plan.weather, plan.weather->region, width, height));
   }
-  for (const GraphImage& g : graph.images()) out.images.push_back(debugImageInfo(g));
+  const std::vector<GraphImage> images = graph.images();
+  for (const GraphImage& g : images) out.images.push_back(debugImageInfo(g));
   const std::string prefix = kDebugLabel;
   for (const ReadbackImage& o : result.outputs) {
     if (o.label.rfind(prefix, 0) != 0) continue;
-    const GraphImage image = graph.image(o.label.substr(prefix.size()));
-    out.debug.push_back(debugImage(o, image, result));
+    const std::string name = o.label.substr(prefix.size());
+    for (const GraphImage& g : images)
+      if (g.name == name) out.debug.push_back(debugImage(o, g, result));
   }
   if (plan.display.valid()) {
     const std::vector<float>& codes = result.output("display").pixels;
