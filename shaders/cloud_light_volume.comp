@@ -18,18 +18,15 @@ layout(local_size_x = CLOUD_LIGHT_VOLUME_GROUP_X, local_size_y = CLOUD_LIGHT_VOL
        local_size_z = CLOUD_LIGHT_VOLUME_GROUP_Z) in;
 layout(binding = CLOUD_LIGHT_VOLUME_BINDING_IMAGE, rg16f) uniform writeonly image3D lightVolume;
 
-// The size this texel's density is filtered to.
-float gFootprintM = 0.0;
-// The latitude and longitude along the light march being run (cloud_field.glsl).
-LatLonLine gLightLine;
+#include "common/cloud_light_march.glsl"
 
-float cloudDensityForLight(vec3 p, float lengthM, int step) {
+// Every sample reads all the noise, filtered to the texel's size or a quarter of its step.
+float cloudDensityForLight(CloudLightPath path, vec3 p, float lengthM, int part) {
   CloudSample s;
-  cloudSampleAtLla(p, latLonAltitudeOn(gLightLine, p), max(gFootprintM, 0.25 * lengthM), false,
-                   CLOUD_NOISE_ALL, s);
+  cloudSampleAtLla(p, latLonAltitudeOn(params.geo, path.line, p),
+                   max(path.footprintM, 0.25 * lengthM), false, CLOUD_NOISE_ALL, s);
   return s.density;
 }
-#include "common/cloud_light_march.glsl"
 
 void main() {
   ivec3 id = ivec3(gl_GlobalInvocationID);
@@ -47,18 +44,23 @@ void main() {
   vec2 spacing = 4.0 * sqrt(v.radiusM * max(abs(metres), vec2(v.radiusM) /
                                         float(CLOUD_LIGHT_VOLUME_SIZE * CLOUD_LIGHT_VOLUME_SIZE))) /
                  float(CLOUD_LIGHT_VOLUME_SIZE);
-  gFootprintM = 0.5 * max(max(spacing.x, spacing.y), slice);
+  float footprintM = 0.5 * max(max(spacing.x, spacing.y), slice);
   // Each texel places its samples differently inside their steps: no contour lines.
   float offset = noiseHashUnit3(uvec3(id.xy, uint(id.z) + 0x6c766f6cu)).x;
   vec2 tau = vec2(0.0);
   vec2 latLon = latLonAltitude(params.geo, p).xy;
+  float distance = params.lightDistanceM;
+  int steps = int(params.lightSteps);
   for (int i = 0; i < 2; ++i) {
     if ((i == 0 ? params.sunMarched : params.moonMarched) == 0.0) continue;
     vec3 L = i == 0 ? params.sunDirection.xyz : params.moonDirection.xyz;
-    gLightLine = latLonLine(p, latLon, L, lightLongStepDistance(params.lightDistanceM));
-    tau[i] = params.extinction * lightMarchDensityRefined(p, L, params.lightDistanceM,
-                                                          CLOUD_LIGHT_STEPS,
-                                                          CLOUD_LIGHT_VOLUME_SPLIT, offset);
+    // The whole reach, every short step split CLOUD_LIGHT_VOLUME_SPLIT ways and the long step
+    // in twice as many parts.
+    CloudLightPath path = CloudLightPath(
+        p, L, latLonLine(params.geo, p, latLon, L, lightLongStepDistance(distance)), footprintM,
+        offset, distance, steps, CLOUD_LIGHT_VOLUME_SPLIT, steps, lightMarchReach(distance),
+        2 * CLOUD_LIGHT_VOLUME_SPLIT);
+    tau[i] = params.extinction * lightMarchDensity(path);
   }
   imageStore(lightVolume, id, vec4(tau, 0.0, 0.0));
 }

@@ -11,6 +11,7 @@
 #include "common/cloud_density.glsl"
 #include "common/cloud_field.glsl"
 #include "common/cloud_shadow.glsl"
+#include "common/cloud_shells.glsl"
 #include "common/noise.glsl"
 
 layout(local_size_x = CLOUD_SHADOW_GROUP_X, local_size_y = CLOUD_SHADOW_GROUP_Y) in;
@@ -20,14 +21,6 @@ layout(std140, binding = CLOUD_SHADOW_BINDING_MAP_PARAMS) uniform CloudShadowBlo
 };
 #define shadowMap shadowBlock[SKY_PARAMS_INDEX]
 layout(binding = CLOUD_SHADOW_BINDING_IMAGE, r16f) uniform writeonly image2D shadowImage;
-
-// Distance along unit d from q (relative to the planet's centre, inside the sphere) to the
-// sphere of radius r: the far root, the one ahead.
-float exitDistance(vec3 q, vec3 d, float r) {
-  float b = dot(q, d);
-  float c = dot(q, q) - r * r;
-  return -b + sqrt(max(b * b - c, 0.0));
-}
 
 void main() {
   uvec2 id = gl_GlobalInvocationID.xy;
@@ -43,12 +36,13 @@ void main() {
   float angle = distance / R;
   float sh = sin(0.5 * angle);
   vec3 p = vec3(R * sin(angle) * heading, -cameraAltitude - 2.0 * R * sh * sh);
-  vec3 centre = vec3(0.0, 0.0, -(R + cameraAltitude));
   vec3 L = map.lightDirection.xyz;
-  vec3 q = p - centre;
   // The ray leaves the ground, enters the shells' bottom and leaves their top.
-  float t0 = exitDistance(q, L, R + params.shellBaseM);
-  float t1 = min(exitDistance(q, L, R + params.shellTopM), t0 + map.maxPathM);
+  float mu = dot(L, geoUp(params.geo, p));
+  vec2 r;
+  float t0 = cloudSphereRoots(R, 0.0, mu, params.shellBaseM, r) ? max(r.y, 0.0) : 0.0;
+  float t1 = cloudSphereRoots(R, 0.0, mu, params.shellTopM, r) ? max(r.y, 0.0) : 0.0;
+  t1 = min(t1, t0 + map.maxPathM);
   float dt = max(t1 - t0, 0.0) / float(CLOUD_SHADOW_STEPS);
   // A footprint of a quarter step: noise finer than the step averages out. Not the texel's
   // size: past the shape's outline the field holds its mean density, and Beer-Lambert of a

@@ -3,8 +3,14 @@
 // each view ray is intersected with the spherical shells of the layers (Lu (27)), marched with
 // steps that grow with distance, and at each sample the weather map gives the cover CMc and
 // the cloud type, the baked noise the density (Lu (3)-(18) or Tang), and a short march toward
-// the key light its attenuation (Lu (21)-(24)). Writes premultiplied radiance with opacity
+// each light its attenuation (Lu (21)-(24)). Writes premultiplied radiance with opacity
 // (1 - transmittance), the transmittance-weighted distance and the number of samples taken.
+//
+// The march in named steps: cloudViewRay (the pixel's ray), cloudMarchRay (the shells'
+// intervals), cloudSeek (through clear air to the next cloud sample), cloudLightSample (the
+// light at a cloud sample), cloudAccumulate (the sample's share of the pixel) and
+// cloudTakeOpaqueRest (a ray stopped by the cutoff). main() averages clouds.samples such
+// marches per pixel.
 #include "common/volumetric_clouds_shared.h"
 #include "common/view.glsl"
 #include "common/geo.glsl"
@@ -13,36 +19,23 @@
 #include "common/cloud_density.glsl"
 #include "common/cloud_field.glsl"
 #include "common/cloud_lighting.glsl"
+#include "common/cloud_shells.glsl"
+
+// The variant's two switches of this shader (the rest: cloud_field.glsl). clouds.quality
+// reference: small fixed steps, no early exit, no empty-space skipping, no light reused along
+// the ray (its finer light march comes in the uniforms). clouds.light volume: the light beyond
+// the first CLOUD_LIGHT_VOLUME_NEAR short steps comes from the cloud light volume
+// (passes/cloud_light_volume) instead of this march.
+#ifndef CLOUD_REFERENCE
+#define CLOUD_REFERENCE 0
+#endif
+#ifndef CLOUD_LIGHT_VOLUME
+#define CLOUD_LIGHT_VOLUME 0
+#endif
 
 // A light sample's footprint is at most this share of the outline's cell, where noiseKeep
 // keeps all of it (cloud_field.glsl).
 #define CLOUD_LIGHT_OUTLINE_RESOLVED 0.125
-// The light steps that may read the detail noise and the shape noise (CloudParams): all of
-// them when the file stands alone.
-#ifndef CLOUD_LIGHT_DETAIL_STEPS
-#define CLOUD_LIGHT_DETAIL_STEPS 17
-#endif
-#ifndef CLOUD_LIGHT_NOISE_STEPS
-#define CLOUD_LIGHT_NOISE_STEPS 17
-#endif
-// Samples per short light step (CloudParams.lightSplit, clouds.light_split).
-#ifndef CLOUD_LIGHT_SPLIT
-#define CLOUD_LIGHT_SPLIT 1
-#endif
-// clouds.quality reference (CloudParams.reference): small fixed steps, no early exit, no
-// empty-space skipping, no light reused along the ray, and a uniform light march.
-#ifndef CLOUD_REFERENCE
-#define CLOUD_REFERENCE 0
-#endif
-// The reference's light march: the standard one (lightMarchDensity) with each short step
-// split this many ways and the long one into twice as many, so it is the same quadrature
-// refined and reaches as far (Lu (22)'s clamp sees the same path).
-#define CLOUD_REFERENCE_LIGHT_SPLIT 4
-// 1: the light beyond the first CLOUD_LIGHT_VOLUME_NEAR short steps comes from the cloud
-// light volume (passes/cloud_light_volume) instead of this march (clouds.light volume).
-#ifndef CLOUD_LIGHT_VOLUME
-#define CLOUD_LIGHT_VOLUME 0
-#endif
 
 layout(local_size_x = VOLUMETRIC_CLOUDS_GROUP_X, local_size_y = VOLUMETRIC_CLOUDS_GROUP_Y) in;
 
@@ -50,56 +43,37 @@ layout(binding = VOLUMETRIC_CLOUDS_BINDING_CLOUDS, rgba32f) uniform writeonly im
 layout(binding = VOLUMETRIC_CLOUDS_BINDING_DEPTH, rg32f) uniform writeonly image2D depthImage;
 layout(binding = VOLUMETRIC_CLOUDS_BINDING_STEPS, rgba16f) uniform writeonly image2D stepImage;
 
-// Counts density evaluations inside the light march for the step heat map.
-int gLightSamples = 0;
-// The footprint of the view sample whose light is being marched.
-float gFootprintM = 0.0;
-// Where the light samples of this view sample sit inside their steps (lightMarchDensity's
-// offset): a new value for every view sample, so the texel grid of the noise does not show
-// through the shadows as a regular pattern.
-float gLightOffset = 0.5;
-// The light of the view ray's current cloud (CLOUD_LIGHT_REUSE_T): the optical depth toward
-// the sun (x) and the moon (y) that its last light march found, and the layer it was marched
-// in (each layer has its own light). A cloud's first sample always marches.
-struct CloudLight {
-  vec2 tau;
-  int layer;
-};
+// --- The light march ------------------------------------------------------------------------
 
-// The latitude and longitude along the light march being run (latLonLine through the view
-// sample and the long step's sample, lightLongStepDistance).
-LatLonLine gLightLine;
+#include "common/cloud_light_march.glsl"
 
 // A light sample stands for a whole light step, tens to thousands of metres: it sees the
 // cloud filtered to a quarter of that (or to the view sample's footprint, the larger), so
-// the shadow of detail finer than the step does not alias into streaks across the cloud.
-// The steps from CLOUD_LIGHT_DETAIL_STEPS (CLOUD_LIGHT_NOISE_STEPS) on resolve no detail (no
-// noise) whatever the footprint, and do not read it.
-// What a light sample standing for `lengthM` of the march sees: the view sample's footprint,
-// or a quarter of its step, but never so coarse that the clouds' outlines (the shape's R, a
-// quarter of its repeat) blur into their mean. Beer-Lambert of a mean density is a uniform
-// dusk where the gaps between real clouds let the sun through: the long step used to take
-// the mean over its 4.8 km and left every cloud under a low sun grey (docs/clouds.md).
-float lightFootprint(float lengthM) {
+// the shadow of detail finer than the step does not alias into streaks across the cloud, but
+// never so coarse that the clouds' outlines (the shape's R, a quarter of its repeat) blur
+// into their mean. Beer-Lambert of a mean density is a uniform dusk where the gaps between
+// real clouds let the sun through: the long step used to take the mean over its 4.8 km and
+// left every cloud under a low sun grey (docs/clouds.md).
+float lightFootprint(CloudLightPath path, float lengthM) {
   float outline = 0.25 / params.shapeRepeatsPerM;
-  return max(gFootprintM, min(0.25 * lengthM, CLOUD_LIGHT_OUTLINE_RESOLVED * outline));
+  return max(path.footprintM, min(0.25 * lengthM, CLOUD_LIGHT_OUTLINE_RESOLVED * outline));
 }
 
-float cloudDensityForLight(vec3 p, float lengthM, int step) {
-  ++gLightSamples;
+// The far part of the march resolves no detail whatever the footprint and does not read it
+// (the reference reads everything everywhere).
+float cloudDensityForLight(CloudLightPath path, vec3 p, float lengthM, int part) {
   CloudSample s;
-  int noise = CLOUD_REFERENCE != 0 || step < CLOUD_LIGHT_DETAIL_STEPS ? CLOUD_NOISE_ALL
-              : step < CLOUD_LIGHT_NOISE_STEPS ? CLOUD_NOISE_SHAPE
-                                               : CLOUD_NOISE_NONE;
-  cloudSampleAtLla(p, latLonAltitudeOn(gLightLine, p), lightFootprint(lengthM), false, noise, s);
+  int noise = CLOUD_REFERENCE != 0 || part == CLOUD_LIGHT_PART_NEAR ? CLOUD_NOISE_ALL
+                                                                     : CLOUD_NOISE_SHAPE;
+  cloudSampleAtLla(p, latLonAltitudeOn(params.geo, path.line, p), lightFootprint(path, lengthM),
+                   false, noise, s);
   return s.density;
 }
-#include "common/cloud_light_march.glsl"
 
-// The phase function's mean cosine, the asymmetry the diffusion term sees.
-float meanCosine() {
-  return CLOUD_DUAL_LOBE != 0 ? mix(params.g, params.gBack, params.backWeight) : params.g;
-}
+#if CLOUD_LIGHT_VOLUME
+#include "common/cloud_light_volume.glsl"
+layout(binding = CLOUD_LIGHT_VOLUME_BINDING_IMAGE) uniform sampler3D lightVolume;
+#endif
 
 // The sun's (i = 0) or the moon's (1) illuminance at a layer, and whether the march lights
 // with it at all (not when too dim to matter next to the other, or below the horizon).
@@ -111,44 +85,61 @@ bool keyLightMarched(int i, int layer) {
   vec3 E = keyLightAt(i, layer);
   return (i == 0 ? params.sunMarched : params.moonMarched) != 0.0 && max(E.r, max(E.g, E.b)) > 0.0;
 }
+vec3 keyLightDirection(int i) {
+  return i == 0 ? params.sunDirection.xyz : params.moonDirection.xyz;
+}
 
-#if CLOUD_LIGHT_VOLUME
-#include "common/cloud_light_volume.glsl"
-layout(binding = CLOUD_LIGHT_VOLUME_BINDING_IMAGE) uniform sampler3D lightVolume;
-#endif
+// The light path from a cloud sample at p (latitude and longitude latLon, altitude h) toward
+// L. Its long step ends where the path leaves the shells, if that comes before the march's
+// reach: past there is no cloud, and the parts left are spent where the cloud is. A low sun's
+// path runs through the layer for kilometres and takes the most parts, a high sun's few.
+CloudLightPath cloudLightPath(vec3 p, vec2 latLon, float h, vec3 L, float footprintM,
+                              float offset) {
+  float distance = params.lightDistanceM;
+  float exitM = cloudShellExit(params.geo.origin.w, h, dot(L, geoUp(params.geo, p)),
+                               params.shellBaseM, params.shellTopM);
+  float longEnd = clamp(exitM, distance, lightMarchReach(distance));
+  return CloudLightPath(p, L, latLonLine(params.geo, p, latLon, L, lightLongStepDistance(distance)),
+                        footprintM, offset, distance, int(params.lightSteps),
+                        int(params.lightSplit), int(params.lightNearSteps), longEnd,
+                        cloudLightLongParts(distance, longEnd, params.lightLongPartM));
+}
 
-// Lu (24): the optical depth from the cloud sample s at p toward the sun (x) and the moon (y).
-vec2 marchKeyLights(vec3 p, CloudSample s) {
-  vec2 tau = vec2(0.0);
+// What the light marches of one view sample found: the optical depth toward the sun (x) and
+// the moon (y), and how many density samples it took.
+struct CloudKeyLights {
+  vec2 tau;
+  int samples;
+};
+
+// Lu (24): the optical depth from the cloud sample s at p toward the sun and the moon.
+CloudKeyLights marchKeyLights(vec3 p, float h, CloudSample s, float footprintM, float offset) {
+  CloudKeyLights k = CloudKeyLights(vec2(0.0), 0);
   for (int i = 0; i < 2; ++i) {
     if (!keyLightMarched(i, s.layer)) continue;
-    vec3 L = i == 0 ? params.sunDirection.xyz : params.moonDirection.xyz;
-    gLightLine = latLonLine(p, s.latLon, L, lightLongStepDistance(params.lightDistanceM));
+    vec3 L = keyLightDirection(i);
+    CloudLightPath path = cloudLightPath(p, s.latLon, h, L, footprintM, offset);
 #if CLOUD_LIGHT_VOLUME
     // The cloud's own fine structure near the sample marched here, the rest from the volume
     // at the point where this part ends (it holds the light's path from there on).
-    tau[i] = params.extinction *
-             lightMarchDensityNear(p, L, params.lightDistanceM, CLOUD_LIGHT_STEPS,
-                                   CLOUD_LIGHT_VOLUME_NEAR, CLOUD_LIGHT_SPLIT, gLightOffset);
+    k.tau[i] = params.extinction * lightMarchDensityNear(path, CLOUD_LIGHT_VOLUME_NEAR);
+    k.samples += CLOUD_LIGHT_VOLUME_NEAR * path.split;
     vec3 far = p + L * params.lightVolume.startM;
-    tau[i] += textureLod(lightVolume, cloudLightVolumeCoord(params.lightVolume, params.geo, far),
-                         0.0)[i];
+    k.tau[i] += textureLod(lightVolume, cloudLightVolumeCoord(params.lightVolume, params.geo, far),
+                           0.0)[i];
 #else
-    // A short step's one sample is a random draw of its optical depth, and a noisy optical
-    // depth brightens on average (the mean of exp(-tau) exceeds exp(-mean tau)): split steps
-    // bring the shadowed parts of the clouds down to the reference's (clouds.light_split).
-    tau[i] = params.extinction *
-             (CLOUD_REFERENCE != 0
-                  ? lightMarchDensityRefined(p, L, params.lightDistanceM, CLOUD_LIGHT_STEPS,
-                                             CLOUD_REFERENCE_LIGHT_SPLIT, gLightOffset)
-              : CLOUD_LIGHT_SPLIT > 1
-                  ? lightMarchDensityRefined(p, L, params.lightDistanceM, CLOUD_LIGHT_STEPS,
-                                             CLOUD_LIGHT_SPLIT, gLightOffset)
-                  : lightMarchDensity(p, L, params.lightDistanceM, CLOUD_LIGHT_STEPS,
-                                      gLightOffset));
+    k.tau[i] = params.extinction * lightMarchDensity(path);
+    k.samples += lightMarchSamples(path);
 #endif
   }
-  return tau;
+  return k;
+}
+
+// --- Lighting at a sample -------------------------------------------------------------------
+
+// The phase function's mean cosine, the asymmetry the diffusion term sees.
+float meanCosine() {
+  return CLOUD_DUAL_LOBE != 0 ? mix(params.g, params.gBack, params.backWeight) : params.g;
 }
 
 // The sun's and the moon's light that a cloud sample of `layer` and `type` scatters toward
@@ -163,12 +154,11 @@ vec3 cloudKeyLightScattering(vec3 d, int layer, float type, vec2 tau) {
   for (int i = 0; i < 2; ++i) {
     if (!keyLightMarched(i, layer)) continue;
     vec3 E = keyLightAt(i, layer);
-    vec3 L = i == 0 ? params.sunDirection.xyz : params.moonDirection.xyz;
     // The phase function is per steradian; in the renderer's units (illuminance 1 = pi x
     // radiance 1, lighting_shared.h) radiance = pi * E * phase.
     S += VIEW_PI * E *
-         cloudInScatter(tau[i], tauClamp, dot(d, L), params.g, params.gBack, params.backWeight,
-                        CLOUD_DUAL_LOBE, CLOUD_OCTAVES);
+         cloudInScatter(tau[i], tauClamp, dot(d, keyLightDirection(i)), params.g, params.gBack,
+                        params.backWeight, CLOUD_DUAL_LOBE, int(params.octaves));
     S += E * cloudDiffuseInScatter(tau[i] * cloudDiffusionLeak(type), meanCosine(),
                                    params.multipleScattering);
   }
@@ -185,13 +175,15 @@ vec3 cloudAmbientScattering(vec3 d, CloudSample s, float tauView) {
                              s.hBottom, tauView, viewDown, meanCosine(), params.multipleScattering);
 }
 
-// White noise in [0, 1) from a hash of the pixel, the frame and a sample number (PCG3D,
+// --- Random numbers -------------------------------------------------------------------------
+
+// White noise in [0, 1) from a hash of the pixel, a seed and a sample number (PCG3D,
 // Jarzynski & Olano 2020): the march's jitters, so banding turns into grain with no pattern
 // the eye can lock onto, and successive frames of a time-lapse average it out. An ordered
 // pattern (interleaved gradient noise) showed as a 2-pixel checkerboard in shadows and at
 // edges.
-float pixelHash(uvec2 pixel, uint frame, uint n) {
-  uvec3 v = uvec3(pixel, frame + n * 0x9E3779B9u) * 1664525u + 1013904223u;
+float pixelHash(uvec2 pixel, uint seed, uint n) {
+  uvec3 v = uvec3(pixel, seed + n * 0x9E3779B9u) * 1664525u + 1013904223u;
   v.x += v.y * v.z;
   v.y += v.z * v.x;
   v.z += v.x * v.y;
@@ -201,6 +193,73 @@ float pixelHash(uvec2 pixel, uint frame, uint n) {
   v.z += v.x * v.y;
   return float(v.x >> 8u) * (1.0 / 16777216.0);
 }
+
+// --- The view ray ---------------------------------------------------------------------------
+
+// One march of a pixel: its ray and its random numbers.
+struct CloudRay {
+  vec3 origin;     // ENU, m
+  vec3 direction;  // unit
+  uvec2 pixel;     // the view's pixel, for the hashes
+  uint seed;       // the frame's jitter seed, different for each of the pixel's marches
+  float jitter;    // [0, 1): how far into its first step the march starts
+};
+
+// Sub-pixel position `pixel` (in the view's pixels) of the ray: the camera's, or for a
+// top-down frame straight down from above the clouds over that point of the region (row 0 the
+// north edge, column 0 the west edge, equal lat/lon spacing).
+CloudRay cloudViewRay(vec2 pixel, uvec2 id, uint seed, float jitter) {
+  CloudRay ray = CloudRay(vec3(0.0), viewDirection(params.view, pixel), id, seed, jitter);
+  if (CLOUD_TOPDOWN != 0) {
+    vec2 uv = pixel / vec2(params.view.size.xy);
+    vec4 b = params.region.bounds;
+    ray.origin = geoPosition(params.geo, mix(b.y, b.x, uv.y), mix(b.z, b.w, uv.x),
+                             params.topDownStartM);
+    ray.direction = -geoUp(params.geo, ray.origin);
+  }
+  return ray;
+}
+
+// The intervals of the ray inside the marched shells (Lu (27)), before the ground.
+int cloudRayIntervals(CloudRay ray, out vec2 iv[2]) {
+  vec3 up = geoUp(params.geo, ray.origin);
+  float h = CLOUD_TOPDOWN != 0 ? params.topDownStartM : params.geo.origin.z;
+  return cloudShellIntervals(params.geo.origin.w, h, dot(ray.direction, up), params.shellBaseM,
+                             params.shellTopM, iv);
+}
+
+// --- The march ------------------------------------------------------------------------------
+
+// What the march has gathered along a view ray.
+struct CloudMarch {
+  vec3 radiance;        // premultiplied
+  float transmittance;
+  float depthSum;       // transmittance-weighted distance (m)
+  int samples;          // density samples along the view ray
+  int lightSamples;     // density samples in its light marches
+  vec3 lastScattering;  // in-scattered light per unit of weight at the last sample
+  float lastT;          // and where it was
+  vec2 tau;             // the light (optical depth toward the sun, the moon) of the ray's
+  int lightLayer;       // current cloud, and the layer it was marched in (-1: none yet)
+};
+
+// Where the march stands inside one interval of the shells.
+struct CloudSeek {
+  float t;           // where the next step starts
+  float stretch;     // how many normal steps long the next clear step may be (1-4)
+  float tauView;     // optical depth since the ray entered the current cloud (0: not in one)
+  float depthLimit;  // the longest step the density of the sample before allows
+};
+
+// A step whose sample found cloud.
+struct CloudStep {
+  float t;          // where it starts
+  float dt;         // its length
+  vec3 p;           // its sample, at its middle
+  float altitudeM;  // of p
+  float footprint;  // what the sample resolves (m)
+  CloudSample s;
+};
 
 // The shape-only clearance (CloudSample.clearance, noise units below the coverage threshold)
 // at which the march may stride 4x through clear air; with less clearance it strides less.
@@ -219,44 +278,161 @@ float pixelHash(uvec2 pixel, uint frame, uint n) {
 // point, and the light march is most of a sample's cost.
 #define CLOUD_LIGHT_REUSE_T 0.1
 
-// Up to two intervals along the ray (origin o, unit d) where the point lies between the
-// spheres of radius rIn and rOut around c, before the ray meets the ground sphere rGround.
-// Returns the count; intervals in iv[0..count-1] as (enter, exit).
-int shellIntervals(vec3 o, vec3 d, vec3 c, float rIn, float rOut, float rGround, out vec2 iv[2]) {
-  vec3 q = o - c;
-  float b = dot(q, d);
-  float qq = dot(q, q);
-  iv[0] = vec2(0.0);
-  iv[1] = vec2(0.0);
-  // Outer sphere: the ray is inside it over [t0, t1].
-  float discOut = b * b - (qq - rOut * rOut);
-  if (discOut <= 0.0) return 0;
-  float sOut = sqrt(discOut);
-  float t0 = max(-b - sOut, 0.0), t1 = -b + sOut;
-  if (t1 <= 0.0) return 0;
-  // The ground ends the ray.
-  float discGround = b * b - (qq - rGround * rGround);
-  if (discGround > 0.0) {
-    float tg = -b - sqrt(discGround);
-    // A ray heading down from on (or, in float, just above) the ground meets it at once.
-    if (tg > 0.0 || b < 0.0) t1 = min(t1, max(tg, 0.0));
+// The normal step at distance t: Lu's step that grows with distance.
+float cloudBaseStep(float t) {
+  return params.stepM + params.stepGrowth * t;
+}
+
+// How many normal steps the clear step after this sample may stride: as far as the clearance
+// says no cloud is near. A stretched step samples its middle alone and skips what lies
+// between: striding up to 4x right beside the clouds missed their thin fringes in the same
+// way along whole rows of the view, whose rays cross the gap below a cloud in nearly the same
+// steps (horizontal striations). Above or below the cloud type's vertical range the clearance
+// says nothing; there the next step, at its longest (1.5x its mean), must end before the ray
+// reaches the range: striding into the thin base of a sheet of altocumulus lost its fringes
+// along whole rows (7 dB by moonlight, docs/clouds.md "Strides").
+float cloudStrideCap(CloudRay ray, CloudStep st) {
+  if (CLOUD_REFERENCE != 0 || st.s.density > 0.0) return 1.0;
+  if (st.s.rangeGapM > 0.0) {
+    float climb = abs(dot(ray.direction, geoUp(params.geo, st.p)));
+    float reachM = st.s.rangeGapM / max(climb, 1e-3) - 0.5 * st.dt;
+    return clamp(reachM / (1.5 * cloudBaseStep(st.t)), 1.0, 4.0);
   }
-  // Inner sphere: cut [a0, a1] out of [t0, t1].
-  float discIn = b * b - (qq - rIn * rIn);
-  if (discIn <= 0.0) {
-    iv[0] = vec2(t0, t1);
-    return t1 > t0 ? 1 : 0;
+  return clamp(1.0 + 3.0 * st.s.clearance / CLOUD_STRIDE_CLEARANCE, 1.0, 4.0);
+}
+
+// Steps through clear air from seek.t until a sample finds cloud before `end`: true with the
+// step in `st`, false when the interval (or the ray's samples) ended in clear air. This loop
+// holds all that a clear sample costs, and the lighting runs once per cloud sample outside
+// it: lavapipe runs both sides of a branch for a whole group of invocations but leaves a loop
+// once none is left in it, so with the lighting inside every clear step of every group in
+// which any ray was in a cloud paid for a light march, most of a sample's cost.
+bool cloudSeek(CloudRay ray, float end, inout CloudSeek seek, inout CloudMarch m,
+               out CloudStep st) {
+  while (seek.t < end && m.samples < int(params.maxSteps)) {
+    float stepLen = cloudBaseStep(seek.t) * seek.stretch;
+    // A stretched step's length is random (mean unchanged): what strides still skip turns
+    // into fine grain instead of lines where the strides of neighbouring rays line up.
+    if (seek.stretch > 1.0) stepLen *= 0.5 + pixelHash(ray.pixel, ray.seed, uint(m.samples) + 1u);
+    st.t = seek.t;
+    st.dt = min(min(stepLen, seek.depthLimit), end - seek.t);
+    st.p = ray.origin + ray.direction * (seek.t + 0.5 * st.dt);
+    // What one sample resolves: a pixel's width at this distance, or a quarter of the step
+    // along the ray, the larger (top-down: full detail, the cover is measured there).
+    st.footprint = CLOUD_TOPDOWN != 0
+                       ? 0.0
+                       : max((seek.t + 0.5 * st.dt) * params.view.forward.w, 0.25 * st.dt);
+    vec3 lla = latLonAltitude(params.geo, st.p);
+    st.altitudeM = lla.z;
+    // The reference takes no coarse map.
+    if (!cloudSampleAtLla(st.p, lla, st.footprint, CLOUD_REFERENCE == 0, CLOUD_NOISE_ALL, st.s)) {
+      // Outside the region, between the layers or far from any cover: nothing to sample;
+      // stride on (the coarse map is dilated by a whole block, kilometres, so a double step
+      // cannot jump a cloud). The next cloud is entered afresh. The reference takes single
+      // steps.
+      seek.tauView = 0.0;
+      seek.depthLimit = CLOUD_NO_DEPTH_LIMIT;
+      seek.t += CLOUD_REFERENCE != 0 ? st.dt : 2.0 * st.dt;
+    } else {
+      ++m.samples;
+      // A step deeper than CLOUD_STEP_MAX_TAU optical depths would take the density and light
+      // of its middle, tens of metres inside, for the whole step, though what the eye sees of
+      // an opaque cloud lies within an optical depth or two of its face. So each step is no
+      // longer than that depth at the density of the sample before it; where the density
+      // rises within a step the next one is shorter.
+      float limit = st.s.density > 0.0 ? max(CLOUD_STEP_MAX_TAU / (params.extinction * st.s.density),
+                                             CLOUD_STEP_MIN_M)
+                                       : CLOUD_NO_DEPTH_LIMIT;
+      bool deepFirst = seek.tauView <= 0.0 && st.dt > 1.01 * limit;
+      if (st.s.density > 0.0 && (seek.stretch > 1.0 || deepFirst)) {
+        // A cloud begins somewhere inside this step, a stretched one or one too deep for it:
+        // march it again from its start at the normal step no deeper than that, so cloud
+        // edges take neither the stretched step's coarse spacing nor a deep first sample.
+        seek.stretch = 1.0;
+        seek.depthLimit = limit;
+      } else {
+        seek.depthLimit = limit;
+        seek.stretch = min(seek.stretch * 1.5, cloudStrideCap(ray, st));
+        if (st.s.density > 0.0) return true;
+        seek.tauView = 0.0;  // out of this cloud: the next one is entered afresh
+        seek.t += st.dt;
+      }
+    }
   }
-  float sIn = sqrt(discIn);
-  float a0 = -b - sIn, a1 = -b + sIn;
-  int n = 0;
-  if (a0 > t0) iv[n++] = vec2(t0, min(a0, t1));
-  if (a1 < t1 && a1 > t0) iv[n++] = vec2(max(a1, t0), t1);
-  if (a1 <= t0 || a0 >= t1) {  // the inner sphere lies outside [t0, t1]
-    n = 0;
-    iv[n++] = vec2(t0, t1);
+  return false;
+}
+
+// The light at a cloud sample: the sky's and the ground's, and the sun's and the moon's
+// through the cloud toward them (a new light march, or in the tail of an opaque cloud the one
+// of the sample before). Returns the in-scattered light per unit of extinction.
+vec3 cloudLightSample(CloudRay ray, CloudStep st, float tauView, inout CloudMarch m) {
+  float sigmaT = params.extinction * st.s.density;
+  vec3 scattering = cloudAmbientScattering(ray.direction, st.s, tauView + 0.5 * sigmaT * st.dt);
+  bool tail = CLOUD_REFERENCE == 0 && tauView > 0.0 && st.s.layer == m.lightLayer &&
+              m.transmittance < CLOUD_LIGHT_REUSE_T;
+  if (!tail) {
+    // Each view sample places its light samples differently inside their steps (a
+    // golden-ratio sequence seeded by the ray's jitter), so the texel grid of the noise does
+    // not show through the shadows as a regular pattern.
+    float offset = fract(ray.jitter + 0.6180339887 * float(m.samples));
+    CloudKeyLights k = marchKeyLights(st.p, st.altitudeM, st.s, st.footprint, offset);
+    m.tau = k.tau;
+    m.lightLayer = st.s.layer;
+    m.lightSamples += k.samples;
   }
-  return n;
+  return scattering + cloudKeyLightScattering(ray.direction, st.s.layer, st.s.type, m.tau);
+}
+
+// A cloud sample's share of the pixel: Lu (19)(20) over its step. The step's integral of the
+// in-scattered light S is weight x S: integrateStep is linear in S.
+void cloudAccumulate(CloudStep st, vec3 scattering, inout CloudMarch m) {
+  float sigmaT = params.extinction * st.s.density;
+  float stepT = exp(-sigmaT * st.dt);  // Lu (19)(20) over one step
+  float weight = m.transmittance * (CLOUD_ENERGY_CONSERVING != 0
+                                        ? integrateStep(vec3(sigmaT), sigmaT, st.dt).x
+                                        : sigmaT * st.dt);
+  float tMid = st.t + 0.5 * st.dt;
+  m.radiance += weight * scattering;
+  m.lastScattering = scattering;
+  m.lastT = tMid;
+  m.depthSum += m.transmittance * (1.0 - stepT) * tMid;
+  m.transmittance *= stepT;
+}
+
+// A ray stopped by the cutoff is taken as opaque: the rest of its transmittance goes to the
+// light of its last sample, as if that sample's step ran on to infinite depth (Lu (19)(20):
+// the step's weight tends to the transmittance left). Left out, 5 % of the sky showed through
+// every opaque cloud and the light of its far side was missing (docs/clouds.md, "Cutoff").
+void cloudTakeOpaqueRest(inout CloudMarch m) {
+  if (CLOUD_REFERENCE == 0 && m.transmittance <= params.transmittanceCutoff &&
+      m.transmittance > 0.0) {
+    m.radiance += m.transmittance * m.lastScattering;
+    m.depthSum += m.transmittance * m.lastT;
+    m.transmittance = 0.0;
+  }
+}
+
+// One march of the ray through the shells: steps through clear air to each cloud sample,
+// lights it and adds its share, until the shells end, the ray's samples run out or the
+// transmittance falls below the cutoff.
+CloudMarch cloudMarchRay(CloudRay ray) {
+  CloudMarch m = CloudMarch(vec3(0.0), 1.0, 0.0, 0, 0, vec3(0.0), 0.0, vec2(0.0), -1);
+  if (params.anyCover <= 0.0) return m;
+  vec2 iv[2];
+  int n = cloudRayIntervals(ray, iv);
+  for (int k = 0; k < n && m.samples < int(params.maxSteps); ++k) {
+    CloudSeek seek = CloudSeek(iv[k].x + ray.jitter * cloudBaseStep(iv[k].x), 1.0, 0.0,
+                               CLOUD_NO_DEPTH_LIMIT);
+    CloudStep st;
+    while (m.transmittance > params.transmittanceCutoff && cloudSeek(ray, iv[k].y, seek, m, st)) {
+      vec3 scattering = cloudLightSample(ray, st, seek.tauView, m);
+      cloudAccumulate(st, scattering, m);
+      seek.tauView += params.extinction * st.s.density * st.dt;
+      seek.t += st.dt;
+    }
+  }
+  cloudTakeOpaqueRest(m);
+  return m;
 }
 
 void main() {
@@ -268,158 +444,37 @@ void main() {
   uvec2 id = min(gl_GlobalInvocationID.xy * params.marchBlock +
                      uvec2(params.marchOffsetX, params.marchOffsetY),
                  params.view.size.xy - 1u);
-  vec2 pixel = vec2(id) + 0.5;
+  // Where the pixel's centre ray first reaches the shells, -1 if it never does (the ground
+  // comes first): the temporal pass's upsampling compares rays by it (cloud_temporal.comp).
+  vec2 centreIv[2];
+  CloudRay centre = cloudViewRay(vec2(id) + 0.5, id, params.frameIndex, 0.0);
+  float shellEntry = cloudRayIntervals(centre, centreIv) > 0 ? centreIv[0].x : -1.0;
 
-  // Ray origin and direction in the frame's ENU coordinates.
-  vec3 o = vec3(0.0);
-  vec3 d = viewDirection(params.view, pixel);
-  if (CLOUD_TOPDOWN != 0) {
-    // Row 0 is the north edge, column 0 the west edge, equal lat/lon spacing.
-    vec2 uv = pixel / vec2(params.view.size.xy);
-    vec4 b = params.region.bounds;
-    float lat = mix(b.y, b.x, uv.y);
-    float lon = mix(b.z, b.w, uv.x);
-    o = geoPosition(params.geo, lat, lon, params.topDownStartM);
-    d = -geoUp(params.geo, o);
-  }
-
+  // clouds.samples marches per pixel, averaged: the first at the pixel's centre with the
+  // frame's jitter (one sample is the plain march), the others at low-discrepancy positions
+  // inside the pixel (the R2 sequence, Roberts 2018, rotated per pixel) with their starts
+  // stratified over the step, so a still converges and its cloud edges are antialiased.
+  int count = int(params.samplesPerPixel);
+  float jitter0 = pixelHash(id, params.frameIndex, 0u) * params.jitter;
+  vec2 rotation = vec2(pixelHash(id, params.frameIndex, 0x51u), pixelHash(id, params.frameIndex, 0x52u));
   vec3 radiance = vec3(0.0);
-  float transmittance = 1.0;
-  float depthSum = 0.0;
-  int samples = 0;
-  // Where the ray first reaches the shells, -1 if it never does (the ground comes first): the
-  // temporal pass's upsampling compares rays by it (cloud_temporal.comp).
-  float shellEntry = -1.0;
-  vec3 lastScattering = vec3(0.0);  // in-scattered light per unit of weight, last sample
-  float lastT = 0.0;
-  if (params.anyCover > 0.0) {
-    float R = params.geo.origin.w;
-    vec2 iv[2];
-    int n = shellIntervals(o, d, geoCentre(params.geo), R + params.shellBaseM, R + params.shellTopM,
-                           R, iv);
-    if (n > 0) shellEntry = iv[0].x;
-    float jitter = pixelHash(id, params.frameIndex, 0u) * params.jitter;
-    int maxSteps = int(params.maxSteps);
-    CloudLight light = CloudLight(vec2(0.0), -1);
-    for (int k = 0; k < n && samples < maxSteps; ++k) {
-      float t = iv[k].x;
-      float stepLen = params.stepM + params.stepGrowth * t;
-      t += jitter * stepLen;
-      // Through clear air the step stretches (up to 4x) and shrinks back at the first cloud.
-      float stretch = 1.0;
-      float tauView = 0.0;
-      // The longest step the density of the sample before allows (CLOUD_STEP_MAX_TAU).
-      float depthLimit = CLOUD_NO_DEPTH_LIMIT;
-      while (t < iv[k].y && samples < maxSteps && transmittance > params.transmittanceCutoff) {
-        // Step through clear air until a sample finds cloud: this inner loop holds all that a
-        // clear sample costs and the lighting below runs once per sample in a cloud. lavapipe
-        // runs both sides of a branch for a whole group of invocations but leaves a loop once
-        // none is left in it; with the lighting inside this loop every clear step of every
-        // group in which any ray was in a cloud paid for a light march, most of a sample's
-        // cost. The steps are the same either way.
-        float dt;
-        vec3 p;
-        float footprint;
-        CloudSample s;
-        bool inCloud = false;
-        do {
-          stepLen = (params.stepM + params.stepGrowth * t) * stretch;  // Lu: grows with distance
-          // A stretched step's length is random (mean unchanged): what strides still skip turns
-          // into fine grain instead of lines where the strides of neighbouring rays line up.
-          if (stretch > 1.0) stepLen *= 0.5 + pixelHash(id, params.frameIndex, uint(samples) + 1u);
-          dt = min(min(stepLen, depthLimit), iv[k].y - t);
-          p = o + d * (t + 0.5 * dt);
-          // What one sample resolves: a pixel's width at this distance, or a quarter of the step
-          // along the ray, the larger (top-down: full detail, the cover is measured there).
-          footprint =
-              CLOUD_TOPDOWN != 0 ? 0.0 : max((t + 0.5 * dt) * params.view.forward.w, 0.25 * dt);
-          bool anyCloud = CLOUD_REFERENCE != 0
-                              ? cloudSampleAtLla(p, latLonAltitude(params.geo, p), footprint, false,
-                                                 CLOUD_NOISE_ALL, s)
-                              : cloudSampleAt(p, footprint, s);
-          if (!anyCloud) {
-            // Outside the region or far from any cover: nothing to sample; stride on (the coarse
-            // map is dilated by a whole block, kilometres, so a double step cannot jump a cloud).
-            // The reference takes no coarse map and no double steps.
-            tauView = 0.0;  // out of the layers or the map: the next cloud is entered afresh
-            depthLimit = CLOUD_NO_DEPTH_LIMIT;
-            t += CLOUD_REFERENCE != 0 ? dt : 2.0 * dt;
-            continue;
-          }
-          ++samples;
-          // A step deeper than CLOUD_STEP_MAX_TAU optical depths would take the density and
-          // light of its middle, tens of metres inside, for the whole step, though what the eye
-          // sees of an opaque cloud lies within an optical depth or two of its face. So each
-          // step is no longer than that depth at the density of the sample before it; where the
-          // density rises within a step the next one is shorter.
-          float limit =
-              s.density > 0.0
-                  ? max(CLOUD_STEP_MAX_TAU / (params.extinction * s.density), CLOUD_STEP_MIN_M)
-                  : CLOUD_NO_DEPTH_LIMIT;
-          if (s.density > 0.0 && (stretch > 1.0 || (tauView <= 0.0 && dt > 1.01 * limit))) {
-            // A cloud begins somewhere inside this step, a stretched one or one too deep for it:
-            // march it again from its start at the normal step no deeper than that, so cloud
-            // edges take neither the stretched step's coarse spacing nor a deep first sample.
-            stretch = 1.0;
-            depthLimit = limit;
-            continue;
-          }
-          depthLimit = limit;
-          // Stride only as far as the clearance says no cloud is near: a stretched step samples
-          // its middle alone and skips what lies between. Striding up to 4x right beside the
-          // clouds missed their thin fringes in the same way along whole rows of the view, whose
-          // rays cross the gap below a cloud in nearly the same steps: horizontal striations.
-          float strideCap = s.density > 0.0 || CLOUD_REFERENCE != 0
-                                ? 1.0
-                                : clamp(1.0 + 3.0 * s.clearance / CLOUD_STRIDE_CLEARANCE, 1.0, 4.0);
-          stretch = min(stretch * 1.5, strideCap);
-          if (s.density > 0.0) {
-            inCloud = true;
-            break;
-          }
-          tauView = 0.0;  // out of this cloud: the next one is entered afresh
-          t += dt;
-        } while (t < iv[k].y && samples < maxSteps);
-        if (!inCloud) break;  // this interval ended in clear air
-        // A sample in a cloud: Lu (19)(20) over its step, lit by the sky and the key lights.
-        float sigmaT = params.extinction * s.density;
-        float stepT = exp(-sigmaT * dt);  // Lu (19)(20) over one step
-        // The step's integral of the in-scattered light S is weight x (S per unit of
-        // extinction): integrateStep is linear in S.
-        float weight = transmittance * (CLOUD_ENERGY_CONSERVING != 0
-                                            ? integrateStep(vec3(sigmaT), sigmaT, dt).x
-                                            : sigmaT * dt);
-        vec3 scattering = cloudAmbientScattering(d, s, tauView + 0.5 * sigmaT * dt);
-        // In the tail of this cloud the light march of the sample before serves.
-        bool tail = CLOUD_REFERENCE == 0 && tauView > 0.0 && s.layer == light.layer &&
-                    transmittance < CLOUD_LIGHT_REUSE_T;
-        if (!tail) {
-          gFootprintM = footprint;
-          gLightOffset = fract(jitter + 0.6180339887 * float(samples));  // golden-ratio sequence
-          light = CloudLight(marchKeyLights(p, s), s.layer);
-        }
-        scattering += cloudKeyLightScattering(d, s.layer, s.type, light.tau);
-        radiance += weight * scattering;
-        lastScattering = scattering;
-        lastT = t + 0.5 * dt;
-        depthSum += transmittance * (1.0 - stepT) * (t + 0.5 * dt);
-        transmittance *= stepT;
-        tauView += sigmaT * dt;
-        t += dt;
-      }
-    }
+  float alphaSum = 0.0, depthSum = 0.0;
+  int samples = 0, lightSamples = 0;
+  for (int i = 0; i < count; ++i) {
+    vec2 inPixel = i == 0 ? vec2(0.5)
+                          : fract(rotation + float(i) * vec2(0.7548776662, 0.5698402910));
+    float jitter = fract(jitter0 + float(i) / float(count));
+    CloudRay ray = cloudViewRay(vec2(id) + inPixel, id, params.frameIndex + uint(i) * 0x632BE5ABu,
+                                jitter);
+    CloudMarch m = cloudMarchRay(ray);
+    radiance += m.radiance;
+    alphaSum += 1.0 - m.transmittance;
+    depthSum += m.depthSum;
+    samples += m.samples;
+    lightSamples += m.lightSamples;
   }
-  // A ray stopped by the cutoff is taken as opaque: the rest of its transmittance goes to the
-  // light of its last sample, as if that sample's step ran on to infinite depth (Lu (19)(20):
-  // the step's weight tends to the transmittance left). Left out, 5 % of the sky showed through
-  // every opaque cloud and the light of its far side was missing (docs/clouds.md, "Cutoff").
-  if (CLOUD_REFERENCE == 0 && transmittance <= params.transmittanceCutoff && transmittance > 0.0) {
-    radiance += transmittance * lastScattering;
-    depthSum += transmittance * lastT;
-    transmittance = 0.0;
-  }
-  float alpha = 1.0 - transmittance;
-  imageStore(cloudImage, ip, vec4(radiance, alpha));
-  imageStore(depthImage, ip, vec4(alpha > 0.0 ? depthSum / alpha : 0.0, shellEntry, 0.0, 0.0));
-  imageStore(stepImage, ip, vec4(float(samples), float(gLightSamples), 0.0, 0.0));
+  float alpha = alphaSum / float(count);
+  imageStore(cloudImage, ip, vec4(radiance / float(count), alpha));
+  imageStore(depthImage, ip, vec4(alphaSum > 0.0 ? depthSum / alphaSum : 0.0, shellEntry, 0.0, 0.0));
+  imageStore(stepImage, ip, vec4(float(samples), float(lightSamples), 0.0, 0.0));
 }

@@ -137,4 +137,10 @@ float lightMarchReach(float distance) {
   return distance + lightLongStepLength(distance);
 }
 
+int lightLongParts(float distanceM, float longEndM, float partM) {
+  const float len = longEndM - distanceM;
+  if (len <= 0.0f) return 0;
+  return std::clamp(static_cast<int>(std::ceil(len / partM)), 1, CLOUD_LIGHT_MAX_LONG_PARTS);
+}
+
 }  // namespace sky::clouds

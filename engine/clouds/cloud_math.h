@@ -175,24 +175,45 @@ float lightLongStepDistance(float distance);
 float lightLongStepLength(float distance);
 float lightMarchReach(float distance);  // the march's whole length
 
-// Lu (24)'s ds toward the light: `density(glm::vec3 p, float lengthM, int step)` plays
-// cloudDensityForLight.
+// cloud_light_march.glsl's CloudLightPath, the parts the schedule needs.
+struct LightPath {
+  glm::vec3 origin{0.0f};
+  glm::vec3 direction{0.0f, 0.0f, 1.0f};  // unit, toward the light
+  float offset = 0.5f;                    // where each sample sits inside its step
+  float distance = 1200.0f;               // the short steps' total length (m)
+  int steps = 5;                          // short steps
+  int split = 1;                          // samples per short step
+  int nearSteps = 5;                      // the first nearSteps are CLOUD_LIGHT_PART_NEAR (0)
+  float longEnd = 6000.0f;                // the long step runs over [distance, longEnd]
+  int longParts = 3;                      // in this many equal parts
+};
+
+// The long step's parts for parts at most partM long (cloudLightLongParts).
+int lightLongParts(float distanceM, float longEndM, float partM);
+
+// Lu (24)'s ds toward the light: `density(glm::vec3 p, float lengthM, int part)` plays
+// cloudDensityForLight (part 0 near, 1 far).
 template <class DensityFn>
-float lightMarchDensity(glm::vec3 p, glm::vec3 L, float distance, int n, float offset,
-                        DensityFn&& density) {
-  float ds = 0.0f;
-  for (int i = 0; i < n; ++i) {
-    const float start = lightStepStart(i, n, distance);
-    const float len = lightStepLength(i, n, distance);
-    ds += density(p + L * (start + offset * len), len, i) * len;
-  }
-  const float part = lightLongStepLength(distance) / static_cast<float>(CLOUD_LIGHT_LONG_SAMPLES);
-  for (int j = 0; j < CLOUD_LIGHT_LONG_SAMPLES; ++j) {
-    const float at = CLOUD_LIGHT_LONG_SAMPLES == 1
-                         ? lightLongStepDistance(distance)
-                         : distance + (static_cast<float>(j) + offset) * part;
-    ds += density(p + L * at, part, n) * part;
-  }
+float lightMarchDensity(const LightPath& path, DensityFn&& density) {
+  const auto shortSteps = [&](int first, int last, int part) {
+    float ds = 0.0f;
+    for (int i = first; i < last; ++i) {
+      const float start = lightStepStart(i, path.steps, path.distance);
+      const float len = lightStepLength(i, path.steps, path.distance) / static_cast<float>(path.split);
+      for (int j = 0; j < path.split; ++j)
+        ds += density(path.origin + path.direction * (start + (static_cast<float>(j) + path.offset) * len),
+                      len, part) *
+              len;
+    }
+    return ds;
+  };
+  const int near = std::clamp(path.nearSteps, 0, path.steps);
+  float ds = shortSteps(0, near, 0) + shortSteps(near, path.steps, 1);
+  const float len = (path.longEnd - path.distance) / static_cast<float>(std::max(path.longParts, 1));
+  for (int j = 0; j < path.longParts; ++j)
+    ds += density(path.origin + path.direction * (path.distance + (static_cast<float>(j) + path.offset) * len),
+                  len, 1) *
+          len;
   return ds;
 }
 

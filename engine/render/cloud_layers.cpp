@@ -103,7 +103,6 @@ CloudLayers::Frame CloudLayers::addTo(FrameGraph& graph, const Scene& scene, con
   f.coverage = coverageTables(scene, map);
   f.noiseMeans = {mNoise.shapeMean(), mNoise.detailMean()};
   f.maxCover = map.maxCover();
-  f.weatherSize = glm::uvec2(map.width, map.height);
   for (const glm::vec4& t : map.texels)
     f.lowRolls = f.lowRolls || (t.r > 0.0f && clouds::cloudRollWeight(0, t.b) > 0.0f);
   return f;

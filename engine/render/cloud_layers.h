@@ -39,7 +39,6 @@ public:
     CoverageTables coverage{};
     NoiseMeans noiseMeans;
     glm::vec2 maxCover{0.0f};
-    glm::uvec2 weatherSize{0};
     bool lowRolls = false;  // some low cloud of the map has rolls (cloudRollWeight)
   };
   // Imports the noise and weather textures into `graph` (baking or loading the noise on first

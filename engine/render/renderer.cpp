@@ -287,9 +287,9 @@ Renderer::CloudImages Renderer::addClouds(FrameGraph& graph, const FrameInputs& 
   const shared::ViewState cloudView =
       half ? makeViewState(scene.camera, cloudWidth, cloudHeight) : f.view;
   VolumetricCloudsPass::Inputs in;
-  in.params =
-      cloudParams(f.setup.volumetric, out.lighting, f.time, cloudView, c.frame.maxCover,
-                  c.frame.weatherSize, c.frame.coverage, c.frame.noiseMeans, c.frame.lowRolls);
+  in.params = cloudParams(f.setup.volumetric, out.lighting, f.time, cloudView, c.frame.maxCover,
+                          c.frame.coverage, c.frame.noiseMeans);
+  in.variant = cloudVariant(f.setup.volumetric, c.frame.lowRolls);
   in.lighting = out.lighting.gpu;
   in.textures = c.frame.textures;
   // What the light volume and the shadow map are made from: kept while it holds.
@@ -303,9 +303,10 @@ Renderer::CloudImages Renderer::addClouds(FrameGraph& graph, const FrameInputs& 
       (in.params.sunMarched != 0.0f ? 1u : 0u) | (in.params.moonMarched != 0.0f ? 2u : 0u);
   field.drift = cloudWindDriftM(scene.clouds, f.time.secondsSince(scene.time.start));
   // The light through the clouds from the light volume (the reference marches it).
-  if (scene.clouds.light == CloudLight::Volume && scene.clouds.quality == CloudQuality::Standard) {
+  if (in.variant.light == CloudLight::Volume) {
     CloudLightVolumePass::Inputs v;
     v.params = in.params;
+    v.variant = in.variant;
     v.params.lightVolume = cloudLightVolumePlace(in.params, geometry.altitudeM);
     v.textures = in.textures;
     v.key = field;
@@ -360,11 +361,12 @@ Renderer::CloudImages Renderer::addClouds(FrameGraph& graph, const FrameInputs& 
   // The clouds' shadows on the ground around the observer (a top-down render draws no
   // ground, but the composite's cloud variant binds a map all the same).
   c.shadow = mShadow.addTo(
-      graph, CloudShadowPass::Inputs{in.params, cloudShadowMap(in.params, geometry.altitudeM),
-                                     in.textures, field});
+      graph, CloudShadowPass::Inputs{in.params, in.variant,
+                                     cloudShadowMap(in.params, geometry.altitudeM), in.textures,
+                                     field});
   out.cloudShadow = c.shadow.map;
   // A cut through the density field for the debug view: culled unless it is asked for.
-  graph.add(mSlice, CloudDensitySlicePass::Inputs{in.params, in.textures});
+  graph.add(mSlice, CloudDensitySlicePass::Inputs{in.params, in.variant, in.textures});
   return c;
 }
 
@@ -559,8 +561,8 @@ CloudVolume Renderer::exportCloudVolume(const Scene& scene, const IsoTime& time,
   // The raymarch's own parameters, so the grid holds the very field it marches through.
   CloudVolumeExportPass::Inputs in;
   in.params = cloudParams(setup.volumetric, setup.lighting, time, view, cloudFrame.maxCover,
-                          cloudFrame.weatherSize, cloudFrame.coverage, cloudFrame.noiseMeans,
-                          cloudFrame.lowRolls);
+                          cloudFrame.coverage, cloudFrame.noiseMeans);
+  in.variant = cloudVariant(setup.volumetric, cloudFrame.lowRolls);
   in.box = grid.params;
   in.textures = cloudFrame.textures;
   graph.requestOutput(graph.add(mVolumeExport, in).grid, "cloud_volume");

@@ -20,6 +20,7 @@
 #include "engine/render/cloud_volume.h"
 #include "passes/atmosphere_luts/atmosphere_luts.h"
 #include "engine/gpu/sampler.h"
+#include "passes/cloud_density_slice/cloud_density_slice.h"
 #include "passes/cloud_light_volume/cloud_light_volume.h"
 #include "passes/cloud_shadow/cloud_shadow.h"
 #include "passes/cloud_temporal/cloud_temporal.h"

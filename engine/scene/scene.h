@@ -311,6 +311,7 @@ struct CloudSettings {
   double stepM = 20.0;                      // view-ray step near the camera, metres
   double stepGrowth = 0.002;                // extra step length per metre of distance
   int maxSteps = 512;                       // per view ray
+  int samples = 1;                          // marches per pixel, averaged: 1..64
   int lightSteps = 5;                 // short steps toward the light (plus one long one), 1..16
   int lightSplit = 2;                 // samples per short light step (the long one 2x), 1..4
   double lightDistanceM = 1200.0;     // length covered by the short light steps, metres

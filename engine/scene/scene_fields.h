@@ -243,6 +243,11 @@ void describe(V& v, CloudSettings& s) {
   v.field("step_growth", s.stepGrowth, NumberRange{0, 1},
           "extra step length per metre of distance (steps grow linearly)");
   v.field("max_steps", s.maxSteps, NumberRange{1, 4096}, "most steps along one view ray");
+  // Each march is an unbiased draw of the pixel's grain; N of them, at their own positions in
+  // the pixel and their own starts along the ray, average it away (N times the march's cost).
+  v.field("samples", s.samples, NumberRange{1, 64},
+          "marches per pixel, averaged, each at its own place in the pixel: more converge a "
+          "still's grain and antialias its cloud edges, at that many times the cost");
   // At most 16: the short steps double in length (cloud_lighting.glsl), so 16 already spans
   // 1:32768 and more would overflow the shader's 1 << i.
   v.field("light_steps", s.lightSteps, NumberRange{1, 16},

@@ -46,7 +46,6 @@ shared::CloudLightVolume cloudLightVolumePlace(const shared::CloudParams& params
   v.radiusM = static_cast<float>(std::clamp(reach + kHorizonMarginM, kMinRadiusM, kMaxRadiusM));
   v.baseM = params.shellBaseM;
   v.topM = params.shellTopM;
-  v.enabled = 1;
   v.startM = clouds::lightStepStart(CLOUD_LIGHT_VOLUME_NEAR, static_cast<int>(params.lightSteps),
                                     params.lightDistanceM);
   return v;
@@ -82,7 +81,7 @@ CloudLightVolumePass::Outputs CloudLightVolumePass::addTo(FrameGraph& graph, con
 CloudLightVolumePass::Outputs CloudLightVolumePass::setup(GraphBuilder& b, const Inputs& in) {
   mInputs = in;
   mInputs.params.lightVolume.shiftEastM = mInputs.params.lightVolume.shiftNorthM = 0.0f;
-  mPipeline = &mPipelines.get(in.params);
+  mPipeline = &mPipelines.get(in.variant);
   readCloudTextures(b, in.textures);
   Outputs out;
   out.volume = b.write(mTarget, Access::StorageWriteCompute);

@@ -27,6 +27,7 @@ public:
   static constexpr const char* kName = "cloud_light_volume";
   struct Inputs {
     shared::CloudParams params{};  // with lightVolume's place (cloudLightVolumePlace)
+    CloudVariant variant;          // the raymarch's
     CloudTextures textures;
     CloudFieldKey key;
   };

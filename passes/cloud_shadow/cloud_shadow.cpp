@@ -43,10 +43,11 @@ shared::CloudShadowMap cloudShadowMap(const shared::CloudParams& params, double 
   const double R = params.geo.origin.w, h = std::max(cameraAltitudeM, 1.0);
   // Ground distance to the horizon seen from height h: R acos(R / (R + h)).
   const double horizon = R * std::acos(R / (R + h));
+  const CloudKeyLight key = cloudKeyLight(params);
   shared::CloudShadowMap map{};
-  map.lightDirection = glm::vec4(glm::vec3(params.keyDirection), 0.0f);
+  map.lightDirection = glm::vec4(key.direction, 0.0f);
   map.radiusM = static_cast<float>(std::clamp(horizon + kHorizonMarginM, kMinRadiusM, kMaxRadiusM));
-  map.lightIsSun = params.keyIsSun;
+  map.lightIsSun = key.isSun ? 1.0f : 0.0f;
   map.maxPathM = static_cast<float>(kMaxPathM);
   map.valid = 1.0f;
   return map;
@@ -76,7 +77,7 @@ CloudShadowPass::Outputs CloudShadowPass::addTo(FrameGraph& graph, const Inputs&
 CloudShadowPass::Outputs CloudShadowPass::setup(GraphBuilder& b, const Inputs& in) {
   mInputs = in;
   mInputs.map.shiftEastM = mInputs.map.shiftNorthM = 0.0f;
-  mPipeline = &mPipelines.get(in.params);
+  mPipeline = &mPipelines.get(in.variant);
   readCloudTextures(b, in.textures);
   mOutputs.shadow = mTarget = b.write(mTarget, Access::StorageWriteCompute);
   mOutputs.map = mInputs.map;

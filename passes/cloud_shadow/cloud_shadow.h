@@ -26,6 +26,7 @@ public:
   static constexpr const char* kName = "cloud_shadow";
   struct Inputs {
     shared::CloudParams params{};  // the volumetric clouds' parameters (cloudParams)
+    CloudVariant variant;
     shared::CloudShadowMap map{};  // cloudShadowMap
     CloudTextures textures;
     CloudFieldKey key;             // what the map is made from

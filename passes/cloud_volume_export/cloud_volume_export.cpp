@@ -7,7 +7,7 @@ CloudVolumeExportPass::CloudVolumeExportPass(const Context& ctx, ShaderCompiler&
 
 CloudVolumeExportPass::Outputs CloudVolumeExportPass::setup(GraphBuilder& b, const Inputs& in) {
   mInputs = in;
-  mPipeline = &mPipelines.get(in.params);
+  mPipeline = &mPipelines.get(in.variant);
   readCloudTextures(b, in.textures);
   ImageDesc desc;
   desc.dim = ImageDim::Tex3D;

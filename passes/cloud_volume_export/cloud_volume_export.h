@@ -15,6 +15,7 @@ public:
   static constexpr const char* kName = "cloud_volume_export";
   struct Inputs {
     shared::CloudParams params{};  // cloudParams() of the frame, as the raymarch gets them
+    CloudVariant variant;
     shared::CloudVolumeExportParams box{};
     CloudTextures textures;
   };

@@ -12,6 +12,7 @@
 #include "engine/lighting/light_model.h"
 #include "engine/shader/shader_compiler.h"
 #include "engine/weather/geo.h"
+#include "shaders/common/cloud_light_march_shared.h"
 
 namespace sky {
 namespace {
@@ -32,6 +33,9 @@ constexpr double kTopDownMarginM = 500.0;
 // clouds.quality reference: the longest first step and the most steps a view ray takes.
 constexpr double kReferenceStepM = 10.0;
 constexpr uint32_t kReferenceMaxSteps = 16384;
+// The reference's light march splits each short step this many ways (its long step's parts are
+// CLOUD_LIGHT_REFERENCE_LONG_PART_M long).
+constexpr int kReferenceLightSplit = 4;
 // The reference stops a ray only where what is left of it (below 1e-4 of the pixel) is far
 // under one 8-bit code of any display: no exit to speak of, at a fraction of the cost of
 // marching every opaque cloud to the far end of the shells.
@@ -57,24 +61,38 @@ std::vector<Binding> cloudTextureBindings(const CloudTextures& t) {
           Binding::of(VOLUMETRIC_CLOUDS_BINDING_WEATHER_COARSE, t.weatherCoarse, t.weatherSampler)};
 }
 
+CloudVariant cloudVariant(const VolumetricCloudsSettings& settings, bool lowRolls) {
+  const CloudSettings& c = settings.clouds;
+  CloudVariant v;
+  v.frame = settings.topDown ? CloudFrame::TopDown : CloudFrame::Observer;
+  v.model = c.model;
+  v.phase = c.phase;
+  v.integral = c.energyConserving ? CloudStepIntegral::Exact : CloudStepIntegral::Riemann;
+  v.coverage = c.coverage;
+  v.rolls = lowRolls ? CloudRolls::On : CloudRolls::Off;
+  v.quality = c.quality;
+  v.light = c.quality == CloudQuality::Reference ? CloudLight::March : c.light;
+  return v;
+}
+
+std::vector<ShaderDefine> cloudVariantDefines(const CloudVariant& v) {
+  const auto flag = [](bool on) { return std::string(on ? "1" : "0"); };
+  return {{"CLOUD_TOPDOWN", flag(v.frame == CloudFrame::TopDown)},
+          {"CLOUD_TANG", flag(v.model == CloudModel::Tang2019)},
+          {"CLOUD_DUAL_LOBE", flag(v.phase == CloudPhase::DualLobe)},
+          {"CLOUD_ENERGY_CONSERVING", flag(v.integral == CloudStepIntegral::Exact)},
+          {"CLOUD_CALIBRATED", flag(v.coverage == CloudCoverageMode::Calibrated)},
+          {"CLOUD_ROLLS", flag(v.rolls == CloudRolls::On)},
+          {"CLOUD_REFERENCE", flag(v.quality == CloudQuality::Reference)},
+          {"CLOUD_LIGHT_VOLUME", flag(v.light == CloudLight::Volume)}};
+}
+
 CloudPipelines::CloudPipelines(const Context& ctx, ShaderCompiler& compiler, const char* file,
                                const char* name)
     : mVariants(ctx, compiler, file, name) {}
 
-const ComputePipeline& CloudPipelines::get(const shared::CloudParams& p) {
-  return mVariants.get({{"CLOUD_TOPDOWN", p.frameKind == CLOUD_FRAME_TOPDOWN ? "1" : "0"},
-                        {"CLOUD_LIGHT_STEPS", std::to_string(p.lightSteps)},
-                        {"CLOUD_LIGHT_SPLIT", std::to_string(p.lightSplit)},
-                        {"CLOUD_OCTAVES", std::to_string(p.octaves)},
-                        {"CLOUD_DUAL_LOBE", std::to_string(p.phaseKind)},
-                        {"CLOUD_ENERGY_CONSERVING", std::to_string(p.energyConserving)},
-                        {"CLOUD_CALIBRATED", std::to_string(p.calibratedCoverage)},
-                        {"CLOUD_TANG", std::to_string(p.model)},
-                        {"CLOUD_ROLLS", std::to_string(p.rolls)},
-                        {"CLOUD_LIGHT_DETAIL_STEPS", std::to_string(p.lightDetailSteps)},
-                        {"CLOUD_LIGHT_NOISE_STEPS", std::to_string(p.lightNoiseSteps)},
-                        {"CLOUD_REFERENCE", std::to_string(p.reference)},
-                        {"CLOUD_LIGHT_VOLUME", std::to_string(p.lightVolume.enabled)}});
+const ComputePipeline& CloudPipelines::get(const CloudVariant& variant) {
+  return mVariants.get(cloudVariantDefines(variant));
 }
 
 bool cloudFieldReusable(const CloudFieldKey& m, const CloudFieldKey& k, double maxShiftM) {
@@ -112,8 +130,7 @@ CloudFrameGeometry cloudFrameGeometry(const VolumetricCloudsSettings& s) {
 shared::CloudParams cloudParams(const VolumetricCloudsSettings& settings,
                                 const LightingState& lighting, const IsoTime& time,
                                 const shared::ViewState& view, const glm::vec2& maxCover,
-                                const glm::uvec2& weatherSize, const CoverageTables& coverage,
-                                const NoiseMeans& noiseMeans, bool lowRolls) {
+                                const CoverageTables& coverage, const NoiseMeans& noiseMeans) {
   const CloudSettings& c = settings.clouds;
   const WeatherRegion& region = settings.region;
   const CloudFrameGeometry g = cloudFrameGeometry(settings);
@@ -121,17 +138,14 @@ shared::CloudParams cloudParams(const VolumetricCloudsSettings& settings,
   p.view = view;
   p.geo = geoFrame({g.latDeg, g.lonDeg, g.altitudeM});
   p.region = geoRegion(region);
-  p.frameKind = g.topDown ? CLOUD_FRAME_TOPDOWN : CLOUD_FRAME_OBSERVER;
+  const bool reference = c.quality == CloudQuality::Reference;
   p.lightSteps = static_cast<uint32_t>(c.lightSteps);
-  p.lightSplit = static_cast<uint32_t>(c.lightSplit);
+  p.lightSplit = static_cast<uint32_t>(reference ? kReferenceLightSplit : c.lightSplit);
+  p.lightLongPartM = reference ? CLOUD_LIGHT_REFERENCE_LONG_PART_M : CLOUD_LIGHT_LONG_PART_M;
   p.octaves = static_cast<uint32_t>(c.scatteringOctaves);
-  p.phaseKind = c.phase == CloudPhase::DualLobe ? CLOUD_PHASE_DUAL_LOBE : CLOUD_PHASE_HG;
-  p.energyConserving = c.energyConserving ? 1u : 0u;
-  p.calibratedCoverage = c.coverage == CloudCoverageMode::Calibrated ? 1u : 0u;
-  p.model = c.model == CloudModel::Tang2019 ? CLOUD_MODEL_TANG2019 : CLOUD_MODEL_LU2023;
   p.maxSteps = static_cast<uint32_t>(c.maxSteps);
   p.marchBlock = 1;
-  p.reference = c.quality == CloudQuality::Reference ? 1u : 0u;
+  p.samplesPerPixel = static_cast<uint32_t>(std::clamp(c.samples, 1, 64));
   p.lowBaseM = static_cast<float>(c.low.baseM);
   p.lowTopM = static_cast<float>(c.low.topM);
   p.midBaseM = static_cast<float>(c.mid.baseM);
@@ -172,26 +186,19 @@ shared::CloudParams cloudParams(const VolumetricCloudsSettings& settings,
   p.rollOrigin = glm::vec4(glm::vec3(glm::mod(rolled, shapeM)), 0.0f);
   p.rollAxis = glm::vec4(glm::vec3(axis), 0.0f);
   p.rollCompression = static_cast<float>(compression);
-  p.rolls = lowRolls ? 1u : 0u;
-  // The light steps that may resolve each noise (CloudParams.lightDetailSteps): a prefix, as
-  // the steps grow (the long one is the longest). The 0.1 % spares float rounding.
-  const auto stepsResolving = [&](double cellM) {
-    const int n = c.lightSteps;
-    const float distance = static_cast<float>(c.lightDistanceM);
-    uint32_t k = 0;
-    for (int i = 0; i <= n; ++i) {
-      const double len = i < n ? clouds::lightStepLength(i, n, distance)
-                               : clouds::lightLongStepLength(distance) / CLOUD_LIGHT_LONG_SAMPLES;
-      if (0.25 * len >= 0.5 * cellM * 1.001) break;
-      k = static_cast<uint32_t>(i + 1);
-    }
-    return k;
-  };
-  // The cells cloudSampleAt fades first: the detail's R, the shape's outline R.
+  // The short light steps whose samples may resolve the detail noise (CloudParams.
+  // lightNearSteps): a prefix, as the steps grow. A sample stands for its sub-step (the step
+  // split light_split ways) and sees a quarter of it (lightFootprint); noiseKeep resolves
+  // nothing from half a cell. The 0.1 % spares float rounding. The reference reads it all.
   const double detailCellM = detailM / (c.model == CloudModel::Tang2019 ? 4.0 : 2.0);
-  p.lightDetailSteps = stepsResolving(detailCellM);
-  // Every light step resolves the outline (lightFootprint caps the footprint there).
-  p.lightNoiseSteps = static_cast<uint32_t>(c.lightSteps + 1);
+  uint32_t near = 0;
+  for (int i = 0; i < c.lightSteps; ++i) {
+    const double sub = clouds::lightStepLength(i, c.lightSteps, static_cast<float>(c.lightDistanceM)) /
+                       static_cast<double>(p.lightSplit);
+    if (0.25 * sub >= 0.5 * detailCellM * 1.001) break;
+    near = static_cast<uint32_t>(i + 1);
+  }
+  p.lightNearSteps = reference ? p.lightSteps : near;
   p.shapeRepeatsPerM = static_cast<float>(1.0 / shapeM);
   p.detailRepeatsPerM = static_cast<float>(1.0 / detailM);
   p.curlRepeatsPerM = static_cast<float>(1.0 / shapeM);
@@ -202,7 +209,7 @@ shared::CloudParams cloudParams(const VolumetricCloudsSettings& settings,
   p.stepM = static_cast<float>(c.stepM);
   p.stepGrowth = static_cast<float>(c.stepGrowth);
   p.transmittanceCutoff = static_cast<float>(c.transmittanceCutoff);
-  if (p.reference) {
+  if (reference) {
     // The reference: steps half as long (and never over kReferenceStepM near the camera),
     // no early exit to speak of, and room for every step to the end of the shells.
     p.stepM = static_cast<float>(std::min(0.5 * c.stepM, kReferenceStepM));
@@ -212,8 +219,6 @@ shared::CloudParams cloudParams(const VolumetricCloudsSettings& settings,
   }
   p.lightDistanceM = static_cast<float>(c.lightDistanceM);
   p.attenuationClamp = static_cast<float>(c.attenuationClamp);
-  p.weatherTexelsU = static_cast<float>(weatherSize.x);
-  p.weatherTexelsV = static_cast<float>(weatherSize.y);
   p.extinction = static_cast<float>(c.extinction);
   p.g = static_cast<float>(c.g);
   p.gBack = static_cast<float>(c.gBack);
@@ -250,9 +255,6 @@ shared::CloudParams cloudParams(const VolumetricCloudsSettings& settings,
     *marched[i] = total > 0.0f && share[i] > kLightShare * total ? 1.0f : 0.0f;
   p.sunDirection = glm::vec4(glm::vec3(lighting.sun.direction), 0.0f);
   p.moonDirection = glm::vec4(glm::vec3(lighting.moon.direction), 0.0f);
-  const int key = share[0] >= share[1] ? 0 : 1;
-  p.keyDirection = glm::vec4(glm::vec3(bodies[key]->direction), 0.0f);
-  p.keyIsSun = key == 0 ? 1.0f : 0.0f;
   p.ambientTop = lighting.gpu.palette.ambientTop + lighting.gpu.moonPalette.ambientTop;
   p.ambientBottom = lighting.gpu.palette.ambientBottom + lighting.gpu.moonPalette.ambientBottom;
   p.ambientTop.w = p.ambientBottom.w = 0.0f;
@@ -269,14 +271,22 @@ shared::CloudParams cloudParams(const VolumetricCloudsSettings& settings,
   return p;
 }
 
+CloudKeyLight cloudKeyLight(const shared::CloudParams& p) {
+  const auto share = [](const glm::vec4& low, const glm::vec4& mid) {
+    return std::max(luminance(glm::vec3(low)), luminance(glm::vec3(mid)));
+  };
+  const bool sun = share(p.sunAtLow, p.sunAtMid) >= share(p.moonAtLow, p.moonAtMid);
+  return {glm::vec3(sun ? p.sunDirection : p.moonDirection), sun};
+}
+
 VolumetricCloudsPass::VolumetricCloudsPass(const Context& ctx, ShaderCompiler& compiler)
     : mPipelines(ctx, compiler, "volumetric_clouds.comp", kName) {}
 
 VolumetricCloudsPass::Outputs VolumetricCloudsPass::setup(GraphBuilder& b, const Inputs& in) {
   mInputs = in;
-  mPipeline = &mPipelines.get(in.params);
+  mPipeline = &mPipelines.get(in.variant);
   readCloudTextures(b, in.textures);
-  if (in.params.lightVolume.enabled) {
+  if (in.variant.light == CloudLight::Volume) {
     if (!in.lightVolumeSampler) internalError("volumetric_clouds: no light volume sampler");
     b.read(in.lightVolume, Access::SampledCompute);
   }
@@ -318,40 +328,11 @@ void VolumetricCloudsPass::execute(PassContext& ctx) const {
                    Binding::of(VOLUMETRIC_CLOUDS_BINDING_CLOUDS, mOutputs.clouds),
                    Binding::of(VOLUMETRIC_CLOUDS_BINDING_DEPTH, mOutputs.depth),
                    Binding::of(VOLUMETRIC_CLOUDS_BINDING_STEPS, mOutputs.steps)});
-  if (mInputs.params.lightVolume.enabled)
+  if (mInputs.variant.light == CloudLight::Volume)
     bindings.push_back(Binding::of(CLOUD_LIGHT_VOLUME_BINDING_IMAGE, mInputs.lightVolume,
                                    mInputs.lightVolumeSampler));
   ctx.dispatch(*mPipeline, bindings, mPipeline->groupsX(size.width),
                mPipeline->groupsY(size.height));
-}
-
-CloudDensitySlicePass::CloudDensitySlicePass(const Context& ctx, ShaderCompiler& compiler)
-    : mPipelines(ctx, compiler, "cloud_density_slice.comp", kName) {}
-
-CloudDensitySlicePass::Outputs CloudDensitySlicePass::setup(GraphBuilder& b, const Inputs& in) {
-  mInputs = in;
-  readCloudTextures(b, in.textures);
-  ImageDesc desc;
-  desc.width = kWidth;
-  desc.height = kHeight;
-  desc.format = VK_FORMAT_R16G16B16A16_SFLOAT;
-  desc.name = "cloud_density_slice";
-  desc.about =
-      "a vertical cut along the camera's heading, 60 km ahead (across) by sea level to above "
-      "the clouds (down): R density, G cover, B type, A layer";
-  desc.view = DebugView::Scalar;  // the density: the other channels explain it
-  desc.channels = "density,cover,type,layer";
-  mOutputs.slice = b.write(b.create(desc), Access::StorageWriteCompute);
-  return mOutputs;
-}
-
-void CloudDensitySlicePass::execute(PassContext& ctx) const {
-  std::vector<Binding> bindings = cloudTextureBindings(mInputs.textures);
-  bindings.insert(bindings.end(),
-                  {Binding::of(VOLUMETRIC_CLOUDS_BINDING_PARAMS, ctx.uniform(mInputs.params)),
-                   Binding::of(CLOUD_SLICE_BINDING_IMAGE, mOutputs.slice)});
-  const ComputePipeline& pipeline = mPipelines.get(mInputs.params);
-  ctx.dispatch(pipeline, bindings, pipeline.groupsX(kWidth), pipeline.groupsY(kHeight));
 }
 
 }  // namespace sky

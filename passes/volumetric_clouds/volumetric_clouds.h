@@ -2,8 +2,8 @@
 // The volumetric low and mid clouds (Lu et al. 2023, Tang et al. 2019): a raymarch through
 // the spherical shells of the two layers (shaders/volumetric_clouds.comp), reading the weather
 // map (engine/weather) for cover and type and the baked noise (passes/cloud_noise) for the
-// density, lit by the frame's LightingState. Also the density-slice debug view, a vertical
-// cut through the density field along the camera's heading. See docs/clouds.md.
+// density, lit by the frame's LightingState; with what every pass that samples the cloud
+// field shares (the textures, the shader variants, the uniforms). See docs/clouds.md.
 #include <array>
 #include <map>
 #include <memory>
@@ -39,14 +39,48 @@ void readCloudTextures(GraphBuilder& b, const CloudTextures& t);
 // The five sampler bindings; the caller appends its own parameters and images.
 std::vector<Binding> cloudTextureBindings(const CloudTextures& t);
 
-// The cloud shaders compiled for the scene's fixed choices (CloudParams.frame x/z/w and
-// .options: ray start, light steps, octaves, phase, energy-conserving steps, coverage mode and
-// model) as constants, one pipeline per combination, built on first use and kept. A
-// time-lapse uses one; changing a choice costs one compile.
+// Where a frame's cloud rays start: the observer's camera, or straight down from above the
+// clouds over every pixel's latitude and longitude (camera.mode geographic_topdown).
+enum class CloudFrame { Observer, TopDown };
+// How a view step's scattering is integrated: exactly for a homogeneous step (Hillaire 2016,
+// clouds.energy_conserving true) or as the Riemann sum S dt.
+enum class CloudStepIntegral { Exact, Riemann };
+// Whether the shape noise's second lookup, stretched along the wind, is compiled in: only when
+// some low cloud of the map is stratocumulus (cloudRollWeight). On lavapipe the lookup costs a
+// fifth of the pass wherever it is compiled in, even where no sample reads it.
+enum class CloudRolls { Off, On };
+
+// The cloud shaders' variant: the scene's discrete choices, compiled in as constants
+// (cloudVariantDefines), one pipeline per combination, so the compiler drops the unused model
+// and lookups (lavapipe runs both sides of every branch; no test at run time can). Nothing in
+// it comes from a continuous setting: light steps, splits, octaves and the noise each light
+// step reads are uniforms, so moving a slider never compiles a pipeline. A time-lapse uses
+// one; changing a choice costs one compile.
+struct CloudVariant {
+  CloudFrame frame = CloudFrame::Observer;
+  CloudModel model = CloudModel::Lu2023;
+  CloudPhase phase = CloudPhase::DualLobe;
+  CloudStepIntegral integral = CloudStepIntegral::Exact;
+  CloudCoverageMode coverage = CloudCoverageMode::Calibrated;
+  CloudRolls rolls = CloudRolls::On;
+  CloudQuality quality = CloudQuality::Standard;
+  CloudLight light = CloudLight::March;
+
+  bool operator==(const CloudVariant&) const = default;
+};
+
+struct VolumetricCloudsSettings;
+// The variant of a frame: the scene's choices, the frame's kind, whether the map has rolls
+// (CloudLayers::Frame::lowRolls). The reference always marches its light.
+CloudVariant cloudVariant(const VolumetricCloudsSettings& settings, bool lowRolls);
+// The GLSL defines that compile `v` (cloud_field.glsl and volumetric_clouds.comp read them).
+std::vector<ShaderDefine> cloudVariantDefines(const CloudVariant& v);
+
+// The cloud shaders compiled for each variant, built on first use and kept.
 class CloudPipelines {
 public:
   CloudPipelines(const Context& ctx, ShaderCompiler& compiler, const char* file, const char* name);
-  const ComputePipeline& get(const shared::CloudParams& params);
+  const ComputePipeline& get(const CloudVariant& variant);
 
 private:
   ComputePipelineVariants mVariants;
@@ -57,9 +91,10 @@ public:
   static constexpr const char* kName = "volumetric_clouds";
   struct Inputs {
     shared::CloudParams params{};
+    CloudVariant variant;
     shared::LightingState lighting{};
     CloudTextures textures;
-    // With params.lightVolume.enabled: passes/cloud_light_volume's volume and its sampler.
+    // With variant.light Volume: passes/cloud_light_volume's volume and its sampler.
     ImageId lightVolume;
     const Sampler* lightVolumeSampler = nullptr;
   };
@@ -77,30 +112,6 @@ public:
 private:
   CloudPipelines mPipelines;
   const ComputePipeline* mPipeline = nullptr;  // this frame's variant, chosen in setup()
-  Inputs mInputs{};
-  Outputs mOutputs;
-};
-
-class CloudDensitySlicePass {
-public:
-  static constexpr const char* kName = "cloud_density_slice";
-  static constexpr uint32_t kWidth = 512, kHeight = 128;
-  struct Inputs {
-    shared::CloudParams params{};  // slice.x: length ahead (m); slice.y: top altitude (m)
-    CloudTextures textures;
-  };
-  struct Outputs {
-    ImageId slice;  // RGBA16F kWidth x kHeight: r density, g cover, b type, a layer (0/1, -1)
-  };
-
-  CloudDensitySlicePass(const Context& ctx, ShaderCompiler& compiler);
-  Outputs setup(GraphBuilder& builder, const Inputs& inputs);
-  void execute(PassContext& ctx) const;
-
-private:
-  // Every frame with clouds adds this pass for the debug view, and nearly every frame culls
-  // it: its variant is compiled when it first runs, in execute(), not in setup().
-  mutable CloudPipelines mPipelines;
   Inputs mInputs{};
   Outputs mOutputs;
 };
@@ -182,12 +193,18 @@ glm::dvec2 cloudWindDriftM(const CloudSettings& clouds, double elapsedS);
 // The pass's uniforms for one frame at `time`: the layers and shells, the frame, the wind's
 // drift of the noise since settings.timeStart, the key light and its illuminance at each
 // layer's altitude, the ambient light, the coverage tables and the noise means. `maxCover` is
-// the map's largest (low, mid) cover; `weatherSize` its texel counts; `lowRolls` whether any
-// of its low cloud has rolls (cloudRollWeight, CloudLayers::Frame::lowRolls).
+// the map's largest (low, mid) cover.
 shared::CloudParams cloudParams(const VolumetricCloudsSettings& settings,
                                 const LightingState& lighting, const IsoTime& time,
                                 const shared::ViewState& view, const glm::vec2& maxCover,
-                                const glm::uvec2& weatherSize, const CoverageTables& coverage,
-                                const NoiseMeans& noiseMeans, bool lowRolls);
+                                const CoverageTables& coverage, const NoiseMeans& noiseMeans);
+
+// The key light at the clouds: the brighter of the sun and the moon there (the shadow map is
+// cast by it), from the uniforms' illuminance at the layers.
+struct CloudKeyLight {
+  glm::vec3 direction{0.0f, 0.0f, 1.0f};  // unit, ENU
+  bool isSun = true;
+};
+CloudKeyLight cloudKeyLight(const shared::CloudParams& params);
 
 }  // namespace sky

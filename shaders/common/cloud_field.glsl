@@ -12,22 +12,18 @@
 #include "cloud_density.glsl"
 #include "cloud_lighting.glsl"
 
-// The scene's fixed choices are compile-time constants, one pipeline per combination
-// (passes/volumetric_clouds, CloudPipelines): CLOUD_TOPDOWN, CLOUD_LIGHT_STEPS, CLOUD_OCTAVES,
-// CLOUD_DUAL_LOBE, CLOUD_ENERGY_CONSERVING, CLOUD_CALIBRATED, CLOUD_TANG and CLOUD_ROLLS
-// mirror CloudParams' variant fields (volumetric_clouds.comp adds the light march's two).
-// The compiler then drops the unused model and unrolls the light march, which a uniform
-// cannot give (lavapipe did it by recompiling every frame).
+// The shader variant: the scene's discrete choices as compile-time constants, one pipeline per
+// combination, generated from one C++ CloudVariant (passes/volumetric_clouds,
+// cloudVariantDefines) whose fields are enums: CLOUD_TOPDOWN (the frame), CLOUD_TANG (the
+// model), CLOUD_DUAL_LOBE (the phase), CLOUD_ENERGY_CONSERVING (the step integral),
+// CLOUD_CALIBRATED (the coverage), CLOUD_ROLLS (whether the map has stratocumulus rolls) and,
+// in volumetric_clouds.comp, CLOUD_REFERENCE and CLOUD_LIGHT_VOLUME. The compiler then drops
+// the unused model and lookups, which on lavapipe (running both sides of every branch) no
+// test at run time can. Nothing continuous is among them: a slider never compiles a pipeline.
 // Standing alone (the shader tests compile every file on its own) the file takes the default
-// scene's choices, with the rolls' lookup compiled in; the pass always defines all eight.
+// scene's choices, with the rolls' lookup compiled in.
 #ifndef CLOUD_TOPDOWN
 #define CLOUD_TOPDOWN 0
-#endif
-#ifndef CLOUD_LIGHT_STEPS
-#define CLOUD_LIGHT_STEPS 5
-#endif
-#ifndef CLOUD_OCTAVES
-#define CLOUD_OCTAVES 3
 #endif
 #ifndef CLOUD_DUAL_LOBE
 #define CLOUD_DUAL_LOBE 1
@@ -74,6 +70,11 @@ struct CloudSample {
   // erodes, so a point with a large clearance lies well outside any cloud and the march may
   // stride there (CLOUD_STRIDE_CLEARANCE in volumetric_clouds.comp).
   float clearance;
+  // Inside a layer with cover but above or below the cloud type's vertical range (Lu's ph
+  // outside [0, 1]): how far (m of altitude) the range is. The clearance says nothing there,
+  // and a stride that ignored this skipped the thin base of a sheet of altocumulus along
+  // whole rows of the view. 0 inside the range and where there is no cover.
+  float rangeGapM;
   vec2 latLon;    // the point's latitude and longitude (degrees)
 };
 
@@ -118,31 +119,6 @@ float noiseKeep(float footprintM, float cellM) {
 // a cloud's core density its volume averages to (docs/clouds.md, the horizon).
 #define CLOUD_FAR_DENSITY 0.5
 
-// Latitude and longitude along a straight line, taken linear in the distance through the
-// exact values at its origin and `lengthM` metres on. The line's ground track bends away
-// from that by under s^2 / 2R: 3 m at the light march's 6 km reach, where the weather map's
-// texels are kilometres. The light march takes its samples' latitudes and longitudes from
-// here: latLonAltitude's two arctangents in every light sample were 5 % of the pass.
-struct LatLonLine {
-  vec3 origin;
-  vec3 direction;  // unit
-  vec2 latLon;     // at the origin (degrees)
-  vec2 rate;       // change per metre along the line
-};
-
-LatLonLine latLonLine(vec3 origin, vec2 latLonAtOrigin, vec3 direction, float lengthM) {
-  vec2 change = latLonAltitude(params.geo, origin + direction * lengthM).xy - latLonAtOrigin;
-  change.y -= 360.0 * round(change.y / 360.0);  // across 180 E the short way
-  return LatLonLine(origin, direction, latLonAtOrigin, change / lengthM);
-}
-
-// (latitude, longitude, altitude) of a point p on the line; the altitude is exact (the
-// layers and the height profiles need it to the metre).
-vec3 latLonAltitudeOn(LatLonLine line, vec3 p) {
-  float along = dot(p - line.origin, line.direction);
-  return vec3(line.latLon + line.rate * along, geoAltitude(params.geo, p));
-}
-
 // The cloud at point p, whose latitude, longitude (degrees) and altitude are lla, seen by a
 // sample `footprintM` wide (0: full detail). Returns false where no cloud can be (outside
 // both layers, outside the weather region, or, with `coarseCheck`, where the coarse map has
@@ -158,6 +134,7 @@ bool cloudSampleAtLla(vec3 p, vec3 lla, float footprintM, bool coarseCheck, int 
   s.hBottom = 0.0;
   s.type = 0.0;
   s.clearance = 1.0;  // no cloud can be here
+  s.rangeGapM = 0.0;
   s.latLon = lla.xy;
   float h = lla.z;
   int layer = (h >= params.lowBaseM && h <= params.lowTopM)   ? 0
@@ -184,6 +161,7 @@ bool cloudSampleAtLla(vec3 p, vec3 lla, float footprintM, bool coarseCheck, int 
   s.ph = cloudHeightFraction(f, range);
   s.hTop = max(range.y - f, 0.0) * (top - base);
   s.hBottom = max(f - range.x, 0.0) * (top - base);
+  if (cover > 0.0) s.rangeGapM = max(max(range.x - f, f - range.y), 0.0) * (top - base);
   if (cover <= 0.0 || s.ph < 0.0 || s.ph > 1.0) return true;
   s.clearance = 0.0;
 

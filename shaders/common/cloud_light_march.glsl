@@ -1,73 +1,104 @@
-// The light march of the volumetric clouds, generic over the density: the includer defines
-//   float cloudDensityForLight(vec3 p, float lengthM, int step);
+// The light march of the volumetric clouds, generic over the density: the includer defines,
+// after including this file (which declares it),
+//   float cloudDensityForLight(CloudLightPath path, vec3 p, float lengthM, int part);
 // (density at a world position, 0 outside the cloud, as seen by a sample standing for
-// `lengthM` of the march: it may filter away detail finer than that; `step` is the sample's
-// place in the march, 0 .. n - 1 for the short steps and n for the long one, a constant once
-// the march is unrolled, so the includer can leave out what a step never resolves) before
-// including this file.
+// `lengthM` of the path: it may filter away detail finer than that; `part` is
+// CLOUD_LIGHT_PART_NEAR for the short steps that may resolve the detail noise and
+// CLOUD_LIGHT_PART_FAR for the others, a constant in each loop below so the includer can
+// leave out the reads a far sample never needs) before including this file.
 // Its C++ twin, lightMarchDensity in engine/clouds/cloud_math.h, takes the density as a callable.
 #ifndef SKY_CLOUD_LIGHT_MARCH_GLSL
 #define SKY_CLOUD_LIGHT_MARCH_GLSL
 #include "cloud_lighting.glsl"
 #include "cloud_light_march_shared.h"
+#include "geo.glsl"
 
-// Defined by the includer (declared here so this file stands on its own).
-float cloudDensityForLight(vec3 p, float lengthM, int step);
+// One light march: everything about the path from a cloud sample toward a light that the
+// march and the includer's density need, passed along instead of kept in globals.
+struct CloudLightPath {
+  vec3 origin;       // the cloud sample (ENU, m)
+  vec3 direction;    // unit, toward the light
+  LatLonLine line;   // latitudes and longitudes along the path (geo.glsl)
+  float footprintM;  // what the sample the light is marched for resolves (its pixel's width)
+  float offset;      // [0, 1): where each sample sits inside its step (0.5: the midpoint)
+  float distanceM;   // the short steps' total length (clouds.light_distance_m)
+  int steps;         // short steps, each twice the one before (clouds.light_steps)
+  int split;         // samples per short step (clouds.light_split)
+  int nearSteps;     // the first nearSteps short steps are CLOUD_LIGHT_PART_NEAR
+  float longEndM;    // the long step runs over [distanceM, longEndM]
+  int longParts;     // in this many equal parts, each sampled once
+};
 
-// Lu (24)'s ds: the density accumulated from p toward the light L (unit) in density x metres,
-// by the midpoint rule over the n short steps covering [0, distance] (lightStepLength) and the
-// one long step over [distance, 5 distance] (lightLongStepDistance) in CLOUD_LIGHT_LONG_SAMPLES
-// parts. Exact for densities linear along the ray; a density edge costs at most the length of
-// the step it falls in.
-// `offset` in [0, 1) places each sample inside its step (0.5: the midpoint); a caller that
-// varies it from sample to sample turns the pattern of a fixed placement into fine noise.
-float lightMarchDensity(vec3 p, vec3 L, float distance, int n, float offset) {
-  float ds = 0.0;
-  for (int i = 0; i < n; ++i) {
-    float start = lightStepStart(i, n, distance);
-    float len = lightStepLength(i, n, distance);
-    ds += cloudDensityForLight(p + L * (start + offset * len), len, i) * len;
-  }
-  // The long step in CLOUD_LIGHT_LONG_SAMPLES equal parts (1: its middle alone, as Schneider's
-  // one far sample), each standing for its part.
-  float part = lightLongStepLength(distance) / float(CLOUD_LIGHT_LONG_SAMPLES);
-  for (int j = 0; j < CLOUD_LIGHT_LONG_SAMPLES; ++j) {
-    float at = CLOUD_LIGHT_LONG_SAMPLES == 1 ? lightLongStepDistance(distance)
-                                             : distance + (float(j) + offset) * part;
-    ds += cloudDensityForLight(p + L * at, part, n) * part;
-  }
-  return ds;
+#define CLOUD_LIGHT_PART_NEAR 0
+#define CLOUD_LIGHT_PART_FAR 1
+
+// Defined by the includer, after this file.
+float cloudDensityForLight(CloudLightPath path, vec3 p, float lengthM, int part);
+
+// The long step's parts: as many as it takes to keep each at most partM long (at most
+// CLOUD_LIGHT_MAX_LONG_PARTS), none when the long step is empty. A long step whose parts are
+// longer than the clouds sees a random draw of their optical depth, and a noisy optical depth
+// brightens on average (the mean of exp(-tau) exceeds exp(-mean tau)): under a low sun, whose
+// path runs through the layer for kilometres, four 1.2 km parts left sunset clouds 6-9 dB off
+// the reference march (docs/clouds.md, "Light march").
+int cloudLightLongParts(float distanceM, float longEndM, float partM) {
+  float len = longEndM - distanceM;
+  if (len <= 0.0) return 0;
+  return clamp(int(ceil(len / partM)), 1, CLOUD_LIGHT_MAX_LONG_PARTS);
 }
 
-// The first `k` of the n short steps of lightMarchDensity alone, [0, lightStepStart(k)]:
-// the part near the point, where the cloud's fine structure shadows itself, that a caller
-// reading the rest from the light volume (cloud_light_volume.glsl) marches itself. Each step
-// split `split` ways as in lightMarchDensityRefined (1: one sample a step); a sub-step may
-// resolve noise its whole step cannot, so a split march tells the includer step 0.
-float lightMarchDensityNear(vec3 p, vec3 L, float distance, int n, int k, int split,
-                            float offset) {
+// Short steps first .. last - 1, each split path.split ways, every sample standing for its
+// sub-step, tagged `part`.
+float lightMarchShortSteps(CloudLightPath path, int first, int last, int part) {
   float ds = 0.0;
-  for (int i = 0; i < k; ++i) {
-    float start = lightStepStart(i, n, distance);
-    float len = lightStepLength(i, n, distance) / float(split);
-    for (int j = 0; j < split; ++j)
-      ds += cloudDensityForLight(p + L * (start + (float(j) + offset) * len), len,
-                                 split > 1 ? 0 : i) *
+  for (int i = first; i < last; ++i) {
+    float start = lightStepStart(i, path.steps, path.distanceM);
+    float len = lightStepLength(i, path.steps, path.distanceM) / float(path.split);
+    for (int j = 0; j < path.split; ++j)
+      ds += cloudDensityForLight(path,
+                                 path.origin + path.direction * (start + (float(j) + path.offset) * len),
+                                 len, part) *
             len;
   }
   return ds;
 }
 
-// lightMarchDensity refined: each short step split `split` ways and the long one twice as
-// many, every sample standing for its sub-step. The reference march takes it at every view
-// sample; the light volume once per texel.
-float lightMarchDensityRefined(vec3 p, vec3 L, float distance, int n, int split, float offset) {
-  float ds = lightMarchDensityNear(p, L, distance, n, n, split, offset);
-  int parts = 2 * split;
-  float len = lightLongStepLength(distance) / float(parts);
-  for (int j = 0; j < parts; ++j)
-    ds += cloudDensityForLight(p + L * (distance + (float(j) + offset) * len), len, 0) * len;
+// The long step over [distanceM, longEndM] in longParts equal parts.
+float lightMarchLongStep(CloudLightPath path) {
+  float ds = 0.0;
+  float len = (path.longEndM - path.distanceM) / float(max(path.longParts, 1));
+  for (int j = 0; j < path.longParts; ++j)
+    ds += cloudDensityForLight(path,
+                               path.origin + path.direction * (path.distanceM + (float(j) + path.offset) * len),
+                               len, CLOUD_LIGHT_PART_FAR) *
+          len;
   return ds;
+}
+
+// Lu (24)'s ds: the density accumulated from path.origin toward the light in density x
+// metres, by the midpoint rule (each sample at path.offset of its step) over the short steps
+// covering [0, distanceM] (lightStepLength) and the long step over [distanceM, longEndM].
+// Exact for densities linear along the path; a density edge costs at most the length of the
+// (sub-)step it falls in.
+float lightMarchDensity(CloudLightPath path) {
+  int near = clamp(path.nearSteps, 0, path.steps);
+  return lightMarchShortSteps(path, 0, near, CLOUD_LIGHT_PART_NEAR) +
+         lightMarchShortSteps(path, near, path.steps, CLOUD_LIGHT_PART_FAR) +
+         lightMarchLongStep(path);
+}
+
+// The first `k` short steps alone, [0, lightStepStart(k)]: the part near the point, where the
+// cloud's fine structure shadows itself, that a caller reading the rest from the light volume
+// (cloud_light_volume.glsl) marches itself.
+float lightMarchDensityNear(CloudLightPath path, int k) {
+  int near = clamp(path.nearSteps, 0, k);
+  return lightMarchShortSteps(path, 0, near, CLOUD_LIGHT_PART_NEAR) +
+         lightMarchShortSteps(path, near, k, CLOUD_LIGHT_PART_FAR);
+}
+
+// How many density samples lightMarchDensity takes (the cost heat map counts them).
+int lightMarchSamples(CloudLightPath path) {
+  return path.steps * path.split + path.longParts;
 }
 
 #endif

@@ -35,10 +35,8 @@ struct CloudLightVolume {
 
   float shiftEastM;   // how far the clouds drifted east since the volume was made (m)
   float shiftNorthM;  // and north
-  // 1: the raymarch reads the volume (clouds.light volume), the shader variant
-  // CLOUD_LIGHT_VOLUME; the shader never reads it, CloudPipelines picks the pipeline by it.
-  uint enabled;
-  float unused;
+  float padding0;     // std140: the rest of the row
+  float padding1;
 };
 
 SKY_SHARED_END

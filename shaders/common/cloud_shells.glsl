@@ -1,8 +1,11 @@
-// Where a view ray meets the cloud shells, for the passes that compare rays by it (the
-// temporal reuse's and the upsampling's guide, cloud_temporal.comp and cloud_upsample.comp).
-// Written so nothing cancels in float: a sphere is met at t^2 + 2 b t + k = 0 with
-// k = (h - s)(2 R + h + s), the camera at altitude h and the sphere at altitude s above a
-// planet of radius R.
+// Where a ray meets the spherical cloud shells: the view march's intervals through them
+// (volumetric_clouds.comp), where the temporal reuse's and the upsampling's rays reach them
+// (cloud_temporal.comp, cloud_upsample.comp), where a light path or the shadow map's rays
+// leave them (the light march, cloud_shadow.comp). One formulation for every caller. A ray is
+// given by the altitude h of its start above a planet of radius R and mu, the cosine of its
+// zenith angle there; a sphere of altitude s is met at t^2 + 2 b t + k = 0 with b = (R + h) mu
+// and k = (h - s)(2 R + h + s), written so nothing cancels in float (Earth-sized radii squared
+// would leave metres of error).
 #ifndef SKY_CLOUD_SHELLS_GLSL
 #define SKY_CLOUD_SHELLS_GLSL
 
@@ -17,23 +20,56 @@ bool cloudShellRoots(float b, float k, out vec2 t) {
   return true;
 }
 
-// The distance along unit ray d (ENU at the camera) at which it first lies between the shells'
-// altitudes base and top before meeting the ground; 0 inside them, -1 when it never does.
-float cloudShellEntry(float R, float h, float base, float top, vec3 d) {
-  if (h >= base && h <= top) return 0.0;
-  float b = (R + h) * d.z;
-  vec2 g;
-  float ground = cloudShellRoots(b, h * (2.0 * R + h), g) && g.x > 0.0 ? g.x : 1e30;
-  vec2 r;
-  float t;
-  if (h < base) {
-    cloudShellRoots(b, (h - base) * (2.0 * R + h + base), r);  // inside it: leave upward
-    t = r.y;
-  } else {
-    if (!cloudShellRoots(b, (h - top) * (2.0 * R + h + top), r) || r.x < 0.0) return -1.0;
-    t = r.x;
+// Where the ray (start at altitude h, zenith cosine mu) meets the sphere at altitude s.
+bool cloudSphereRoots(float R, float h, float mu, float s, out vec2 t) {
+  return cloudShellRoots((R + h) * mu, (h - s) * (2.0 * R + h + s), t);
+}
+
+// The intervals along the ray, before it meets the ground (altitude 0), where it lies between
+// the altitudes base and top: up to two (a ray from inside the shell that dips below its base
+// and comes back up has two). Returns the count; intervals in iv[0 .. count - 1] as (enter,
+// exit), enter >= 0.
+int cloudShellIntervals(float R, float h, float mu, float base, float top, out vec2 iv[2]) {
+  iv[0] = vec2(0.0);
+  iv[1] = vec2(0.0);
+  // The top: the ray is below it over [t0, t1].
+  vec2 outer;
+  if (!cloudSphereRoots(R, h, mu, top, outer) || outer.y <= 0.0) return 0;
+  float t0 = max(outer.x, 0.0), t1 = outer.y;
+  // The ground ends the ray (a ray heading down from on, or in float just above, the ground
+  // meets it at once).
+  vec2 ground;
+  if (cloudSphereRoots(R, h, mu, 0.0, ground) && (ground.x > 0.0 || mu < 0.0))
+    t1 = min(t1, max(ground.x, 0.0));
+  // The base: cut the part below it, [a0, a1], out of [t0, t1].
+  vec2 inner;
+  if (!cloudSphereRoots(R, h, mu, base, inner)) {
+    iv[0] = vec2(t0, t1);
+    return t1 > t0 ? 1 : 0;
   }
-  return t < ground ? t : -1.0;
+  int n = 0;
+  if (inner.x > t0) iv[n++] = vec2(t0, min(inner.x, t1));
+  if (inner.y < t1 && inner.y > t0) iv[n++] = vec2(max(inner.y, t0), t1);
+  if (inner.y <= t0 || inner.x >= t1) {  // the part below the base lies outside [t0, t1]
+    n = 0;
+    iv[n++] = vec2(t0, t1);
+  }
+  return n;
+}
+
+// The distance along the ray at which it first lies between the altitudes base and top before
+// meeting the ground; 0 inside them, -1 when it never does.
+float cloudShellEntry(float R, float h, float base, float top, vec3 d) {
+  vec2 iv[2];
+  return cloudShellIntervals(R, h, d.z, base, top, iv) > 0 ? iv[0].x : -1.0;
+}
+
+// From a point between the altitudes base and top, the distance along the ray to where it
+// leaves them: through the top, or through the base when it heads down far enough to meet it.
+float cloudShellExit(float R, float h, float mu, float base, float top) {
+  vec2 t;
+  if (mu < 0.0 && cloudSphereRoots(R, h, mu, base, t) && t.y > 0.0) return max(t.x, 0.0);
+  return cloudSphereRoots(R, h, mu, top, t) ? max(t.y, 0.0) : 0.0;
 }
 
 // How alike two rays are for the clouds they see, from where they reach the shells (e, -1 if

@@ -73,6 +73,32 @@ vec3 geoPosition(GeoFrame f, float latDeg, float lonDeg, float altitudeM) {
   return vec3(r * l.x, r * l.y, r * drop + (altitudeM - f.origin.z));
 }
 
+// Latitude and longitude along a straight line, taken linear in the distance through the
+// exact values at its origin and `lengthM` metres on. The line's ground track bends away
+// from that by under s^2 / 2R: 3 m at the cloud light march's 6 km reach, where the weather
+// map's texels are kilometres. The light march takes its samples' latitudes and longitudes
+// from here: latLonAltitude's two arctangents in every light sample were 5 % of the cloud pass.
+struct LatLonLine {
+  vec3 origin;
+  vec3 direction;  // unit
+  vec2 latLon;     // at the origin (degrees)
+  vec2 rate;       // change per metre along the line
+};
+
+LatLonLine latLonLine(GeoFrame f, vec3 origin, vec2 latLonAtOrigin, vec3 direction,
+                      float lengthM) {
+  vec2 change = latLonAltitude(f, origin + direction * lengthM).xy - latLonAtOrigin;
+  change.y -= 360.0 * round(change.y / 360.0);  // across 180 E the short way
+  return LatLonLine(origin, direction, latLonAtOrigin, change / lengthM);
+}
+
+// (latitude, longitude, altitude) of a point p on the line; the altitude is exact (the cloud
+// layers and their height profiles need it to the metre).
+vec3 latLonAltitudeOn(GeoFrame f, LatLonLine line, vec3 p) {
+  float along = dot(p - line.origin, line.direction);
+  return vec3(line.latLon + line.rate * along, geoAltitude(f, p));
+}
+
 // The longitude among lon + k 360 nearest the region's centre: a region may run past 180E.
 float geoRegionLongitude(GeoRegion r, float lonDeg) {
   float centre = 0.5 * (r.bounds.z + r.bounds.w);

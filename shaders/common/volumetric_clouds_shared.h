@@ -24,16 +24,6 @@
 // Density slice (the debug output "cloud_density_slice"): same params, its own image.
 #define CLOUD_SLICE_BINDING_IMAGE 2
 
-// CloudParams.frameKind: how rays start.
-#define CLOUD_FRAME_OBSERVER 0u  // from the camera along the view's rays
-#define CLOUD_FRAME_TOPDOWN 1u   // straight down from above the clouds over each pixel's lat/lon
-// CloudParams.phaseKind
-#define CLOUD_PHASE_HG 0u
-#define CLOUD_PHASE_DUAL_LOBE 1u
-// CloudParams.model
-#define CLOUD_MODEL_LU2023 0u
-#define CLOUD_MODEL_TANG2019 1u
-
 // Calibrated coverage: thresholds for cover i / (CLOUD_COVERAGE_LUT_SIZE - 1), for each layer
 // (low, mid) and each type key (0 stratiform, 0.5 cellular, 1 convective).
 #define CLOUD_COVERAGE_LUT_SIZE 64
@@ -49,18 +39,7 @@ struct CloudParams {
   GeoFrame geo;         // the camera's frame (top-down: the region's centre, above the clouds)
   GeoRegion region;     // the weather map's bounds
 
-  // The shader variant (compile-time constants in the shader, CloudPipelines picks the
-  // pipeline from these; the shader never reads them).
-  uint frameKind;           // CLOUD_FRAME_*
-  uint lightSteps;          // short steps toward each light
-  uint octaves;             // multiple-scattering octaves
-  uint phaseKind;           // CLOUD_PHASE_*
-  uint energyConserving;    // 1: integrate each step exactly (Hillaire 2016)
-  uint calibratedCoverage;  // 1: the calibrated threshold; 0: the paper's 1 - CMc
-  uint model;               // CLOUD_MODEL_*
-  uint maxSteps;            // density samples per view ray
-
-  uint frameIndex;           // the frame's number, to vary the jitter from frame to frame
+  uint frameIndex;           // the frame's jitter seed, so successive frames differ
   float jitter;              // start offset along the view ray, 0..1 of a step
   float transmittanceCutoff; // a ray stops below this transmittance
   float anyCover;            // 1 if the map has cover in either layer, else 0
@@ -89,28 +68,24 @@ struct CloudParams {
 
   float sunMarched;   // 1 when the sun is marched toward (it gives a visible share), else 0
   float moonMarched;  // the same for the moon
-  float keyIsSun;     // 1: the key light is the sun, 0: the moon (reports and tests)
   float sliceLengthM; // density slice: how far ahead it reaches (m)
-
-  float sliceTopM;       // density slice: its top altitude (m)
-  float weatherTexelsU;  // the weather map's texel counts
-  float weatherTexelsV;
-  float multipleScattering;  // strength of the diffusion term (cloudDiffuseInScatter), 0: off
+  float sliceTopM;    // density slice: its top altitude (m)
 
   // Stratocumulus rolls (cloudRollWeight): the shape noise is looked up with a point's
   // coordinate along rollAxis shortened by this share, 1 - 1 / (how much longer than wide).
   float rollCompression;
-  // 1: some low cloud of the map has rolls: the shader variant with their second shape
-  // lookup (CLOUD_ROLLS; CloudPipelines), which costs a fifth of the pass on lavapipe even
-  // where no sample reads it (its branches run masked).
-  uint rolls;
-  // How many of the light march's steps (0 .. n - 1 short, n the long one) may resolve the
-  // detail noise, and the shape's outline: a light sample's footprint is at least a quarter
-  // of its step, and noiseKeep resolves nothing from half a cell. The shader variant leaves
-  // the noise out of the others (CLOUD_LIGHT_DETAIL_STEPS, CLOUD_LIGHT_NOISE_STEPS), which on
-  // lavapipe, running both sides of every branch, no test at run time can.
-  uint lightDetailSteps;
-  uint lightNoiseSteps;
+  float multipleScattering;  // strength of the diffusion term (cloudDiffuseInScatter), 0: off
+  uint maxSteps;             // density samples per view ray
+  uint octaves;              // multiple-scattering octaves (Wrenninge)
+
+  // The light march (cloud_light_march.glsl): short steps toward each light, samples per short
+  // step, how many of the first short steps may resolve the detail noise (the others and the
+  // long step do not read it: a light sample's footprint is at least a quarter of its step,
+  // and noiseKeep resolves nothing from half a cell), and the longest part of the long step.
+  uint lightSteps;
+  uint lightSplit;
+  uint lightNearSteps;
+  float lightLongPartM;
 
   // Which pixels this dispatch marches (temporal reuse, passes/cloud_temporal): invocation
   // (x, y) marches pixel (x, y) * marchBlock + marchOffset of the view, and the pass's images
@@ -118,18 +93,8 @@ struct CloudParams {
   uint marchBlock;
   uint marchOffsetX;
   uint marchOffsetY;
-  // 1: clouds.quality reference, the shader variant CLOUD_REFERENCE (small fixed steps, no
-  // early exit, no empty-space skipping, a uniform light march of CLOUD_REFERENCE_LIGHT_*
-  // steps). The shader never reads it; CloudPipelines picks the pipeline from it.
-  uint reference;
-
-  // Samples per short light step (clouds.light_split): 1, the march of lightMarchDensity; more,
-  // lightMarchDensityRefined with each short step split this many ways and the long one twice
-  // as many. The shader variant CLOUD_LIGHT_SPLIT; the shader never reads it.
-  uint lightSplit;
-  uint unused0;
-  uint unused1;
-  uint unused2;
+  // Marches per pixel, averaged (clouds.samples): 1 is the plain march; more converge a still.
+  uint samplesPerPixel;
 
   // The camera in each noise texture's Earth-fixed frame (ECEF axes, m, wind drift taken
   // off), reduced by whole repeats of that texture so floats keep their precision.
@@ -139,7 +104,6 @@ struct CloudParams {
   vec4 rollOrigin;    // xyz: shapeOrigin in the rolls' frame (shortened along rollAxis), reduced
                       // by whole repeats likewise
   vec4 rollAxis;      // xyz: unit ECEF direction the stratocumulus rolls run along (the wind's)
-  vec4 keyDirection;  // xyz: unit direction to the brighter light at the clouds (ENU)
   vec4 sunDirection;  // xyz: unit direction to the sun (ENU)
   vec4 moonDirection; // xyz: to the moon
   vec4 sunAtLow;      // rgb: the sun's illuminance at the low layer's middle altitude
@@ -161,7 +125,7 @@ SKY_SHARED_END
 
 #ifdef __cplusplus
 static_assert(sizeof(sky::shared::CloudParams) ==
-                  64 + 64 + 16 + 13 * 16 + 16 * 16 + 32 + CLOUD_COVERAGE_LUT_VEC4S * 16,
+                  64 + 64 + 16 + 10 * 16 + 15 * 16 + 32 + CLOUD_COVERAGE_LUT_VEC4S * 16,
               "std140 layout of CloudParams");
 #endif
 #endif

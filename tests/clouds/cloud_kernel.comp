@@ -6,17 +6,18 @@
 // The row layout is KernelRow in the test.
 #include <common/cloud_density.glsl>
 
+#include <common/cloud_light_march.glsl>
+
 // The light march's density (cloud_light_march.glsl asks the includer for it): a test field
 // chosen per query. 0: constant 0.7; 1: linear ramp 0.3 + 0.0005 z; 2: a slab of 1 below z =
 // gSlabTop and 0 above.
 int gDensityKind = 0;
 float gSlabTop = 0.0;
-float cloudDensityForLight(vec3 p, float lengthM, int step) {
+float cloudDensityForLight(CloudLightPath path, vec3 p, float lengthM, int part) {
   if (gDensityKind == 0) return 0.7;
   if (gDensityKind == 1) return 0.3 + 0.0005 * p.z;
   return p.z < gSlabTop ? 1.0 : 0.0;
 }
-#include <common/cloud_light_march.glsl>
 
 #define KERNEL_QUERIES 256
 #define KERNEL_GROUP 64
@@ -104,7 +105,11 @@ void main() {
   float march[3];
   for (int k = 0; k < 3; ++k) {
     gDensityKind = k;
-    march[k] = lightMarchDensity(p, L, distance, n, 0.5);
+    // The schedule of the light volume and the tests before the long step was cut at the
+    // shells: split 1, the long step over [distance, 5 distance] in three parts.
+    LatLonLine line = LatLonLine(p, L, vec2(0.0), vec2(0.0));
+    march[k] = lightMarchDensity(CloudLightPath(p, L, line, 0.0, 0.5, distance, n, 1, n,
+                                                lightMarchReach(distance), 3));
   }
   put(17, vec4(march[0], march[1], march[2], gSlabTop));
   put(18, vec4(L, distance));

@@ -354,8 +354,14 @@ TEST_F(CloudKernelTest, LightMarchMatchesAnalyticIntegrals) {
     worstSlab = std::max(worstSlab, std::abs(slab - edge) / reach);
     // And the twin, on the same densities.
     const auto twin = [&](std::function<float(glm::vec3)> density) {
-      return lightMarchDensity(p, L, distance, n, 0.5f,
-                               [&](glm::vec3 q, float, int) { return density(q); });
+      LightPath path;
+      path.origin = p;
+      path.direction = L;
+      path.distance = distance;
+      path.steps = path.nearSteps = n;
+      path.longEnd = lightMarchReach(distance);
+      path.longParts = 3;
+      return lightMarchDensity(path, [&](glm::vec3 q, float, int) { return density(q); });
     };
     EXPECT_NEAR(at(kMarch, i, 0), twin([](glm::vec3) { return 0.7f; }), 1e-5 * constant);
     EXPECT_NEAR(at(kMarch, i, 1), twin([](glm::vec3 q) { return 0.3f + 0.0005f * q.z; }),

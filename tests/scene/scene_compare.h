@@ -131,6 +131,7 @@ inline void expectSameScene(const Scene& a, const Scene& b) {
   EXPECT_EQ(ac.stepM, bc.stepM);
   EXPECT_EQ(ac.stepGrowth, bc.stepGrowth);
   EXPECT_EQ(ac.maxSteps, bc.maxSteps);
+  EXPECT_EQ(ac.samples, bc.samples);
   EXPECT_EQ(ac.lightSteps, bc.lightSteps);
   EXPECT_EQ(ac.lightSplit, bc.lightSplit);
   EXPECT_EQ(ac.lightDistanceM, bc.lightDistanceM);
@@ -259,6 +260,7 @@ inline Scene unusualScene() {
   s.clouds.stepM = 10000.0;
   s.clouds.stepGrowth = 0.1 + 0.2;
   s.clouds.maxSteps = 4096;
+  s.clouds.samples = 9;
   s.clouds.lightSteps = 16;
   s.clouds.lightDistanceM = 1.5;
   s.clouds.transmittanceCutoff = 0.0;

@@ -154,9 +154,9 @@ TEST(SceneRoundTrip, UnusualSceneDiffersFromTheDefaultEverywhere) {
   // numbers counted before, and camera_region_km once; then atmosphere.aerosols (the ground
   // albedo moved from atmosphere to ground with its three channels) and output.exposure,
   // exposure_adaptation_s and night_look; then clouds.quality, clouds.light and
-  // clouds.temporal's three.
+  // clouds.temporal's three; then clouds.samples.
   EXPECT_EQ(failuresOf([] { expectSameScene(test::unusualScene(), Scene()); }),
-            66 + 1 + 24 + 13 + 2 + 9 + 2 + 1 + 4 - 4 + 1 + 1 + 1 + 3 + 5);
+            66 + 1 + 24 + 13 + 2 + 9 + 2 + 1 + 4 - 4 + 1 + 1 + 1 + 3 + 5 + 1);
   const std::vector<PaletteKey> palette = test::unusualScene().lighting.palette;
   for (size_t i = 0; i < palette.size(); ++i) {
     const PaletteKey& k = palette[i];
@@ -323,6 +323,7 @@ TEST(SceneRoundTrip, PrintedYamlLooksLikeAScene) {
             "  step_m: 20\n"
             "  step_growth: 0.002\n"
             "  max_steps: 512\n"
+            "  samples: 1\n"
             "  light_steps: 5\n"
             "  light_split: 2\n"
             "  light_distance_m: 1200\n"
@@ -508,6 +509,7 @@ TEST(SceneRoundTrip, PrintedJsonLooksLikeAScene) {
             "    \"step_m\": 20,\n"
             "    \"step_growth\": 0.002,\n"
             "    \"max_steps\": 512,\n"
+            "    \"samples\": 1,\n"
             "    \"light_steps\": 5,\n"
             "    \"light_split\": 2,\n"
             "    \"light_distance_m\": 1200,\n"

@@ -99,9 +99,9 @@ TEST_F(CloudLightingTest, AtNightTheMoonIsTheKeyLight) {
   const shared::ViewState view = makeViewState(scene.camera, 64, 36);
   const shared::CloudParams night =
       cloudParams(volumetricCloudsSettings(scene), lighting, scene.time.start, view,
-                  glm::vec2(0.0f, 0.5f), glm::uvec2(256), {}, {}, false);
-  EXPECT_EQ(night.keyIsSun, 0.0f) << "the moon";
-  EXPECT_NEAR(glm::dot(glm::vec3(night.keyDirection), glm::vec3(lighting.moon.direction)), 1.0f,
+                  glm::vec2(0.0f, 0.5f), {}, {});
+  EXPECT_FALSE(cloudKeyLight(night).isSun) << "the moon";
+  EXPECT_NEAR(glm::dot(cloudKeyLight(night).direction, glm::vec3(lighting.moon.direction)), 1.0f,
               1e-6f);
   EXPECT_EQ(night.sunMarched, 0.0f) << "the sun, 64 degrees down, is not marched";
   EXPECT_EQ(night.moonMarched, 1.0f) << "the moon is";
@@ -110,8 +110,8 @@ TEST_F(CloudLightingTest, AtNightTheMoonIsTheKeyLight) {
   const Scene noon = cloudScene("cumulus_noon");
   const LightingState day = computeLighting(noon, noon.time.start);
   const shared::CloudParams p = cloudParams(volumetricCloudsSettings(noon), day, noon.time.start,
-                                            view, glm::vec2(0.5f, 0.0f), glm::uvec2(256), {}, {}, false);
-  EXPECT_EQ(p.keyIsSun, 1.0f) << "by day the sun";
+                                            view, glm::vec2(0.5f, 0.0f), {}, {});
+  EXPECT_TRUE(cloudKeyLight(p).isSun) << "by day the sun";
 
   const RenderedFrame frame = render(scene);
   EXPECT_EQ(frame.lighting.key, "moon");

@@ -392,26 +392,28 @@ namespace {
 // different altitudes, over different regions (or none), and the wind moves it by exactly
 // speed x time. Compared modulo each texture's repeat, since the textures tile.
 TEST(CloudLightVariant, OnlyStepsThatResolveNoNoiseLeaveItOut) {
-  // A light sample's footprint is at least a quarter of its step and a noise resolves nothing
-  // from half a cell, so a step of 4 x half a cell or longer never reads it (the shader
-  // variant CLOUD_LIGHT_DETAIL_STEPS). The clouds' outline is read by every step: the light's
-  // footprint is capped to resolve it (lightFootprint), so CLOUD_LIGHT_NOISE_STEPS is all.
+  // A light sample's footprint is at least a quarter of its (sub-)step and a noise resolves
+  // nothing from half a cell, so a sample standing for 4 x half a cell or more never reads the
+  // detail (CloudParams.lightNearSteps, a uniform: no pipeline per setting). The clouds'
+  // outline is read by every step: the light's footprint is capped to resolve it.
   const auto steps = [](std::vector<std::string> overrides) {
     const Scene s = cloudScene("cumulus_noon", std::move(overrides));
     const shared::ViewState view = makeViewState(s.camera, 8, 8);
     const shared::CloudParams p =
         cloudParams(volumetricCloudsSettings(s), computeLighting(s, s.time.start), s.time.start,
-                    view, glm::vec2(0.5f, 0.0f), glm::uvec2(256), {}, {}, false);
-    return std::pair{p.lightDetailSteps, p.lightNoiseSteps};
+                    view, glm::vec2(0.5f, 0.0f), {}, {});
+    return p.lightNearSteps;
   };
-  // The defaults: steps of 38.7 ... 619.4 m and a long one of 4.8 km in three parts of 1.6 km;
-  // detail cells of 200 m (lu2023: 2 a 0.4 km repeat). The fifth short step (619.4 m) reads no
-  // detail, nor does the long one.
-  EXPECT_EQ(steps({}), (std::pair{4u, 6u}));
-  // A 100 m march (long step 400 m in parts of 133 m) may resolve everything.
-  EXPECT_EQ(steps({"clouds.light_distance_m=100"}), (std::pair{6u, 6u}));
-  // Tang's detail has 4 cells a repeat (100 m): from the fourth short step (309.7 m) on none.
-  EXPECT_EQ(steps({"clouds.model=tang2019"}), (std::pair{3u, 6u}));
+  // Detail cells of 200 m (lu2023: 2 a 0.4 km repeat). Split 1: steps of 38.7 ... 619.4 m, the
+  // fifth reads no detail. The default split 2 halves them: all five may.
+  EXPECT_EQ(steps({"clouds.light_split=1"}), 4u);
+  EXPECT_EQ(steps({}), 5u);
+  // Tang's detail has 4 cells a repeat (100 m): split 1 from the fourth short step (309.7 m) on
+  // none, split 2 from the fifth.
+  EXPECT_EQ(steps({"clouds.model=tang2019", "clouds.light_split=1"}), 3u);
+  EXPECT_EQ(steps({"clouds.model=tang2019"}), 4u);
+  // The reference reads everything.
+  EXPECT_EQ(steps({"clouds.quality=reference", "clouds.light_split=1"}), 5u);
 }
 
 TEST(CloudNoiseFrame, TheNoiseStaysWithTheGround) {
@@ -424,7 +426,7 @@ TEST(CloudNoiseFrame, TheNoiseStaysWithTheGround) {
   const shared::ViewState view = makeViewState(a.camera, 8, 8);
   const auto params = [&](const Scene& s, const IsoTime& t) {
     return cloudParams(volumetricCloudsSettings(s), computeLighting(s, t), t, view,
-                       glm::vec2(0.5f, 0.0f), glm::uvec2(256), {}, {}, false);
+                       glm::vec2(0.5f, 0.0f), {}, {});
   };
   const double shapeM = a.clouds.shapeScaleKm * 1000.0, detailM = a.clouds.detailScaleKm * 1000.0;
   const glm::dvec3 point = ecefFromLatLonAltitude(47.38, 8.53, 1200.0);
