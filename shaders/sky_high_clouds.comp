@@ -52,19 +52,7 @@ layout(binding = SKY_HIGH_CLOUDS_BINDING_SKY_VIEW_MOON) uniform sampler2D skyVie
 #endif
 #endif
 
-// The clear sky in direction V, without discs or stars (the composite adds those).
-vec3 skyRadiance(LightingState L, vec3 V) {
-#if SKY_PHYSICAL_SKY
-  // Hillaire 2020: the sky-view LUTs already carry each light's illuminance.
-  vec3 sky = skyViewRadiance(atmosphere, skyViewSunLut, V, L.sun.direction.xyz);
-#if LIGHTING_MOON
-  sky += skyViewRadiance(atmosphere, skyViewMoonLut, V, L.moon.direction.xyz);
-#endif
-  return sky;
-#else
-  return clearSky(L, V);  // Kozlov 3.1 around the sun and the moon
-#endif
-}
+#include "common/clear_sky.glsl"
 
 // Distance along V from the camera (at height cameraR above the centre, on the z axis) to the
 // sphere of radius `radius`, the nearest hit ahead, or -1 if none.
@@ -114,7 +102,7 @@ void main() {
   if (any(greaterThanEqual(p, params.view.size.xy))) return;
   vec3 V = viewDirection(params.view, vec2(p) + 0.5);
   LightingState L = lighting;
-  vec3 sky = skyRadiance(L, V);
+  vec3 sky = frameSkyRadiance(L, V);
   imageStore(skyImage, ivec2(p), vec4(sky, 1.0));
 
   vec4 clouds = vec4(0.0);

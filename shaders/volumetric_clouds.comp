@@ -20,6 +20,7 @@
 #include "common/cloud_field.glsl"
 #include "common/cloud_lighting.glsl"
 #include "common/cloud_shells.glsl"
+#include "common/cloud_ambient_shared.h"
 
 // The variant's two switches of this shader (the rest: cloud_field.glsl). clouds.quality
 // reference: small fixed steps, no early exit, no empty-space skipping, no light reused along
@@ -42,6 +43,8 @@ layout(local_size_x = VOLUMETRIC_CLOUDS_GROUP_X, local_size_y = VOLUMETRIC_CLOUD
 layout(binding = VOLUMETRIC_CLOUDS_BINDING_CLOUDS, rgba32f) uniform writeonly image2D cloudImage;
 layout(binding = VOLUMETRIC_CLOUDS_BINDING_DEPTH, rg32f) uniform writeonly image2D depthImage;
 layout(binding = VOLUMETRIC_CLOUDS_BINDING_STEPS, rgba16f) uniform writeonly image2D stepImage;
+// The sky's and the ground's light around the clouds (passes/cloud_ambient).
+layout(binding = VOLUMETRIC_CLOUDS_BINDING_AMBIENT, rgba32f) uniform readonly image2D ambientImage;
 
 // --- The light march ------------------------------------------------------------------------
 
@@ -165,14 +168,45 @@ vec3 cloudKeyLightScattering(vec3 d, int layer, float type, vec2 tau) {
   return S;
 }
 
+// The ambient light of a view ray (cloud_ambient_shared.h), the same at all its samples: the
+// sky's and the ground's light on a level surface (through the slab above and below a
+// sample) and on a surface facing back along the ray (through the face it entered by). From
+// the sky that is actually there, so a face turned from a low sun takes the darker, bluer sky
+// behind the camera.
+struct CloudRayAmbient {
+  vec3 skyAbove, skyFace, groundBelow, groundFace;
+};
+// The sky's light on a surface of unit normal n: the table bilinear in azimuth (wrapping) and
+// elevation.
+vec3 cloudSkyLight(vec3 n) {
+  float x = atan(n.y, n.x) * (float(CLOUD_AMBIENT_MAP_WIDTH) / (2.0 * VIEW_PI));
+  float y = (asin(clamp(n.z, -1.0, 1.0)) / VIEW_PI + 0.5) * float(CLOUD_AMBIENT_MAP_HEIGHT - 1);
+  float x0 = floor(x), y0 = min(floor(y), float(CLOUD_AMBIENT_MAP_HEIGHT - 2));
+  vec2 f = vec2(x - x0, y - y0);
+  int i0 = int(x0) & (CLOUD_AMBIENT_MAP_WIDTH - 1), i1 = (i0 + 1) & (CLOUD_AMBIENT_MAP_WIDTH - 1);
+  int j0 = int(y0);
+  vec3 a = mix(imageLoad(ambientImage, ivec2(i0, j0)).rgb, imageLoad(ambientImage, ivec2(i1, j0)).rgb, f.x);
+  vec3 b = mix(imageLoad(ambientImage, ivec2(i0, j0 + 1)).rgb,
+               imageLoad(ambientImage, ivec2(i1, j0 + 1)).rgb, f.x);
+  return mix(a, b, f.y);
+}
+// The ground's light on it: a uniform lower hemisphere.
+vec3 cloudGroundLight(vec3 n) {
+  return imageLoad(ambientImage, ivec2(0, CLOUD_AMBIENT_GROUND_ROW)).rgb *
+         clamp(0.5 - 0.5 * n.z, 0.0, 1.0);
+}
+CloudRayAmbient cloudRayAmbient(vec3 d) {
+  return CloudRayAmbient(cloudSkyLight(vec3(0.0, 0.0, 1.0)), cloudSkyLight(-d),
+                         cloudGroundLight(vec3(0.0, 0.0, -1.0)), cloudGroundLight(-d));
+}
+
 // The sky above and the ground below scattered toward the eye per unit of extinction (Tang's
 // slab ambient with diffusion); tauView: the optical depth along the view ray from where it
 // entered this cloud.
-vec3 cloudAmbientScattering(vec3 d, CloudSample s, float tauView) {
+vec3 cloudAmbientScattering(CloudRayAmbient a, CloudSample s, float tauView) {
   float sigmaT = params.extinction * s.density;
-  float viewDown = clamp(0.5 - 0.5 * d.z, 0.0, 1.0);
-  return cloudAmbientDiffuse(params.ambientTop.rgb, params.ambientBottom.rgb, sigmaT, s.hTop,
-                             s.hBottom, tauView, viewDown, meanCosine(), params.multipleScattering);
+  return cloudAmbientDiffuse(a.skyAbove, a.skyFace, a.groundBelow, a.groundFace, sigmaT, s.hTop,
+                             s.hBottom, tauView, meanCosine(), params.multipleScattering);
 }
 
 // --- Random numbers -------------------------------------------------------------------------
@@ -203,19 +237,22 @@ struct CloudRay {
   uvec2 pixel;     // the view's pixel, for the hashes
   uint seed;       // the frame's jitter seed, different for each of the pixel's marches
   float jitter;    // [0, 1): how far into its first step the march starts
+  CloudRayAmbient ambient;
 };
 
 // Sub-pixel position `pixel` (in the view's pixels) of the ray: the camera's, or for a
 // top-down frame straight down from above the clouds over that point of the region (row 0 the
 // north edge, column 0 the west edge, equal lat/lon spacing).
 CloudRay cloudViewRay(vec2 pixel, uvec2 id, uint seed, float jitter) {
-  CloudRay ray = CloudRay(vec3(0.0), viewDirection(params.view, pixel), id, seed, jitter);
+  vec3 d = viewDirection(params.view, pixel);
+  CloudRay ray = CloudRay(vec3(0.0), d, id, seed, jitter, cloudRayAmbient(d));
   if (CLOUD_TOPDOWN != 0) {
     vec2 uv = pixel / vec2(params.view.size.xy);
     vec4 b = params.region.bounds;
     ray.origin = geoPosition(params.geo, mix(b.y, b.x, uv.y), mix(b.z, b.w, uv.x),
                              params.topDownStartM);
     ray.direction = -geoUp(params.geo, ray.origin);
+    ray.ambient = cloudRayAmbient(vec3(0.0, 0.0, -1.0));
   }
   return ray;
 }
@@ -367,7 +404,7 @@ bool cloudSeek(CloudRay ray, float end, inout CloudSeek seek, inout CloudMarch m
 // of the sample before). Returns the in-scattered light per unit of extinction.
 vec3 cloudLightSample(CloudRay ray, CloudStep st, float tauView, inout CloudMarch m) {
   float sigmaT = params.extinction * st.s.density;
-  vec3 scattering = cloudAmbientScattering(ray.direction, st.s, tauView + 0.5 * sigmaT * st.dt);
+  vec3 scattering = cloudAmbientScattering(ray.ambient, st.s, tauView + 0.5 * sigmaT * st.dt);
   bool tail = CLOUD_REFERENCE == 0 && tauView > 0.0 && st.s.layer == m.lightLayer &&
               m.transmittance < CLOUD_LIGHT_REUSE_T;
   if (!tail) {

@@ -88,17 +88,18 @@ float cloudDiffusionLeak(float type) {
   return 1.0f + 2.0f * std::clamp(2.0f * type - 1.0f, 0.0f, 1.0f);
 }
 
-glm::vec3 cloudAmbientDiffuse(glm::vec3 top, glm::vec3 bottom, float sigmaT, float hTopM,
-                              float hBottomM, float tauView, float viewDown, float g,
-                              float strength) {
+glm::vec3 cloudAmbientDiffuse(glm::vec3 skyAbove, glm::vec3 skyFace, glm::vec3 groundBelow,
+                              glm::vec3 groundFace, float sigmaT, float hTopM, float hBottomM,
+                              float tauView, float g, float strength) {
   const float k = std::clamp(strength, 0.0f, 1.0f);
   const float throughView = diffuseTransmittance(tauView, g);
-  const float dTop = std::max(diffuseTransmittance(sigmaT * hTopM, g), viewDown * throughView);
-  const float dBottom =
-      std::max(diffuseTransmittance(sigmaT * hBottomM, g), (1.0f - viewDown) * throughView);
-  const float sTop = slabAmbient(-sigmaT * hTopM), sBottom = slabAmbient(-sigmaT * hBottomM);
-  const float aTop = sTop + (dTop - sTop) * k, aBottom = sBottom + (dBottom - sBottom) * k;
-  return 0.5f * (top * aTop + bottom * aBottom);
+  const glm::vec3 dTop =
+      glm::max(diffuseTransmittance(sigmaT * hTopM, g) * skyAbove, throughView * skyFace);
+  const glm::vec3 dBottom =
+      glm::max(diffuseTransmittance(sigmaT * hBottomM, g) * groundBelow, throughView * groundFace);
+  const glm::vec3 sTop = slabAmbient(-sigmaT * hTopM) * skyAbove;
+  const glm::vec3 sBottom = slabAmbient(-sigmaT * hBottomM) * groundBelow;
+  return 0.5f * (sTop + (dTop - sTop) * k + sBottom + (dBottom - sBottom) * k);
 }
 
 float cloudEdgeDensity(float d, float k) {

@@ -162,9 +162,9 @@ float diffuseTransmittance(float tau, float g);                   // two-stream,
 float cloudDiffuseInScatter(float tau, float g, float strength);  // the diffusion term
 float cloudDiffusionLeak(float type);      // faster fall-off through finite convective cells
 float cloudEdgeDensity(float d, float k);  // sharp boundaries
-glm::vec3 cloudAmbientDiffuse(glm::vec3 top, glm::vec3 bottom, float sigmaT, float hTopM,
-                              float hBottomM, float tauView, float viewDown, float g,
-                              float strength);                 // Tang (6)(7) + diffusion
+glm::vec3 cloudAmbientDiffuse(glm::vec3 skyAbove, glm::vec3 skyFace, glm::vec3 groundBelow,
+                              glm::vec3 groundFace, float sigmaT, float hTopM, float hBottomM,
+                              float tauView, float g, float strength);  // Tang (6)(7) + diffusion
 glm::vec3 integrateStep(glm::vec3 S, float sigmaT, float dt);  // Hillaire 2016
 glm::vec3 integrateStepRiemann(glm::vec3 S, float dt);
 

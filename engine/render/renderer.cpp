@@ -71,6 +71,7 @@ Renderer::Renderer(const Context& ctx, ShaderCompiler& compiler)
       mAtmosphere(ctx, compiler),
       mSky(ctx, compiler),
       mClouds(ctx, compiler, mRuntime),
+      mAmbient(ctx, compiler),
       mVolumetric(ctx, compiler),
       mShadow(ctx, compiler),
       mTemporal(ctx, compiler),
@@ -269,7 +270,7 @@ Renderer::SkyImages Renderer::addSky(FrameGraph& graph, const FrameInputs& f, Re
 }
 
 Renderer::CloudImages Renderer::addClouds(FrameGraph& graph, const FrameInputs& f,
-                                          RenderedFrame& out,
+                                          const SkyImages& sky, RenderedFrame& out,
                                           std::optional<CloudHistory>& pendingHistory) {
   const Scene& scene = f.scene;
   const Scene& cloudScene = f.setup.cloudScene;
@@ -292,6 +293,17 @@ Renderer::CloudImages Renderer::addClouds(FrameGraph& graph, const FrameInputs& 
   in.variant = cloudVariant(f.setup.volumetric, c.frame.lowRolls);
   in.lighting = out.lighting.gpu;
   in.textures = c.frame.textures;
+  // The ambient light from the sky the frame draws (either model) and the ground under it.
+  CloudAmbientPass::Inputs ambient;
+  ambient.params = cloudAmbientParams({scene.ground.albedo, scene.lighting.turbidity,
+                                       in.params.shellBaseM, out.lighting.overcast});
+  ambient.lighting = out.lighting.gpu;
+  ambient.moon = !moonLightNegligible(out.lighting.gpu);
+  if (f.physical)
+    ambient.atmosphere = CloudAmbientPass::Atmosphere{mAtmosphere.params(), sky.luts.transmittance,
+                                                      sky.luts.skyViewSun, sky.luts.skyViewMoon,
+                                                      &mAtmosphere.sampler()};
+  in.ambient = graph.add(mAmbient, ambient).ambient;
   // What the light volume and the shadow map are made from: kept while it holds.
   CloudFieldKey field;
   field.clouds = settingsWithoutPose(cloudScene);
@@ -393,7 +405,7 @@ Renderer::FramePlan Renderer::buildFrame(FrameGraph& graph, const Scene& scene, 
   FramePlan plan;
   const SkyImages sky = addSky(graph, f, out);
   std::optional<CloudImages> clouds;
-  if (out.clouds) clouds = addClouds(graph, f, out, plan.pendingHistory);
+  if (out.clouds) clouds = addClouds(graph, f, sky, out, plan.pendingHistory);
 
   AtmosphereCompositeSettings compositeSettings;
   compositeSettings.ground = scene.ground;

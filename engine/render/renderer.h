@@ -20,6 +20,7 @@
 #include "engine/render/cloud_volume.h"
 #include "passes/atmosphere_luts/atmosphere_luts.h"
 #include "engine/gpu/sampler.h"
+#include "passes/cloud_ambient/cloud_ambient.h"
 #include "passes/cloud_density_slice/cloud_density_slice.h"
 #include "passes/cloud_light_volume/cloud_light_volume.h"
 #include "passes/cloud_shadow/cloud_shadow.h"
@@ -191,8 +192,8 @@ private:
   FramePlan buildFrame(FrameGraph& graph, const Scene& scene, const IsoTime& time,
                        const RenderOptions& options, RenderedFrame& out);
   SkyImages addSky(FrameGraph& graph, const FrameInputs& f, RenderedFrame& out);
-  CloudImages addClouds(FrameGraph& graph, const FrameInputs& f, RenderedFrame& out,
-                        std::optional<CloudHistory>& pendingHistory);
+  CloudImages addClouds(FrameGraph& graph, const FrameInputs& f, const SkyImages& sky,
+                        RenderedFrame& out, std::optional<CloudHistory>& pendingHistory);
   void requestOutputs(FrameGraph& graph, const FramePlan& plan, const RenderOptions& options);
   void collectOutputs(RenderedFrame& out, const FrameGraph& graph, const FramePlan& plan,
                       const RenderOptions& options);
@@ -204,6 +205,7 @@ private:
   AtmosphereLuts mAtmosphere;
   SkyHighCloudsPass mSky;
   CloudLayers mClouds;
+  CloudAmbientPass mAmbient;
   VolumetricCloudsPass mVolumetric;
   CloudShadowPass mShadow;
   CloudTemporalPass mTemporal;

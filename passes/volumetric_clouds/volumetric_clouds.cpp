@@ -255,9 +255,6 @@ shared::CloudParams cloudParams(const VolumetricCloudsSettings& settings,
     *marched[i] = total > 0.0f && share[i] > kLightShare * total ? 1.0f : 0.0f;
   p.sunDirection = glm::vec4(glm::vec3(lighting.sun.direction), 0.0f);
   p.moonDirection = glm::vec4(glm::vec3(lighting.moon.direction), 0.0f);
-  p.ambientTop = lighting.gpu.palette.ambientTop + lighting.gpu.moonPalette.ambientTop;
-  p.ambientBottom = lighting.gpu.palette.ambientBottom + lighting.gpu.moonPalette.ambientBottom;
-  p.ambientTop.w = p.ambientBottom.w = 0.0f;
   p.sliceLengthM = 60000.0f;
   p.sliceTopM = static_cast<float>(std::max(c.low.topM, c.mid.topM) + 500.0);
 
@@ -286,6 +283,7 @@ VolumetricCloudsPass::Outputs VolumetricCloudsPass::setup(GraphBuilder& b, const
   mInputs = in;
   mPipeline = &mPipelines.get(in.variant);
   readCloudTextures(b, in.textures);
+  b.read(in.ambient, Access::StorageReadCompute);
   if (in.variant.light == CloudLight::Volume) {
     if (!in.lightVolumeSampler) internalError("volumetric_clouds: no light volume sampler");
     b.read(in.lightVolume, Access::SampledCompute);
@@ -325,6 +323,7 @@ void VolumetricCloudsPass::execute(PassContext& ctx) const {
   bindings.insert(bindings.end(),
                   {Binding::of(VOLUMETRIC_CLOUDS_BINDING_PARAMS, ctx.uniform(mInputs.params)),
                    Binding::of(VOLUMETRIC_CLOUDS_BINDING_LIGHTING, ctx.uniform(mInputs.lighting)),
+                   Binding::of(VOLUMETRIC_CLOUDS_BINDING_AMBIENT, mInputs.ambient),
                    Binding::of(VOLUMETRIC_CLOUDS_BINDING_CLOUDS, mOutputs.clouds),
                    Binding::of(VOLUMETRIC_CLOUDS_BINDING_DEPTH, mOutputs.depth),
                    Binding::of(VOLUMETRIC_CLOUDS_BINDING_STEPS, mOutputs.steps)});

@@ -94,6 +94,7 @@ public:
     CloudVariant variant;
     shared::LightingState lighting{};
     CloudTextures textures;
+    ImageId ambient;  // passes/cloud_ambient: the sky's and the ground's light
     // With variant.light Volume: passes/cloud_light_volume's volume and its sampler.
     ImageId lightVolume;
     const Sampler* lightVolumeSampler = nullptr;

@@ -128,20 +128,24 @@ float cloudDiffusionLeak(float type) {
 // Tang (6)(7)'s ambient with the diffusion limit. Tang's slab share slabAmbient is the light
 // that reaches a point without scattering, E2(tau), gone ten optical depths in; sky light that
 // scatters on keeps diffuseTransmittance. And a cloud is no infinite slab: the surface the
-// view ray came in through is at most tauView away, and it faces the sky (looking down,
-// viewDown = 1), the ground (looking up, 0) or both (looking across, 0.5). Each hemisphere's
-// share is the better of the two paths. `strength` (clamped to [0, 1]) blends from Tang's
-// (0) to this (1). Isotropic in-scattering of a hemisphere of radiance is half of it, so the
-// result is radiance per unit of extinction.
-vec3 cloudAmbientDiffuse(vec3 top, vec3 bottom, float sigmaT, float hTopM, float hBottomM,
-                         float tauView, float viewDown, float g, float strength) {
+// view ray came in through is at most tauView away, and it faces back along the ray. Each
+// source (the sky, the ground) comes in by the better of the two paths: through the slab
+// above (skyAbove: the sky's light on a level surface facing up) or below (groundBelow), or
+// through that face (skyFace, groundFace: their light on a surface facing the eye, so a face
+// turned from a low sun sees the darker, bluer sky behind the camera; cloud_ambient_shared.h).
+// `strength` (clamped to [0, 1]) blends from Tang's (0) to this (1). Isotropic in-scattering
+// of a hemisphere of radiance is half of it, so the result is radiance per unit of extinction.
+vec3 cloudAmbientDiffuse(vec3 skyAbove, vec3 skyFace, vec3 groundBelow, vec3 groundFace,
+                         float sigmaT, float hTopM, float hBottomM, float tauView, float g,
+                         float strength) {
   float k = clamp(strength, 0.0, 1.0);
   float throughView = diffuseTransmittance(tauView, g);
-  float dTop = max(diffuseTransmittance(sigmaT * hTopM, g), viewDown * throughView);
-  float dBottom = max(diffuseTransmittance(sigmaT * hBottomM, g), (1.0 - viewDown) * throughView);
-  float aTop = mix(slabAmbient(-sigmaT * hTopM), dTop, k);
-  float aBottom = mix(slabAmbient(-sigmaT * hBottomM), dBottom, k);
-  return 0.5 * (top * aTop + bottom * aBottom);
+  vec3 dTop = max(diffuseTransmittance(sigmaT * hTopM, g) * skyAbove, throughView * skyFace);
+  vec3 dBottom =
+      max(diffuseTransmittance(sigmaT * hBottomM, g) * groundBelow, throughView * groundFace);
+  vec3 sTop = slabAmbient(-sigmaT * hTopM) * skyAbove;
+  vec3 sBottom = slabAmbient(-sigmaT * hBottomM) * groundBelow;
+  return 0.5 * (mix(sTop, dTop, k) + mix(sBottom, dBottom, k));
 }
 
 // Sharp cloud boundaries: real cumulus reach an optical depth of one within tens of metres of

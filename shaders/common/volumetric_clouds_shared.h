@@ -20,6 +20,8 @@
 #define VOLUMETRIC_CLOUDS_BINDING_CURL 7
 #define VOLUMETRIC_CLOUDS_BINDING_WEATHER 8
 #define VOLUMETRIC_CLOUDS_BINDING_WEATHER_COARSE 9
+// 10: the light volume (cloud_light_volume_shared.h).
+#define VOLUMETRIC_CLOUDS_BINDING_AMBIENT 11  // the CloudAmbient buffer (cloud_ambient_shared.h)
 
 // Density slice (the debug output "cloud_density_slice"): same params, its own image.
 #define CLOUD_SLICE_BINDING_IMAGE 2
@@ -110,8 +112,6 @@ struct CloudParams {
   vec4 sunAtMid;      // rgb: at the mid layer's
   vec4 moonAtLow;     // rgb: the moon's, likewise
   vec4 moonAtMid;
-  vec4 ambientTop;    // rgb: sky light from above (radiance)
-  vec4 ambientBottom; // rgb: ground light from below (radiance)
   // The mean of each noise channel over its texture: what octaves finer than a pixel's
   // footprint average to, so distant clouds fade to it instead of aliasing (cloudSampleAt).
   vec4 shapeMean;     // rgba: of the shape texture
@@ -125,7 +125,7 @@ SKY_SHARED_END
 
 #ifdef __cplusplus
 static_assert(sizeof(sky::shared::CloudParams) ==
-                  64 + 64 + 16 + 10 * 16 + 15 * 16 + 32 + CLOUD_COVERAGE_LUT_VEC4S * 16,
+                  64 + 64 + 16 + 10 * 16 + 13 * 16 + 32 + CLOUD_COVERAGE_LUT_VEC4S * 16,
               "std140 layout of CloudParams");
 #endif
 #endif

@@ -134,8 +134,8 @@ void main() {
   float dEdge = -0.1 + 1.3 * r2.y, kEdge = 1.0 + 8.0 * r0.z, typeD = -0.1 + 1.2 * r0.y;
   put(21, vec4(diffuseTransmittance(tauD, gD), cloudDiffuseInScatter(tauD, gD, strength),
                cloudEdgeDensity(dEdge, kEdge), cloudDiffusionLeak(typeD)));
-  put(22, vec4(cloudAmbientDiffuse(r0.xyz, r1.xyz, sigmaT, 2000.0 * r2.w, 2000.0 * r0.w,
-                                   10.0 * r2.x, r1.w, gD, 1.5 * r2.z),
+  put(22, vec4(cloudAmbientDiffuse(r0.xyz, r0.zxy * r1.w, r1.xyz, r1.zxy * (1.0 - r1.w), sigmaT,
+                                   2000.0 * r2.w, 2000.0 * r0.w, 10.0 * r2.x, gD, 1.5 * r2.z),
                cloudTypeTexture(typeD)));
   put(23, vec4(cloudRollWeight(0, typeD), cloudRollWeight(1, typeD), 0.0, 0.0));
 }

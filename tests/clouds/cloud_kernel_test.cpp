@@ -258,8 +258,9 @@ TEST_F(CloudKernelTest, LightingMatchesItsTwin) {
       const char* ambientNames[4] = {"cloudAmbientDiffuse r", "cloudAmbientDiffuse g",
                                      "cloudAmbientDiffuse b", "cloudTypeTexture"};
       expectRow(kAmbientDiffuse, i,
-                {cloudAmbientDiffuse(glm::vec3(r0), glm::vec3(r1), ambientSigma, 2000.0f * r2.w,
-                                     2000.0f * r0.w, 10.0f * r2.x, r1.w, gD, 1.5f * r2.z),
+                {cloudAmbientDiffuse(glm::vec3(r0), glm::vec3(r0.z, r0.x, r0.y) * r1.w, glm::vec3(r1),
+                                     glm::vec3(r1.z, r1.x, r1.y) * (1.0f - r1.w), ambientSigma,
+                                     2000.0f * r2.w, 2000.0f * r0.w, 10.0f * r2.x, gD, 1.5f * r2.z),
                  cloudTypeTexture(typeD)},
                 ambientNames, 2e-4);
       const char* rollNames[4] = {"cloudRollWeight low", "cloudRollWeight mid", "", ""};

@@ -1,0 +1,68 @@
+#include "passes/cloud_ambient/cloud_ambient.h"
+
+#include <algorithm>
+
+#include "engine/core/error.h"
+#include "engine/lighting/light_model.h"
+
+namespace sky {
+
+shared::CloudAmbientParams cloudAmbientParams(const CloudAmbientSettings& s) {
+  shared::CloudAmbientParams p{};
+  p.groundAlbedo = glm::vec4(s.groundAlbedo, 0.0f);
+  // The air between the ground and the clouds' base, straight up; a view of the ground from
+  // the clouds crosses it at a slant, about twice the vertical path over the hemisphere.
+  const glm::dvec3 toBase = light::atmosphereTransmittance(90.0, 0.0, s.turbidity) /
+                            light::atmosphereTransmittance(90.0, std::max(s.cloudBaseM, 0.0),
+                                                           s.turbidity);
+  p.groundHaze = glm::vec4(glm::vec3(1.0 - toBase * toBase), 0.0f);
+  p.groundLight = static_cast<float>(light::overcastGlobalShare(std::clamp(s.overcast, 0.0, 1.0)));
+  return p;
+}
+
+CloudAmbientPass::CloudAmbientPass(const Context& ctx, ShaderCompiler& compiler)
+    : mVariants(ctx, compiler, "cloud_ambient.comp", kName) {}
+
+CloudAmbientPass::Outputs CloudAmbientPass::setup(GraphBuilder& b, const Inputs& in) {
+  mInputs = in;
+  const bool physical = in.atmosphere.has_value();
+  mPipeline = &mVariants.get({{"SKY_PHYSICAL_SKY", physical ? "1" : "0"},
+                              {"LIGHTING_MOON", in.moon ? "1" : "0"}});
+  if (physical) {
+    const Atmosphere& a = *in.atmosphere;
+    if (!a.sampler) internalError("cloud_ambient: no LUT sampler");
+    b.read(a.transmittance, Access::SampledCompute);
+    b.read(a.skyViewSun, Access::SampledCompute);
+    if (in.moon) b.read(a.skyViewMoon, Access::SampledCompute);
+  }
+  ImageDesc desc;
+  desc.width = CLOUD_AMBIENT_MAP_WIDTH;
+  desc.height = CLOUD_AMBIENT_MAP_HEIGHT + 1;
+  // 32-bit: a moonlit night's sky is 1e-7 in renderer units, below half float's normal range.
+  desc.format = VK_FORMAT_R32G32B32A32_SFLOAT;
+  desc.name = "cloud_ambient";
+  desc.about =
+      "the clouds' ambient light from the frame's sky: the sky's light on a surface by its "
+      "normal (azimuth across from east, elevation up from the nadir), the ground's radiance in "
+      "the last row's first texel";
+  mOutputs.ambient = b.write(b.create(desc), Access::StorageWriteCompute);
+  return mOutputs;
+}
+
+void CloudAmbientPass::execute(PassContext& ctx) const {
+  std::vector<Binding> bindings = {
+      Binding::of(CLOUD_AMBIENT_BINDING_PARAMS, ctx.uniform(mInputs.params)),
+      Binding::of(CLOUD_AMBIENT_BINDING_LIGHTING, ctx.uniform(mInputs.lighting)),
+      Binding::of(CLOUD_AMBIENT_BINDING_OUT, mOutputs.ambient)};
+  if (mInputs.atmosphere) {
+    const Atmosphere& a = *mInputs.atmosphere;
+    bindings.push_back(Binding::of(CLOUD_AMBIENT_BINDING_ATMOSPHERE, ctx.uniform(a.params)));
+    bindings.push_back(Binding::of(CLOUD_AMBIENT_BINDING_TRANSMITTANCE, a.transmittance, a.sampler));
+    bindings.push_back(Binding::of(CLOUD_AMBIENT_BINDING_SKY_VIEW_SUN, a.skyViewSun, a.sampler));
+    if (mInputs.moon)
+      bindings.push_back(Binding::of(CLOUD_AMBIENT_BINDING_SKY_VIEW_MOON, a.skyViewMoon, a.sampler));
+  }
+  ctx.dispatch(*mPipeline, bindings, 1, 1);
+}
+
+}  // namespace sky

@@ -1,0 +1,64 @@
+#pragma once
+// The volumetric clouds' ambient light from the frame's own sky (shaders/cloud_ambient.comp):
+// the clear sky of either model sampled over the upper hemisphere, its light on a surface of
+// each orientation of a small table, and the ground below lit by the sun, the moon and that
+// sky, into a small image the raymarch reads. So the clouds are lit by the sky the viewer sees, whatever the
+// sky model, the hour or the turbidity, not by the palette's two constant colours.
+#include <optional>
+
+#include "engine/gpu/compute_pipeline.h"
+#include "engine/graph/frame_graph.h"
+#include "engine/graph/pass_context.h"
+#include "engine/lighting/lighting_state.h"
+#include "shaders/common/atmosphere_shared.h"
+#include "shaders/common/cloud_ambient_shared.h"
+#include "shaders/common/lighting_shared.h"
+
+namespace sky {
+
+class Context;
+class Sampler;
+class ShaderCompiler;
+
+// What the pass takes from the scene: the ground's reflectance, the air between the clouds and
+// the ground, and the cover around the camera.
+struct CloudAmbientSettings {
+  glm::vec3 groundAlbedo{0.1f};  // ground.albedo
+  double turbidity = 0.1;        // lighting.turbidity: the haze below the clouds
+  double cloudBaseM = 1500.0;    // the lowest marched cloud base (m above sea level)
+  double overcast = 0.0;         // LightingState::overcast, the cover around the camera
+};
+
+// The pass's uniforms for `settings`.
+shared::CloudAmbientParams cloudAmbientParams(const CloudAmbientSettings& settings);
+
+class CloudAmbientPass {
+public:
+  static constexpr const char* kName = "cloud_ambient";
+  struct Atmosphere {  // passes/atmosphere_luts; sky.model physical only
+    shared::AtmosphereParams params{};
+    ImageId transmittance, skyViewSun, skyViewMoon;
+    const Sampler* sampler = nullptr;  // linear, clamp
+  };
+  struct Inputs {
+    shared::CloudAmbientParams params{};
+    shared::LightingState lighting{};
+    bool moon = false;                     // the moon's light is not negligible (its LUT bound)
+    std::optional<Atmosphere> atmosphere;  // sky.model physical
+  };
+  struct Outputs {
+    ImageId ambient;  // RGBA32F, the table of cloud_ambient_shared.h
+  };
+
+  CloudAmbientPass(const Context& ctx, ShaderCompiler& compiler);
+  Outputs setup(GraphBuilder& builder, const Inputs& inputs);
+  void execute(PassContext& ctx) const;
+
+private:
+  ComputePipelineVariants mVariants;
+  const ComputePipeline* mPipeline = nullptr;  // this frame's variant, chosen in setup()
+  Inputs mInputs{};
+  Outputs mOutputs;
+};
+
+}  // namespace sky

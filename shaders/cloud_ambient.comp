@@ -1,0 +1,111 @@
+#version 460
+// The volumetric clouds' ambient light from the sky that is actually there (passes/
+// cloud_ambient): the frame's clear sky (either model, clear_sky.glsl) sampled over the upper
+// hemisphere, its light on a surface of each normal of a table (cloud_ambient_shared.h), and
+// the ground below lit by the sun, the moon and that sky. Before, the clouds took the palette's
+// two constant colours, which left backlit cores lit almost only by the warm sun diffusing
+// through them (tan, where the blue sky behind the camera makes real ones blue-grey). The
+// raymarch looks the table up once per ray.
+#include "common/params_block.glsl"
+#include "common/cloud_ambient_shared.h"
+#define LIGHTING_BINDING CLOUD_AMBIENT_BINDING_LIGHTING
+#include "common/lighting.glsl"
+#if SKY_PHYSICAL_SKY
+#include "common/atmosphere.glsl"
+#endif
+
+layout(local_size_x = CLOUD_AMBIENT_GROUP) in;
+
+layout(std140, binding = CLOUD_AMBIENT_BINDING_PARAMS) uniform CloudAmbientBlock {
+  CloudAmbientParams paramsBlock[1];
+};
+#define params paramsBlock[SKY_PARAMS_INDEX]
+layout(binding = CLOUD_AMBIENT_BINDING_OUT, rgba32f) uniform writeonly image2D ambientImage;
+#if SKY_PHYSICAL_SKY
+layout(std140, binding = CLOUD_AMBIENT_BINDING_ATMOSPHERE) uniform AtmosphereBlock {
+  AtmosphereParams atmosphereBlock[1];
+};
+#define atmosphere atmosphereBlock[SKY_PARAMS_INDEX]
+layout(binding = CLOUD_AMBIENT_BINDING_TRANSMITTANCE) uniform sampler2D transmittanceLut;
+layout(binding = CLOUD_AMBIENT_BINDING_SKY_VIEW_SUN) uniform sampler2D skyViewSunLut;
+#if LIGHTING_MOON
+layout(binding = CLOUD_AMBIENT_BINDING_SKY_VIEW_MOON) uniform sampler2D skyViewMoonLut;
+#endif
+#endif
+#include "common/clear_sky.glsl"
+
+#define AMBIENT_PI 3.14159265358979
+#define AMBIENT_DIRECTIONS (CLOUD_AMBIENT_RINGS * CLOUD_AMBIENT_AZIMUTHS)
+#define AMBIENT_NORMALS (CLOUD_AMBIENT_MAP_WIDTH * CLOUD_AMBIENT_MAP_HEIGHT)
+
+// The sampled sky: direction j of a grid of rings equal in solid angle (uniform in the cosine
+// of the zenith angle) by azimuths, and its radiance (16 KB of shared memory: Vulkan's least).
+shared vec3 skyRadiance[AMBIENT_DIRECTIONS];
+
+float ringCosZenith(int ring) {
+  return (float(ring) + 0.5) / float(CLOUD_AMBIENT_RINGS);
+}
+float columnAzimuth(int column) {
+  return 2.0 * AMBIENT_PI * (float(column) + 0.5) / float(CLOUD_AMBIENT_AZIMUTHS);
+}
+vec3 gridDirection(int ring, int column) {
+  float cz = ringCosZenith(ring), phi = columnAzimuth(column);
+  float s = sqrt(max(1.0 - cz * cz, 0.0));
+  return vec3(s * cos(phi), s * sin(phi), cz);
+}
+
+// The unit normal of table texel (i, j) (cloud_ambient_shared.h).
+vec3 tableNormal(int i, int j) {
+  float elevation = AMBIENT_PI * (float(j) / float(CLOUD_AMBIENT_MAP_HEIGHT - 1) - 0.5);
+  float azimuth = 2.0 * AMBIENT_PI * float(i) / float(CLOUD_AMBIENT_MAP_WIDTH);
+  return vec3(cos(elevation) * cos(azimuth), cos(elevation) * sin(azimuth), sin(elevation));
+}
+
+// The sky's light on a surface of normal n: the irradiance of the sampled radiances over pi,
+// each direction standing for 2 pi / N sr.
+vec3 skyLightOn(vec3 n) {
+  vec3 sum = vec3(0.0);
+  for (int ring = 0; ring < CLOUD_AMBIENT_RINGS; ++ring) {
+    float cz = ringCosZenith(ring), s = sqrt(max(1.0 - cz * cz, 0.0));
+    for (int column = 0; column < CLOUD_AMBIENT_AZIMUTHS; ++column) {
+      float phi = columnAzimuth(column);
+      vec3 w = vec3(s * cos(phi), s * sin(phi), cz);
+      sum += skyRadiance[ring * CLOUD_AMBIENT_AZIMUTHS + column] * max(dot(w, n), 0.0);
+    }
+  }
+  return sum * (2.0 / float(AMBIENT_DIRECTIONS));
+}
+
+void main() {
+  int i = int(gl_LocalInvocationID.x);
+  LightingState L = lighting;
+  for (int k = 0; k < CLOUD_AMBIENT_DIRECTIONS_PER_INVOCATION; ++k) {
+    int j = i * CLOUD_AMBIENT_DIRECTIONS_PER_INVOCATION + k;
+    skyRadiance[j] = frameSkyRadiance(L, gridDirection(j / CLOUD_AMBIENT_AZIMUTHS,
+                                                        j % CLOUD_AMBIENT_AZIMUTHS));
+  }
+  barrier();
+  if (i < AMBIENT_NORMALS) {
+    int column = i % CLOUD_AMBIENT_MAP_WIDTH, row = i / CLOUD_AMBIENT_MAP_WIDTH;
+    imageStore(ambientImage, ivec2(column, row), vec4(skyLightOn(tableNormal(column, row)), 0.0));
+  }
+  // The ground's row: its first texel below, the rest zero (a clean debug image).
+  if (i > 0 && i < CLOUD_AMBIENT_MAP_WIDTH)
+    imageStore(ambientImage, ivec2(i, CLOUD_AMBIENT_GROUND_ROW), vec4(0.0));
+  if (i != 0) return;
+  // The ground: Lambertian under the sun and the moon (their illuminance at the ground on a
+  // surface facing them, times the sine of their elevation) and the sky (its light on a level
+  // surface), with the share the cloud cover lets through, seen from the clouds through air
+  // that adds the light of the sky at the horizon (the lowest ring).
+  vec3 sunlit = L.sun.illuminance.rgb * max(L.sun.direction.z, 0.0);
+#if LIGHTING_MOON
+  sunlit += L.moon.illuminance.rgb * max(L.moon.direction.z, 0.0);
+#endif
+  vec3 ground =
+      params.groundAlbedo.rgb * (sunlit + skyLightOn(vec3(0.0, 0.0, 1.0))) * params.groundLight;
+  vec3 horizon = vec3(0.0);
+  for (int j = 0; j < CLOUD_AMBIENT_AZIMUTHS; ++j) horizon += skyRadiance[j];
+  horizon /= float(CLOUD_AMBIENT_AZIMUTHS);
+  imageStore(ambientImage, ivec2(0, CLOUD_AMBIENT_GROUND_ROW),
+             vec4(mix(ground, horizon, params.groundHaze.rgb), 0.0));
+}

@@ -1,0 +1,59 @@
+// The volumetric clouds' ambient light, gathered from the frame's own sky (passes/cloud_ambient,
+// shaders/cloud_ambient.comp) and read by the raymarch (volumetric_clouds.comp): the sky's light
+// on a surface of any orientation, and the ground below. docs/clouds.md, "Lighting".
+#ifndef SKY_CLOUD_AMBIENT_SHARED_H
+#define SKY_CLOUD_AMBIENT_SHARED_H
+#include "shared_prelude.h"
+
+// One workgroup; each invocation evaluates the sky in CLOUD_AMBIENT_DIRECTIONS_PER_INVOCATION
+// directions of a stratified grid over the upper hemisphere (32 rings equal in solid angle x
+// 32 azimuths: the Kozlov glow around a low sun, a few degrees wide, spans several of them).
+#define CLOUD_AMBIENT_GROUP 256
+#define CLOUD_AMBIENT_RINGS 32
+#define CLOUD_AMBIENT_AZIMUTHS 32
+#define CLOUD_AMBIENT_DIRECTIONS_PER_INVOCATION \
+  (CLOUD_AMBIENT_RINGS * CLOUD_AMBIENT_AZIMUTHS / CLOUD_AMBIENT_GROUP)
+
+#define CLOUD_AMBIENT_BINDING_PARAMS 0
+#define CLOUD_AMBIENT_BINDING_LIGHTING 1
+#define CLOUD_AMBIENT_BINDING_OUT 2  // the CloudAmbient image
+#define CLOUD_AMBIENT_BINDING_ATMOSPHERE 3
+#define CLOUD_AMBIENT_BINDING_TRANSMITTANCE 4
+#define CLOUD_AMBIENT_BINDING_SKY_VIEW_SUN 5
+#define CLOUD_AMBIENT_BINDING_SKY_VIEW_MOON 6
+
+SKY_SHARED_BEGIN
+
+struct CloudAmbientParams {
+  vec4 groundAlbedo;  // rgb: ground.albedo (linear reflectance)
+  // rgb: the share of the ground's light, seen from the clouds, that is the air's between
+  // them and the ground instead (1 - the transmittance of that air along a typical slant
+  // path); the air's light is the sky's at the horizon.
+  vec4 groundHaze;
+  float groundLight;  // the share of the ground's clear-sky light that comes through the
+                      // cloud cover around the camera (light::overcastGlobalShare)
+  float padding0;     // std140: the rest of the row
+  float padding1;
+  float padding2;
+};
+
+SKY_SHARED_END
+
+// The light around the clouds as the mean radiance a surface of unit normal n (east, north, up)
+// receives: its irradiance over pi, in renderer units its illuminance. An image of
+// CLOUD_AMBIENT_MAP_WIDTH x (CLOUD_AMBIENT_MAP_HEIGHT + 1) RGBA32F texels (the debug image
+// "cloud_ambient"): row j < CLOUD_AMBIENT_MAP_HEIGHT, column i holds the sky's light for the
+// normal at elevation -90 + 180 j / (HEIGHT - 1) degrees and azimuth 360 i / WIDTH degrees from
+// east toward north, the cosine-weighted sum over the sky's sampled radiance above the
+// horizon; the last row's first texel the ground's radiance (a uniform lower hemisphere, so
+// its light on the surface is that times (1 - n.z) / 2). Spherical harmonics of first order
+// rang below zero on the side turned from a low sun's bright aureole, the very side a backlit
+// cloud shows the camera; a table of the cosine-weighted sums does not.
+#define CLOUD_AMBIENT_MAP_WIDTH 16
+#define CLOUD_AMBIENT_MAP_HEIGHT 9
+#define CLOUD_AMBIENT_GROUND_ROW CLOUD_AMBIENT_MAP_HEIGHT
+
+#ifdef __cplusplus
+static_assert(sizeof(sky::shared::CloudAmbientParams) == 48, "std140 layout of CloudAmbientParams");
+#endif
+#endif
