@@ -259,30 +259,19 @@ int shellIntervals(vec3 o, vec3 d, vec3 c, float rIn, float rOut, float rGround,
   return n;
 }
 
-void main() {
-  // This invocation's texel of the pass's images, and the view's pixel it marches: every
-  // pixel, or with temporal reuse one of each marchBlock x marchBlock square (a square cut
-  // by the image's edge marches its nearest pixel).
-  ivec2 ip = ivec2(gl_GlobalInvocationID.xy);
-  if (any(greaterThanEqual(ip, imageSize(cloudImage)))) return;
-  uvec2 id = min(gl_GlobalInvocationID.xy * params.marchBlock +
-                     uvec2(params.marchOffsetX, params.marchOffsetY),
-                 params.view.size.xy - 1u);
-  vec2 pixel = vec2(id) + 0.5;
+// What one view ray through the clouds gives: premultiplied radiance, the transmittance left,
+// the transmittance-weighted distance (depthSum / (1 - transmittance) is the depth), the
+// samples taken, and where the ray first reaches the shells (-1 if it never does). `id` is the
+// pixel whose hash jitters the ray.
+struct CloudRay {
+  vec3 radiance;
+  float transmittance;
+  float depthSum;
+  int samples;
+  float shellEntry;
+};
 
-  // Ray origin and direction in the frame's ENU coordinates.
-  vec3 o = vec3(0.0);
-  vec3 d = viewDirection(params.view, pixel);
-  if (CLOUD_TOPDOWN != 0) {
-    // Row 0 is the north edge, column 0 the west edge, equal lat/lon spacing.
-    vec2 uv = pixel / vec2(params.view.size.xy);
-    vec4 b = params.region.bounds;
-    float lat = mix(b.y, b.x, uv.y);
-    float lon = mix(b.z, b.w, uv.x);
-    o = geoPosition(params.geo, lat, lon, params.topDownStartM);
-    d = -geoUp(params.geo, o);
-  }
-
+CloudRay marchCloudRay(uvec2 id, vec3 o, vec3 d) {
   vec3 radiance = vec3(0.0);
   float transmittance = 1.0;
   float depthSum = 0.0;
@@ -418,8 +407,67 @@ void main() {
     depthSum += transmittance * lastT;
     transmittance = 0.0;
   }
-  float alpha = 1.0 - transmittance;
-  imageStore(cloudImage, ip, vec4(radiance, alpha));
-  imageStore(depthImage, ip, vec4(alpha > 0.0 ? depthSum / alpha : 0.0, shellEntry, 0.0, 0.0));
-  imageStore(stepImage, ip, vec4(float(samples), float(gLightSamples), 0.0, 0.0));
+  return CloudRay(radiance, transmittance, depthSum, samples, shellEntry);
+}
+
+// A top-down pixel averages CLOUD_TOPDOWN_SUBPIXELS x CLOUD_TOPDOWN_SUBPIXELS rays, the ones a
+// render that many times the size would march there (hashed as that render's pixels). Its
+// ground is kilometres wide, many clouds across (160 x 120 over the default 800 km map: 5 km,
+// the clouds' cells 1.2 km), so one ray at its centre either hits a cloud or misses: a pixel
+// showed 0 or 1 where the map says 0.35, and an 8 x 8 block of them strayed from the map's
+// cover by 0.044 on average (Dice 0.968). Four rays show the share of the ground under cloud
+// closely enough for the blocks to be within 0.02 (docs/clouds.md, "Coverage fidelity").
+#define CLOUD_TOPDOWN_SUBPIXELS 2
+
+// The top-down ray through point `pixel` of the image (pixel units): it starts at that
+// point's latitude and longitude (row 0 the north edge, column 0 the west edge, equal lat/lon
+// spacing) above the highest layer and goes straight down.
+void topDownRay(vec2 pixel, out vec3 o, out vec3 d) {
+  vec2 uv = pixel / vec2(params.view.size.xy);
+  vec4 b = params.region.bounds;
+  float lat = mix(b.y, b.x, uv.y);
+  float lon = mix(b.z, b.w, uv.x);
+  o = geoPosition(params.geo, lat, lon, params.topDownStartM);
+  d = -geoUp(params.geo, o);
+}
+
+void main() {
+  // This invocation's texel of the pass's images, and the view's pixel it marches: every
+  // pixel, or with temporal reuse one of each marchBlock x marchBlock square (a square cut
+  // by the image's edge marches its nearest pixel).
+  ivec2 ip = ivec2(gl_GlobalInvocationID.xy);
+  if (any(greaterThanEqual(ip, imageSize(cloudImage)))) return;
+  uvec2 id = min(gl_GlobalInvocationID.xy * params.marchBlock +
+                     uvec2(params.marchOffsetX, params.marchOffsetY),
+                 params.view.size.xy - 1u);
+  vec2 pixel = vec2(id) + 0.5;
+
+  // Rays in the frame's ENU coordinates: from the camera, or straight down (top-down).
+  CloudRay ray;
+  if (CLOUD_TOPDOWN != 0) {
+    const int n = CLOUD_TOPDOWN_SUBPIXELS;
+    ray = CloudRay(vec3(0.0), 0.0, 0.0, 0, -1.0);
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        uvec2 sub = id * uint(n) + uvec2(i, j);
+        vec3 o, d;
+        topDownRay((vec2(sub) + 0.5) / float(n), o, d);
+        CloudRay r = marchCloudRay(sub, o, d);
+        ray.radiance += r.radiance;
+        ray.transmittance += r.transmittance;
+        ray.depthSum += r.depthSum;
+        ray.samples += r.samples;
+        ray.shellEntry = max(ray.shellEntry, r.shellEntry);
+      }
+    ray.radiance /= float(n * n);
+    ray.transmittance /= float(n * n);
+    ray.depthSum /= float(n * n);
+  } else {
+    ray = marchCloudRay(id, vec3(0.0), viewDirection(params.view, pixel));
+  }
+  float alpha = 1.0 - ray.transmittance;
+  imageStore(cloudImage, ip, vec4(ray.radiance, alpha));
+  float depth = alpha > 0.0 ? ray.depthSum / alpha : 0.0;
+  imageStore(depthImage, ip, vec4(depth, ray.shellEntry, 0.0, 0.0));
+  imageStore(stepImage, ip, vec4(float(ray.samples), float(gLightSamples), 0.0, 0.0));
 }
