@@ -52,8 +52,8 @@ CoverageMetrics compareWithMap(const RenderedFrame& frame, const std::string& na
       "(%.0f ms GPU)\n",
       name.c_str(), width, height, m.dice, m.meanAbsoluteError, m.correlation,
       static_cast<unsigned long long>(m.blocks), meanCover, frame.frame.gpuMs);
-  EXPECT_EQ(m.blocks, uint64_t((width + cellPx - 1) / cellPx) *
-                          uint64_t((height + cellPx - 1) / cellPx));
+  EXPECT_EQ(m.blocks,
+            uint64_t((width + cellPx - 1) / cellPx) * uint64_t((height + cellPx - 1) / cellPx));
   return m;
 }
 
