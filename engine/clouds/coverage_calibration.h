@@ -18,8 +18,11 @@
 namespace sky::clouds {
 
 // How a vertical column through a layer samples the noise. Noise coordinates are the position
-// in metres divided by the scale along all three axes (as the raymarch samples them), the
-// height measured from the layer base.
+// in metres divided by the scale along all three axes (as the raymarch samples them). The
+// raymarch reads the noise at Earth-fixed (ECEF) positions, so over a map a layer cuts the
+// tile at every depth: the columns start anywhere in the tile, in all three coordinates, and
+// run along its z axis (the noise is isotropic, so z stands for the local vertical, which
+// crosses the tile on a diagonal away from the poles).
 struct CoverageColumn {
   double thicknessM = 2000.0;                           // layer thickness (top - base)
   double shapeScaleM = 16000.0, detailScaleM = 2000.0;  // size of one texture repeat
@@ -45,7 +48,7 @@ inline constexpr int kCoverageLutSize = 64;
 using CoverageLut = std::array<float, kCoverageLutSize>;
 
 // The thresholds whose mean column opacity 1 - exp(-extinction * integral of density dz) over
-// 48 x 48 columns spread over the shape tile (24 heights each, trilinear noise) equals each
+// 2048 columns spread through the shape tile (32 heights each, trilinear noise) equals each
 // cover: 1 (no cloud) at cover 0; where even the lowest threshold (-1) stays below the cover,
 // -1. Deterministic (threads split the covers). Budget 0.3 s on 2 cores: the caller caches by
 // column. Throws internalError for an empty volume.
@@ -59,13 +62,13 @@ float coverageThreshold(const CoverageLut& lut, float cover);
 // channels byte / 255 as the GPU's UNORM sampler returns them.
 glm::vec4 sampleNoise(const NoiseVolume& volume, glm::vec3 uvw);
 
-// Where meanColumnOpacity looks: columnsPerSide^2 columns on a 2D low-discrepancy (R2)
-// sequence over the shape tile, shifted by `offset` (tile fractions), `heights` midpoint
-// samples over the cloud's range.
+// Where meanColumnOpacity looks: `columns` columns whose starts follow a 3D low-discrepancy
+// (R3) sequence through the shape tile, shifted by `offset` (tile fractions), `heights`
+// midpoint samples over the cloud's range.
 struct OpacityGrid {
-  int columnsPerSide = 32;
+  int columns = 1024;
   int heights = 32;
-  glm::vec2 offset{0.0f, 0.0f};
+  glm::vec3 offset{0.0f};
 };
 
 // The mean column opacity seen from above for a cell of uniform `cover` with the remap

@@ -42,8 +42,9 @@ CoverageColumn column(CloudModel model, int layer, float type) {
   return c;
 }
 
-// Columns the calibration did not use: a finer grid, shifted.
-const OpacityGrid kFreshGrid{40, 40, {0.37f, 0.71f}};
+// Columns the calibration did not use: more of them, with more heights, shifted in all three
+// coordinates (the raymarch's columns cross the tile at every depth).
+const OpacityGrid kFreshGrid{4096, 40, {0.37f, 0.71f, 0.53f}};
 
 TEST_F(CoverageCalibrationTest, CalibratedThresholdsGiveTheCoverOnFreshColumns) {
   struct Case {
@@ -83,8 +84,11 @@ TEST_F(CoverageCalibrationTest, CalibratedThresholdsGiveTheCoverOnFreshColumns) 
 }
 
 TEST_F(CoverageCalibrationTest, PaperThresholdsLeaveThinCoverNearlyClear) {
-  // The issue: with 1 - CMc only sparse noise peaks pass, so a 30 % cell renders far below 30 %.
+  // The issue: with 1 - CMc only sparse noise peaks pass, so a 30 % cell renders far below 30 %
+  // (lu2023: 0.001 on this noise). Tang's remap lets more through, 0.23 at 30 % over the whole
+  // tile, but a 20 % cell still renders far below 20 %.
   for (CloudModel model : {CloudModel::Lu2023, CloudModel::Tang2019}) {
+    const float thin = model == CloudModel::Lu2023 ? 0.3f : 0.2f;
     const CoverageColumn col = column(model, 0, 1.0f);
     const CoverageLut lut = calibrateCoverage(sShape, sDetail, col);
     std::printf("%s cover: paper opacity / calibrated opacity (threshold)\n", enumName(model));
@@ -93,7 +97,7 @@ TEST_F(CoverageCalibrationTest, PaperThresholdsLeaveThinCoverNearlyClear) {
       const float t = coverageThreshold(lut, cover);
       const double calibrated = meanColumnOpacity(sShape, sDetail, col, cover, t, kFreshGrid);
       std::printf("  %.1f: %.3f / %.3f (%.3f)\n", double(cover), paper, calibrated, double(t));
-      if (cover <= 0.3f) {
+      if (cover <= thin) {
         EXPECT_LT(paper, 0.6 * cover) << enumName(model) << " cover " << cover;
       }
     }
@@ -152,7 +156,7 @@ TEST_F(CoverageCalibrationTest, FullHeightProfileCoversAreaNotHaze) {
     const int n = 32, heights = 32;
     for (int k = 0; k < n * n; ++k) {
       // One column at a time through meanColumnOpacity's own sampling: a 1 x 1 grid, shifted.
-      const glm::vec2 offset(float(k % n) / float(n), float(k / n) / float(n));
+      const glm::vec3 offset(float(k % n) / float(n), float(k / n) / float(n), 0.0f);
       opaque +=
           meanColumnOpacity(sShape, sDetail, col, 0.2f, threshold, {1, heights, offset}) > 0.5;
     }
