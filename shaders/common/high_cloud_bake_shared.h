@@ -50,7 +50,7 @@
 
 // The soft width w of each style's cover ramp: cloud appears where the rank exceeds
 // 1 - c (1 + w) and reaches its full optical depth w later (high_cloud_coverage.glsl).
-#define HIGH_CLOUD_RAMP_CIRRUS 0.35
+#define HIGH_CLOUD_RAMP_CIRRUS 0.2
 #define HIGH_CLOUD_RAMP_CIRROSTRATUS 0.5
 #define HIGH_CLOUD_RAMP_CIRROCUMULUS 0.25
 
