@@ -124,12 +124,32 @@ vec4 coefficientLevel(vec2 uv, int level, int coarseLevel) {
 // The coefficients filtered over a footprint of 2^lod texels: trilinear between the two mip
 // levels around it, so fine fibres average out where a pixel covers several of them instead of
 // aliasing into moire and false combs.
-vec4 filteredCoefficients(vec2 uv, float lod) {
+vec4 trilinearCoefficients(vec2 uv, float lod) {
   int coarseLevel = highCloudCoarseLevel(uint(params.texture.w), uint(params.shading.z));
   lod = clamp(lod, 0.0, float(coarseLevel));
   int lower = min(int(lod), coarseLevel - 1);
   return mix(coefficientLevel(uv, lower, coarseLevel), coefficientLevel(uv, lower + 1, coarseLevel),
              lod - float(lower));
+}
+
+// The maximum number of trilinear taps along a footprint's long axis.
+#define SKY_HIGH_CLOUDS_MAX_TAPS 4
+
+// The coefficients over a pixel's footprint on the layer, `along` texels long in the uv
+// direction `axis` (unit) and `across` texels wide: up to 4 trilinear taps spread along the
+// long axis, each at the level of the footprint's length over the number of taps. One tap at
+// the long axis's level would blur the clouds toward the horizon by up to 4 times across the
+// view; the taps keep them as sharp as the footprint allows (anisotropic filtering by hand).
+vec4 filteredCoefficients(vec2 uv, vec2 axis, float along, float across) {
+  float taps = clamp(ceil(along / max(across, 1e-6)), 1.0, float(SKY_HIGH_CLOUDS_MAX_TAPS));
+  float lod = log2(max(along / taps, 1e-6));
+  vec2 step = axis * (along / taps) / params.texture.w;  // uv between taps
+  vec4 sum = vec4(0.0);
+  for (int i = 0; i < SKY_HIGH_CLOUDS_MAX_TAPS; ++i) {
+    if (float(i) >= taps) break;
+    sum += trilinearCoefficients(uv + (float(i) - 0.5 * (taps - 1.0)) * step, lod);
+  }
+  return sum / taps;
 }
 #endif
 
@@ -173,6 +193,7 @@ void main() {
     float grazing = max(abs(dot(V, up)), 0.02);
     float footprintM = viewPixelAngle(params.view, V) * t / grazing;
     float texels = footprintM * params.texture.w / params.texture.z;
+    float acrossTexels = texels * grazing;  // across the view the footprint is not stretched
     float lod = log2(max(texels, 1e-6));
     float toCoarse = clamp(lod / 4.0, 0.0, 1.0);
     float coarseTexels = texels * params.shading.z / params.texture.w;
@@ -186,7 +207,12 @@ void main() {
     vec4 coarse = texture(coverCoarseTexture, vec3(uv, layerW));
     vec4 c = mix(mix(fine, coarse, toCoarse), farFieldAt(cover), toMean);
 #else
-    vec4 c = mix(filteredCoefficients(uv, lod), params.meanCoefficients, toMean);
+    // The long axis: the view direction along the layer, in uv (east, south).
+    vec3 level = V - up * dot(V, up);
+    vec2 axis = vec2(dot(level, east), -dot(level, north));
+    axis = dot(axis, axis) > 1e-12 ? normalize(axis) : vec2(1.0, 0.0);
+    vec4 c = mix(filteredCoefficients(uv, axis, texels, acrossTexels), params.meanCoefficients,
+                 toMean);
 #endif
     c = clamp(c, 0.0, 1.0);
     vec3 n = normalize(mix(texture(normalTexture, uv).xyz, vec3(0.0, 0.0, 1.0), toCoarse));
