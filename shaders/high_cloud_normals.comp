@@ -1,6 +1,6 @@
 #version 460
 // The high-cloud normal map from the coefficient texture: the height field is the opacity
-// 1 - B (the clear-sky channel), scaled to HIGH_CLOUD_NORMAL_RELIEF of the tile, and the normal
+// 1 - B (the clear-sky channel), scaled to the relief (relief.x, in texels), and the normal
 // of that surface comes from central differences that wrap around the tile's edges, so the
 // normal map tiles like the texture. Tangent space: x east (+u, the columns), y north (image
 // up, towards row 0), z up out of the layer (the OpenGL convention); w = 0.

@@ -72,7 +72,7 @@ void HighCloudNormalsPass::execute(PassContext& ctx) const {
   shared::HighCloudNormalsParams push{};
   push.size = glm::uvec4(mInputs.size, mInputs.level, mInputs.coarseSize, 0);
   // The relief in texels, so the normals describe the same surface at every resolution.
-  push.relief = glm::vec4(float(HIGH_CLOUD_NORMAL_RELIEF) * float(mInputs.size), 0, 0, 0);
+  push.relief = glm::vec4(mInputs.relief * float(mInputs.size), 0, 0, 0);
   ctx.dispatch(mPipeline,
                {Binding::of(HIGH_CLOUD_NORMALS_BINDING_COEFFICIENTS, mInputs.coefficients),
                 Binding::of(HIGH_CLOUD_NORMALS_BINDING_LEVELS, mInputs.levels, &mSampler),

@@ -57,6 +57,8 @@ public:
     uint32_t size = 0;        // N
     uint32_t coarseSize = 0;  // C
     uint32_t level = 0;       // 0: the texture's own opacity; 1 .. log2(N / C) - 1: that level's
+    // The height of opacity 1, in tiles (HIGH_CLOUD_NORMAL_RELIEF or _CIRRUS_NORMAL_RELIEF).
+    float relief = float(HIGH_CLOUD_NORMAL_RELIEF);
   };
   struct Outputs {
     ImageId normals;

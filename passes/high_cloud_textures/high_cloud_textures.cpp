@@ -24,7 +24,8 @@ constexpr VkImageUsageFlags kTextureUsage =
     VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
     VK_IMAGE_USAGE_TRANSFER_DST_BIT;
 // Bumped when the meaning of a cache entry changes without its shaders changing (v2: the
-// rank/shape layer; v3: cirrus normals from a mip level, chosen in C++ by style and size).
+// rank/shape layer; v3: cirrus normals from a mip level at a third of the relief, chosen in C++
+// by style and size).
 constexpr std::string_view kCacheFormat = "high_clouds cache v3";
 
 uint32_t coarseSizeOf(uint32_t n) {
@@ -41,13 +42,19 @@ uint32_t log2Of(uint32_t v) {
   return l;
 }
 
-// The mip level whose texels are 1/128 of the tile (235 m of a 30 km tile), at most the last
-// level before the coarse one: cirrus takes its normals there (high_cloud_normals.comp), the
-// relief of its wisps without a lit and a dark side on every fibre. Other styles and images keep
-// the texture's own (level 0): cirrocumulus cloudlets are a few texels across.
-uint32_t normalsLevelOf(HighCloudStyle style, uint32_t n) {
-  if (style != HighCloudStyle::Cirrus || n <= 128) return 0;
-  return std::min(log2Of(n / 128), log2Of(n / coarseSizeOf(n)) - 1);
+// Where a bake's normals come from. Cirrus: the mip level whose texels are 1/128 of the tile
+// (235 m of a 30 km tile; at most the last level before the coarse one), the relief of its
+// wisps without a lit and a dark flank on every fibre, at a third of the relief
+// (HIGH_CLOUD_CIRRUS_NORMAL_RELIEF). Other styles keep the texture's own texels and the full
+// relief: cirrocumulus cloudlets are a few texels across.
+struct NormalsSource {
+  uint32_t level = 0;
+  float relief = float(HIGH_CLOUD_NORMAL_RELIEF);
+};
+NormalsSource normalsSourceOf(HighCloudStyle style, uint32_t n) {
+  if (style != HighCloudStyle::Cirrus) return {};
+  const uint32_t level = n <= 128 ? 0 : std::min(log2Of(n / 128), log2Of(n / coarseSizeOf(n)) - 1);
+  return {level, float(HIGH_CLOUD_CIRRUS_NORMAL_RELIEF)};
 }
 
 // Bands of rows per bake: one per 64 rows, at most 32, so a 512 texture reports progress
@@ -334,7 +341,8 @@ void HighCloudTextures::bake(const Scene& scene, uint32_t size, const std::strin
   }
 
   mHasRankShape = true;
-  FrameResult result = finish(true, true, regionalCover, normalsLevelOf(h.style, size));
+  const NormalsSource normals = normalsSourceOf(h.style, size);
+  FrameResult result = finish(true, true, regionalCover, normals.level, normals.relief);
   auto take = [&](std::string_view label) {
     for (ReadbackImage& o : result.outputs)
       if (o.label == label) return std::move(o.pixels);
@@ -352,7 +360,7 @@ void HighCloudTextures::bake(const Scene& scene, uint32_t size, const std::strin
 }
 
 FrameResult HighCloudTextures::finish(bool deriveNormals, bool readAll, bool regionalCover,
-                                      uint32_t normalsLevel) {
+                                      uint32_t normalsLevel, float normalsRelief) {
   const uint32_t coarseSize = coarseSizeOf(mSize);
   FrameGraph graph(mRuntime, GraphUse::Bake);
   const ImageId coefficients = graph.importImage(mCoefficients);
@@ -364,7 +372,8 @@ FrameResult HighCloudTextures::finish(bool deriveNormals, bool readAll, bool reg
   if (deriveNormals)
     normals = graph
                   .add(mNormalsPass,
-                       {coefficients, levels, normals, mSize, coarseSize, normalsLevel})
+                       {coefficients, levels, normals, mSize, coarseSize, normalsLevel,
+                        normalsRelief})
                   .normals;
   coarse = graph.add(mReducePass, {coefficients, coarse, mSize, coarseSize}).coarse;
   graph.requestOutput(coarse, "coarse");

@@ -112,12 +112,14 @@ private:
   // Creates the images for an N x N texture unless they already have that size (rank/shape
   // with `rankShape`, the per-cover coarse texture with `coverCoarse`).
   void allocate(uint32_t size, bool rankShape, bool coverCoarse);
-  // Runs levels, normals (if asked, from level `normalsLevel`), reduce and, with
-  // `regionalCover`, the per-cover reduce on the uploaded or baked textures in one graph and
-  // sets the mean and the far-field table; reads back "coarse" ("cover_coarse" with
-  // regionalCover), and "coefficients", "normals" and "rank_shape" when `readAll`.
+  // Runs levels, normals (if asked, from level `normalsLevel` with `normalsRelief`),
+  // reduce and, with `regionalCover`, the per-cover reduce on the uploaded or baked textures
+  // in one graph and sets the mean and the far-field table; reads back "coarse"
+  // ("cover_coarse" with regionalCover), and "coefficients", "normals" and "rank_shape" when
+  // `readAll`.
   FrameResult finish(bool deriveNormals, bool readAll, bool regionalCover,
-                     uint32_t normalsLevel = 0);
+                     uint32_t normalsLevel = 0,
+                     float normalsRelief = float(HIGH_CLOUD_NORMAL_RELIEF));
   void addTimings(const FrameResult& result);
   void report(double fraction) const;
 

@@ -73,6 +73,11 @@
 // the tile's width: 0.015 of a 50 km tile is 750 m of cloud-top relief, the order of a cirrus
 // layer's thickness.
 #define HIGH_CLOUD_NORMAL_RELIEF 0.015
+// Procedural cirrus's relief (its normals also come from a mip level, high_cloud_textures.cpp):
+// a third, 150 m of a 30 km tile. Thin ice wisps are translucent, lit by scattering more than
+// by the slope of a surface; at the full relief a low sun gave each wisp a bright and a grey
+// flank, darker than the sky beside the sun.
+#define HIGH_CLOUD_CIRRUS_NORMAL_RELIEF 0.005
 
 // The coarse texture is N / 16 texels on a side, and never smaller than 4.
 #define HIGH_CLOUD_COARSE_DIVISOR 16u
@@ -91,7 +96,8 @@ struct HighCloudBakeParams {
 struct HighCloudNormalsParams {
   uvec4 size;    // x: N; y: the mip level the height field is read from (0: the coefficients
                  // themselves, l > 0: level l of the levels texture); z: C; w: unused
-  vec4 relief;   // x: HIGH_CLOUD_NORMAL_RELIEF * N, the height of opacity 1 in texels
+  vec4 relief;   // x: the relief (HIGH_CLOUD_NORMAL_RELIEF, or _CIRRUS_) * N, the height of
+                 // opacity 1 in texels
 };
 
 // Push constants of high_cloud_levels.comp.
