@@ -371,9 +371,8 @@ FrameResult HighCloudTextures::finish(bool deriveNormals, bool readAll, bool reg
   levels = graph.add(mLevelsPass, {coefficients, levels, mSize, coarseSize}).levels;
   if (deriveNormals)
     normals = graph
-                  .add(mNormalsPass,
-                       {coefficients, levels, normals, mSize, coarseSize, normalsLevel,
-                        normalsRelief})
+                  .add(mNormalsPass, {coefficients, levels, normals, mSize, coarseSize,
+                                      normalsLevel, normalsRelief})
                   .normals;
   coarse = graph.add(mReducePass, {coefficients, coarse, mSize, coarseSize}).coarse;
   graph.requestOutput(coarse, "coarse");

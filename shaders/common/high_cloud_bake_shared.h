@@ -94,10 +94,10 @@ struct HighCloudBakeParams {
 
 // Push constants of high_cloud_normals.comp.
 struct HighCloudNormalsParams {
-  uvec4 size;    // x: N; y: the mip level the height field is read from (0: the coefficients
-                 // themselves, l > 0: level l of the levels texture); z: C; w: unused
-  vec4 relief;   // x: the relief (HIGH_CLOUD_NORMAL_RELIEF, or _CIRRUS_) * N, the height of
-                 // opacity 1 in texels
+  uvec4 size;   // x: N; y: the mip level the height field is read from (0: the coefficients
+                // themselves, l > 0: level l of the levels texture); z: C; w: unused
+  vec4 relief;  // x: the relief (HIGH_CLOUD_NORMAL_RELIEF, or _CIRRUS_) * N, the height of
+                // opacity 1 in texels
 };
 
 // Push constants of high_cloud_levels.comp.

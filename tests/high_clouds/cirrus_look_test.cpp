@@ -121,12 +121,12 @@ BlockLook lookAt(const Opacity& o, const Opacity& fine, int bx, int by, int bloc
 }
 
 struct TextureLook {
-  double medianRepeat = 0;    // over the blocks with structure
-  double combedShare = 0;     // of those blocks whose repeat exceeds 0.25
+  double medianRepeat = 0;  // over the blocks with structure
+  double combedShare = 0;   // of those blocks whose repeat exceeds 0.25
   double medianCoherence = 0;
-  double clearShare = 0;      // of the texels: opacity below 0.02
-  int structured = 0;         // blocks with structure
-  double directionSpread = 0; // circular spread of the directions across the blocks, 0 .. 1
+  double clearShare = 0;       // of the texels: opacity below 0.02
+  int structured = 0;          // blocks with structure
+  double directionSpread = 0;  // circular spread of the directions across the blocks, 0 .. 1
   // Of the blocks that run one way (coherence above 0.3), the share within 7.5 degrees of the
   // texture's rows, columns or diagonals: 1/3 when every direction is as likely.
   double onLattice = 0;
@@ -175,10 +175,9 @@ TextureLook lookAt(const Fetched& f, int block) {
 
 std::ostream& operator<<(std::ostream& os, const TextureLook& t) {
   return os << "median repeat across the fibres " << t.medianRepeat << ", combed blocks "
-            << t.combedShare << ", median coherence " << t.medianCoherence
-            << ", direction spread " << t.directionSpread << ", on the lattice " << t.onLattice
-            << ", clear texels " << t.clearShare
-            << " (" << t.structured << " blocks with structure)";
+            << t.combedShare << ", median coherence " << t.medianCoherence << ", direction spread "
+            << t.directionSpread << ", on the lattice " << t.onLattice << ", clear texels "
+            << t.clearShare << " (" << t.structured << " blocks with structure)";
 }
 
 // 32 x 32 blocks of 256 x 256 bakes at the default cover 0.35, three seeds. Measured now (old
@@ -277,10 +276,10 @@ protected:
     const LightingState lighting = computeLighting(scene, scene.time.start);
     const auto& resources = graph.desc().resources;
     SkyHighCloudsPass::Inputs in{};
-    in.params = skyHighCloudsParams(
-        scene, lighting, scene.time.start, makeViewState(scene.camera, uint32_t(w), uint32_t(h)),
-        true, resources[tex.coefficients.id].image.width, resources[tex.coarse.id].image.width,
-        tex.mean);
+    in.params = skyHighCloudsParams(scene, lighting, scene.time.start,
+                                    makeViewState(scene.camera, uint32_t(w), uint32_t(h)), true,
+                                    resources[tex.coefficients.id].image.width,
+                                    resources[tex.coarse.id].image.width, tex.mean);
     in.lighting = lighting.gpu;
     in.textures = {tex.coefficients, tex.normals, tex.coarse, &mTextures->sampler(), tex.levels};
     graph.requestOutput(graph.add(*mPass, in).highClouds, "high_clouds");
@@ -323,8 +322,8 @@ TEST_F(CirrusDrawTest, DistantCirrusIsFilteredNotAliased) {
     }
   difference /= 64.0 * 36.0;
   coverage /= 64.0 * 36.0;
-  std::cout << "mean |difference| " << difference << ", mean coverage " << coverage
-            << ", ratio " << difference / coverage << "\n";
+  std::cout << "mean |difference| " << difference << ", mean coverage " << coverage << ", ratio "
+            << difference / coverage << "\n";
   ASSERT_GT(coverage, 0.05);
   EXPECT_LT(difference / coverage, 0.11);
 }
