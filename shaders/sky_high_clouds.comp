@@ -38,7 +38,10 @@ layout(binding = SKY_HIGH_CLOUDS_BINDING_RANK_SHAPE) uniform sampler2D rankShape
 layout(binding = SKY_HIGH_CLOUDS_BINDING_COVER_COARSE) uniform sampler3D coverCoarseTexture;
 #else
 layout(binding = SKY_HIGH_CLOUDS_BINDING_COEFFICIENTS) uniform sampler2D coefficientTexture;
+// The mip levels between the texture and the coarse one (common/high_cloud_levels.glsl).
+layout(binding = SKY_HIGH_CLOUDS_BINDING_LEVELS) uniform sampler2D levelsTexture;
 layout(binding = SKY_HIGH_CLOUDS_BINDING_COARSE) uniform sampler2D coarseTexture;
+#include "common/high_cloud_levels.glsl"
 #endif
 #if SKY_PHYSICAL_SKY
 layout(std140, binding = SKY_HIGH_CLOUDS_BINDING_ATMOSPHERE) uniform AtmosphereBlock {
@@ -97,6 +100,47 @@ vec4 farFieldAt(float c) {
 }
 #endif
 
+#if !SKY_HIGH_CLOUDS_REGIONAL
+// Mip level `level` of the coefficients at uv: the texture itself (0), the coarse texture
+// (coarseLevel) or one of the levels in between.
+vec4 coefficientLevel(vec2 uv, int level, int coarseLevel) {
+  if (level == 0) return textureLod(coefficientTexture, uv, 0.0);
+  if (level >= coarseLevel) return textureLod(coarseTexture, uv, 0.0);
+  return highCloudLevelSample(levelsTexture, uint(params.texture.w), level, uv);
+}
+
+// The coefficients filtered over a footprint of 2^lod texels: trilinear between the two mip
+// levels around it, so fine fibres average out where a pixel covers several of them instead of
+// aliasing into moire and false combs.
+vec4 trilinearCoefficients(vec2 uv, float lod) {
+  int coarseLevel = highCloudCoarseLevel(uint(params.texture.w), uint(params.shading.z));
+  lod = clamp(lod, 0.0, float(coarseLevel));
+  int lower = min(int(lod), coarseLevel - 1);
+  return mix(coefficientLevel(uv, lower, coarseLevel), coefficientLevel(uv, lower + 1, coarseLevel),
+             lod - float(lower));
+}
+
+// The maximum number of trilinear taps along a footprint's long axis.
+#define SKY_HIGH_CLOUDS_MAX_TAPS 4
+
+// The coefficients over a pixel's footprint on the layer, `along` texels long in the uv
+// direction `axis` (unit) and `across` texels wide: up to 4 trilinear taps spread along the
+// long axis, each at the level of the footprint's length over the number of taps. One tap at
+// the long axis's level would blur the clouds toward the horizon by up to 4 times across the
+// view; the taps keep them as sharp as the footprint allows (anisotropic filtering by hand).
+vec4 filteredCoefficients(vec2 uv, vec2 axis, float along, float across) {
+  float taps = clamp(ceil(along / max(across, 1e-6)), 1.0, float(SKY_HIGH_CLOUDS_MAX_TAPS));
+  float lod = log2(max(along / taps, 1e-6));
+  vec2 step = axis * (along / taps) / params.texture.w;  // uv between taps
+  vec4 sum = vec4(0.0);
+  for (int i = 0; i < SKY_HIGH_CLOUDS_MAX_TAPS; ++i) {
+    if (float(i) >= taps) break;
+    sum += trilinearCoefficients(uv + (float(i) - 0.5 * (taps - 1.0)) * step, lod);
+  }
+  return sum / taps;
+}
+#endif
+
 void main() {
   uvec2 p = gl_GlobalInvocationID.xy;
   if (any(greaterThanEqual(p, params.view.size.xy))) return;
@@ -130,13 +174,16 @@ void main() {
     vec2 uv = vec2(metres.x, -metres.y) / params.texture.z;
 
     // Texture footprint of this pixel: a pixel angle at distance t, stretched by the grazing
-    // angle. Past one texel the detail is sub-pixel: blend to the 16x box-filtered level, and
-    // past 16 texels to the texture's mean, so the horizon does not shimmer (the textures have
-    // no mip chain).
+    // angle (the footprint's long axis, so nothing aliases along it). Past one texel the
+    // detail is sub-pixel: the coefficients come from the mip level of the footprint, and
+    // past the coarse level they blend over 4 more octaves to the texture's mean, so the
+    // horizon does not shimmer. The normals flatten over the first 4 octaves.
     float grazing = max(abs(dot(V, up)), 0.02);
     float footprintM = viewPixelAngle(params.view, V) * t / grazing;
     float texels = footprintM * params.texture.w / params.texture.z;
-    float toCoarse = clamp(log2(max(texels, 1e-6)) / 4.0, 0.0, 1.0);
+    float acrossTexels = texels * grazing;  // across the view the footprint is not stretched
+    float lod = log2(max(texels, 1e-6));
+    float toCoarse = clamp(lod / 4.0, 0.0, 1.0);
     float coarseTexels = texels * params.shading.z / params.texture.w;
     float toMean = clamp(log2(max(coarseTexels, 1e-6)) / 4.0, 0.0, 1.0);
 #if SKY_HIGH_CLOUDS_REGIONAL
@@ -148,8 +195,12 @@ void main() {
     vec4 coarse = texture(coverCoarseTexture, vec3(uv, layerW));
     vec4 c = mix(mix(fine, coarse, toCoarse), farFieldAt(cover), toMean);
 #else
-    vec4 c = mix(mix(texture(coefficientTexture, uv), texture(coarseTexture, uv), toCoarse),
-                 params.meanCoefficients, toMean);
+    // The long axis: the view direction along the layer, in uv (east, south).
+    vec3 level = V - up * dot(V, up);
+    vec2 axis = vec2(dot(level, east), -dot(level, north));
+    axis = dot(axis, axis) > 1e-12 ? normalize(axis) : vec2(1.0, 0.0);
+    vec4 c = mix(filteredCoefficients(uv, axis, texels, acrossTexels), params.meanCoefficients,
+                 toMean);
 #endif
     c = clamp(c, 0.0, 1.0);
     vec3 n = normalize(mix(texture(normalTexture, uv).xyz, vec3(0.0, 0.0, 1.0), toCoarse));

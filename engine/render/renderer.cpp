@@ -250,7 +250,7 @@ Renderer::SkyImages Renderer::addSky(FrameGraph& graph, const FrameInputs& f, Re
   }
   sky.lighting = out.lighting.gpu;
   sky.textures = {textures.coefficients, textures.normals, textures.coarse,
-                  &mHighCloudTextures.sampler()};
+                  &mHighCloudTextures.sampler(), textures.levels};
   if (f.physical) {
     AtmosphereLuts::Frame a;
     a.atmosphere = physicalAtmosphere(scene);

@@ -44,16 +44,25 @@ void HighCloudBakePass::execute(PassContext& ctx) const {
                mPipeline.groupsX(size.x), mPipeline.groupsY(size.z));
 }
 
-HighCloudNormalsPass::HighCloudNormalsPass(const Context& ctx, ShaderCompiler& compiler)
-    : HighCloudNormalsPass(ctx, compileForDevice(ctx, compiler, std::string(kName) + ".comp")) {}
+HighCloudNormalsPass::HighCloudNormalsPass(const Context& ctx, ShaderCompiler& compiler,
+                                           const Sampler& sampler)
+    : HighCloudNormalsPass(ctx, compileForDevice(ctx, compiler, std::string(kName) + ".comp"),
+                           sampler) {}
 
-HighCloudNormalsPass::HighCloudNormalsPass(const Context& ctx, const CompiledShader& shader)
-    : mPipeline(ctx, kName, shader.spirv, shader.reflection), mSourceHash(shader.sourceHash) {}
+HighCloudNormalsPass::HighCloudNormalsPass(const Context& ctx, const CompiledShader& shader,
+                                           const Sampler& sampler)
+    : mPipeline(ctx, kName, shader.spirv, shader.reflection),
+      mSourceHash(shader.sourceHash),
+      mSampler(sampler) {}
 
 HighCloudNormalsPass::Outputs HighCloudNormalsPass::setup(GraphBuilder& b, const Inputs& in) {
   if (in.size == 0) internalError("high_cloud_normals: empty texture");
+  if (in.level > 0 && (in.coarseSize == 0 || (in.size / in.coarseSize) >> in.level <= 1))
+    internalError("high_cloud_normals: no level " + std::to_string(in.level) + " between " +
+                  std::to_string(in.size) + " and " + std::to_string(in.coarseSize));
   mInputs = in;
   mInputs.coefficients = b.read(in.coefficients, Access::StorageReadCompute);
+  mInputs.levels = b.read(in.levels, Access::SampledCompute);
   mOutputs.normals = b.write(in.normals, Access::StorageWriteCompute);
   b.sideEffect();
   return mOutputs;
@@ -61,14 +70,42 @@ HighCloudNormalsPass::Outputs HighCloudNormalsPass::setup(GraphBuilder& b, const
 
 void HighCloudNormalsPass::execute(PassContext& ctx) const {
   shared::HighCloudNormalsParams push{};
-  push.size = glm::uvec4(mInputs.size, 0, 0, 0);
+  push.size = glm::uvec4(mInputs.size, mInputs.level, mInputs.coarseSize, 0);
   // The relief in texels, so the normals describe the same surface at every resolution.
-  push.relief = glm::vec4(float(HIGH_CLOUD_NORMAL_RELIEF) * float(mInputs.size), 0, 0, 0);
+  push.relief = glm::vec4(mInputs.relief * float(mInputs.size), 0, 0, 0);
   ctx.dispatch(mPipeline,
                {Binding::of(HIGH_CLOUD_NORMALS_BINDING_COEFFICIENTS, mInputs.coefficients),
+                Binding::of(HIGH_CLOUD_NORMALS_BINDING_LEVELS, mInputs.levels, &mSampler),
                 Binding::of(HIGH_CLOUD_NORMALS_BINDING_NORMALS, mOutputs.normals)},
                mPipeline.groupsX(mInputs.size), mPipeline.groupsY(mInputs.size), 1, &push,
                sizeof push);
+}
+
+HighCloudLevelsPass::HighCloudLevelsPass(const Context& ctx, ShaderCompiler& compiler)
+    : mPipeline([&] {
+        CompiledShader shader = compileForDevice(ctx, compiler, std::string(kName) + ".comp");
+        return ComputePipeline(ctx, kName, shader.spirv, shader.reflection);
+      }()) {}
+
+HighCloudLevelsPass::Outputs HighCloudLevelsPass::setup(GraphBuilder& b, const Inputs& in) {
+  if (in.coarseSize == 0 || in.size < 4 * in.coarseSize || in.size % in.coarseSize != 0)
+    internalError("high_cloud_levels: " + std::to_string(in.size) + " is not 4 or more times " +
+                  std::to_string(in.coarseSize));
+  mInputs = in;
+  mInputs.coefficients = b.read(in.coefficients, Access::StorageReadCompute);
+  mOutputs.levels = b.write(in.levels, Access::StorageWriteCompute);
+  b.sideEffect();
+  return mOutputs;
+}
+
+void HighCloudLevelsPass::execute(PassContext& ctx) const {
+  shared::HighCloudLevelsParams push{};
+  push.size = glm::uvec4(mInputs.size, mInputs.coarseSize, 0, 0);
+  const uint32_t width = mInputs.size - 2 * mInputs.coarseSize, height = mInputs.size / 2;
+  ctx.dispatch(mPipeline,
+               {Binding::of(HIGH_CLOUD_LEVELS_BINDING_COEFFICIENTS, mInputs.coefficients),
+                Binding::of(HIGH_CLOUD_LEVELS_BINDING_LEVELS, mOutputs.levels)},
+               mPipeline.groupsX(width), mPipeline.groupsY(height), 1, &push, sizeof push);
 }
 
 HighCloudReducePass::HighCloudReducePass(const Context& ctx, ShaderCompiler& compiler)

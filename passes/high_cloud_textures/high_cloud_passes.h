@@ -45,27 +45,60 @@ private:
   Outputs mOutputs;
 };
 
-// Tangent-space normals from the coefficients' opacity (shaders/high_cloud_normals.comp).
+// Tangent-space normals from the coefficients' opacity (shaders/high_cloud_normals.comp), of
+// the texture itself or, smoother, of one of its mip levels.
 class HighCloudNormalsPass {
 public:
   static constexpr const char* kName = "high_cloud_normals";
   struct Inputs {
-    ImageId coefficients;  // N x N rgba16f
-    ImageId normals;       // N x N rgba16f, overwritten
-    uint32_t size = 0;     // N
+    ImageId coefficients;     // N x N rgba16f
+    ImageId levels;           // HighCloudLevelsPass's output (read only when level > 0)
+    ImageId normals;          // N x N rgba16f, overwritten
+    uint32_t size = 0;        // N
+    uint32_t coarseSize = 0;  // C
+    uint32_t level = 0;       // 0: the texture's own opacity; 1 .. log2(N / C) - 1: that level's
+    // The height of opacity 1, in tiles (HIGH_CLOUD_NORMAL_RELIEF or _CIRRUS_NORMAL_RELIEF).
+    float relief = float(HIGH_CLOUD_NORMAL_RELIEF);
   };
   struct Outputs {
     ImageId normals;
   };
-  HighCloudNormalsPass(const Context& ctx, ShaderCompiler& compiler);
+  // `sampler` (any; the levels are read with texelFetch) must outlive the pass.
+  HighCloudNormalsPass(const Context& ctx, ShaderCompiler& compiler, const Sampler& sampler);
   uint64_t sourceHash() const { return mSourceHash; }
   Outputs setup(GraphBuilder& builder, const Inputs& inputs);
   void execute(PassContext& ctx) const;
 
 private:
-  HighCloudNormalsPass(const Context& ctx, const CompiledShader& shader);
+  HighCloudNormalsPass(const Context& ctx, const CompiledShader& shader, const Sampler& sampler);
   ComputePipeline mPipeline;
   uint64_t mSourceHash = 0;
+  const Sampler& mSampler;
+  Inputs mInputs;
+  Outputs mOutputs;
+};
+
+// The coefficients' mip levels 1 .. log2(N / C) - 1 side by side in one image
+// (shaders/high_cloud_levels.comp, common/high_cloud_levels.glsl), for the draw's filtering by
+// footprint and the smoothed normals.
+class HighCloudLevelsPass {
+public:
+  static constexpr const char* kName = "high_cloud_levels";
+  struct Inputs {
+    ImageId coefficients;     // N x N rgba16f
+    ImageId levels;           // (N - 2C) x N/2 rgba16f, overwritten
+    uint32_t size = 0;        // N
+    uint32_t coarseSize = 0;  // C; N / C is 4 or more
+  };
+  struct Outputs {
+    ImageId levels;
+  };
+  HighCloudLevelsPass(const Context& ctx, ShaderCompiler& compiler);
+  Outputs setup(GraphBuilder& builder, const Inputs& inputs);
+  void execute(PassContext& ctx) const;
+
+private:
+  ComputePipeline mPipeline;
   Inputs mInputs;
   Outputs mOutputs;
 };

@@ -24,11 +24,37 @@ constexpr VkImageUsageFlags kTextureUsage =
     VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
     VK_IMAGE_USAGE_TRANSFER_DST_BIT;
 // Bumped when the meaning of a cache entry changes without its shaders changing (v2: the
-// rank/shape layer).
-constexpr std::string_view kCacheFormat = "high_clouds cache v2";
+// rank/shape layer; v3: cirrus normals from a mip level at a third of the relief, chosen in C++
+// by style and size).
+constexpr std::string_view kCacheFormat = "high_clouds cache v3";
 
 uint32_t coarseSizeOf(uint32_t n) {
   return std::max(n / HIGH_CLOUD_COARSE_DIVISOR, HIGH_CLOUD_COARSE_MIN);
+}
+
+// log2 of a power of two.
+uint32_t log2Of(uint32_t v) {
+  uint32_t l = 0;
+  while (v > 1) {
+    v >>= 1;
+    ++l;
+  }
+  return l;
+}
+
+// Where a bake's normals come from. Cirrus: the mip level whose texels are 1/128 of the tile
+// (235 m of a 30 km tile; at most the last level before the coarse one), the relief of its
+// wisps without a lit and a dark flank on every fibre, at a third of the relief
+// (HIGH_CLOUD_CIRRUS_NORMAL_RELIEF). Other styles keep the texture's own texels and the full
+// relief: cirrocumulus cloudlets are a few texels across.
+struct NormalsSource {
+  uint32_t level = 0;
+  float relief = float(HIGH_CLOUD_NORMAL_RELIEF);
+};
+NormalsSource normalsSourceOf(HighCloudStyle style, uint32_t n) {
+  if (style != HighCloudStyle::Cirrus) return {};
+  const uint32_t level = n <= 128 ? 0 : std::min(log2Of(n / 128), log2Of(n / coarseSizeOf(n)) - 1);
+  return {level, float(HIGH_CLOUD_CIRRUS_NORMAL_RELIEF)};
 }
 
 // Bands of rows per bake: one per 64 rows, at most 32, so a 512 texture reports progress
@@ -106,8 +132,9 @@ HighCloudTextures::HighCloudTextures(const Context& ctx, ShaderCompiler& compile
       mRuntime(runtime),
       mSampler(ctx, SamplerWrap::Repeat, true),
       mBakePass(ctx, compiler, mSampler),
-      mNormalsPass(ctx, compiler),
+      mNormalsPass(ctx, compiler, mSampler),
       mReducePass(ctx, compiler),
+      mLevelsPass(ctx, compiler),
       mCoverReducePass(ctx, compiler) {}
 
 float HighCloudTextures::rampWidth(HighCloudStyle style) {
@@ -148,6 +175,7 @@ HighCloudTextures::Outputs HighCloudTextures::addTo(FrameGraph& graph, const Sce
   out.coefficients = graph.importImage(mCoefficients);
   out.normals = graph.importImage(mNormals);
   out.coarse = graph.importImage(mCoarse);
+  out.levels = graph.importImage(mLevels);
   out.mean = mMean;
   if (mHasRankShape) {
     out.rankShape = graph.importImage(mRankShape);
@@ -207,6 +235,10 @@ void HighCloudTextures::allocate(uint32_t size, bool rankShape, bool coverCoarse
     mCoarse = makeImage(mCtx, "high_cloud_coarse",
                         "the coefficient texture's mean over coarse cells (distant clouds)", f, c,
                         c, kTextureUsage);
+    mLevels = makeImage(mCtx, "high_cloud_levels",
+                        "the coefficient texture's mip levels between it and the coarse one, side "
+                        "by side (footprint filtering)",
+                        f, size - 2 * c, size / 2, kTextureUsage);
     mRankShape = {};
     mCoverCoarse = {};
     mSize = size;
@@ -229,6 +261,9 @@ void HighCloudTextures::makeClear() {
   uploadImage(mCtx, mNormals.image, mNormals.state, constantTexture(kClearSize, {0, 0, 1, 0}));
   // The box filter of a constant is the constant: no reduce pass needed.
   uploadImage(mCtx, mCoarse.image, mCoarse.state, constantTexture(coarseSizeOf(kClearSize), clear));
+  // 16 - 2 * 4 = 8 columns of 16 / 2 rows: level 1 alone, square.
+  static_assert(kClearSize - 2 * HIGH_CLOUD_COARSE_MIN == kClearSize / 2);
+  uploadImage(mCtx, mLevels.image, mLevels.state, constantTexture(kClearSize / 2, clear));
   mMean = clear;
 }
 
@@ -306,7 +341,8 @@ void HighCloudTextures::bake(const Scene& scene, uint32_t size, const std::strin
   }
 
   mHasRankShape = true;
-  FrameResult result = finish(true, true, regionalCover);
+  const NormalsSource normals = normalsSourceOf(h.style, size);
+  FrameResult result = finish(true, true, regionalCover, normals.level, normals.relief);
   auto take = [&](std::string_view label) {
     for (ReadbackImage& o : result.outputs)
       if (o.label == label) return std::move(o.pixels);
@@ -323,14 +359,21 @@ void HighCloudTextures::bake(const Scene& scene, uint32_t size, const std::strin
   report(1.0);
 }
 
-FrameResult HighCloudTextures::finish(bool deriveNormals, bool readAll, bool regionalCover) {
+FrameResult HighCloudTextures::finish(bool deriveNormals, bool readAll, bool regionalCover,
+                                      uint32_t normalsLevel, float normalsRelief) {
   const uint32_t coarseSize = coarseSizeOf(mSize);
   FrameGraph graph(mRuntime, GraphUse::Bake);
   const ImageId coefficients = graph.importImage(mCoefficients);
   ImageId normals = graph.importImage(mNormals);
   ImageId coarse = graph.importImage(mCoarse);
+  ImageId levels = graph.importImage(mLevels);
   const ImageId rankShape = mHasRankShape ? graph.importImage(mRankShape) : ImageId{};
-  if (deriveNormals) normals = graph.add(mNormalsPass, {coefficients, normals, mSize}).normals;
+  levels = graph.add(mLevelsPass, {coefficients, levels, mSize, coarseSize}).levels;
+  if (deriveNormals)
+    normals = graph
+                  .add(mNormalsPass, {coefficients, levels, normals, mSize, coarseSize,
+                                      normalsLevel, normalsRelief})
+                  .normals;
   coarse = graph.add(mReducePass, {coefficients, coarse, mSize, coarseSize}).coarse;
   graph.requestOutput(coarse, "coarse");
   if (regionalCover) {

@@ -35,6 +35,9 @@ public:
     ImageId coefficients;        // RGBA16F, N x N (N = resolution or the image size)
     ImageId normals;             // RGBA16F, N x N, xyz unit tangent-space normal, w unused (0)
     ImageId coarse;              // RGBA16F, (N/16) x (N/16) (at least 4x4): box-filtered
+    // RGBA16F, (N - 2C) x N/2 with C the coarse size: the coefficients' mip levels between
+    // the texture and the coarse one, side by side (shaders/common/high_cloud_levels.glsl).
+    ImageId levels;
     glm::vec4 mean{0, 0, 1, 0};  // the mean coefficients over the texture (far field)
     // Procedural sources only (invalid for images and the clear texture of cover 0): R the
     // texel's rank r, G its optical depth factor `shape`, BA 0; RGBA16F, N x N. At cover c a
@@ -109,11 +112,14 @@ private:
   // Creates the images for an N x N texture unless they already have that size (rank/shape
   // with `rankShape`, the per-cover coarse texture with `coverCoarse`).
   void allocate(uint32_t size, bool rankShape, bool coverCoarse);
-  // Runs normals (if asked), reduce and, with `regionalCover`, the per-cover reduce on the
-  // uploaded or baked textures in one graph and sets the mean and the far-field table; reads
-  // back "coarse" ("cover_coarse" with regionalCover), and "coefficients", "normals" and
-  // "rank_shape" when `readAll`.
-  FrameResult finish(bool deriveNormals, bool readAll, bool regionalCover);
+  // Runs levels, normals (if asked, from level `normalsLevel` with `normalsRelief`),
+  // reduce and, with `regionalCover`, the per-cover reduce on the uploaded or baked textures
+  // in one graph and sets the mean and the far-field table; reads back "coarse"
+  // ("cover_coarse" with regionalCover), and "coefficients", "normals" and "rank_shape" when
+  // `readAll`.
+  FrameResult finish(bool deriveNormals, bool readAll, bool regionalCover,
+                     uint32_t normalsLevel = 0,
+                     float normalsRelief = float(HIGH_CLOUD_NORMAL_RELIEF));
   void addTimings(const FrameResult& result);
   void report(double fraction) const;
 
@@ -123,10 +129,12 @@ private:
   HighCloudBakePass mBakePass;
   HighCloudNormalsPass mNormalsPass;
   HighCloudReducePass mReducePass;
+  HighCloudLevelsPass mLevelsPass;
   HighCloudCoverReducePass mCoverReducePass;
   PersistentImage mCoefficients;
   PersistentImage mNormals;
   PersistentImage mCoarse;
+  PersistentImage mLevels;
   PersistentImage mRankShape;    // procedural sources
   PersistentImage mCoverCoarse;  // regional cover
   PersistentImage mCoverMap;     // r16f; 1x1 white when the scene has none

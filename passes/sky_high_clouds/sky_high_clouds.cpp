@@ -131,7 +131,9 @@ SkyHighCloudsPass::Outputs SkyHighCloudsPass::setup(GraphBuilder& b, const Input
     b.read(r.rankShape, Access::SampledCompute);
     b.read(r.coverCoarse, Access::SampledCompute);
   } else {
+    if (!in.textures.levels.valid()) internalError("sky_high_clouds: no mip levels");
     b.read(in.textures.coefficients, Access::SampledCompute);
+    b.read(in.textures.levels, Access::SampledCompute);
     b.read(in.textures.coarse, Access::SampledCompute);
   }
   if (in.physical) {
@@ -178,6 +180,7 @@ void SkyHighCloudsPass::execute(PassContext& ctx) const {
   } else {
     bindings.push_back(
         Binding::of(SKY_HIGH_CLOUDS_BINDING_COEFFICIENTS, tex.coefficients, tex.sampler));
+    bindings.push_back(Binding::of(SKY_HIGH_CLOUDS_BINDING_LEVELS, tex.levels, tex.sampler));
     bindings.push_back(Binding::of(SKY_HIGH_CLOUDS_BINDING_COARSE, tex.coarse, tex.sampler));
   }
   if (mInputs.physical) {

@@ -35,14 +35,15 @@ public:
   struct Textures {  // passes/high_cloud_textures
     ImageId coefficients, normals, coarse;
     const Sampler* sampler = nullptr;  // linear, repeat
+    ImageId levels;  // the mip levels between coefficients and coarse (not read regionally)
   };
   struct Atmosphere {  // passes/atmosphere_luts; sky.model physical only
     shared::AtmosphereParams params{};
     ImageId transmittance, skyViewSun, skyViewMoon;
     const Sampler* sampler = nullptr;  // linear, clamp
   };
-  // params.regional.x = 1 only (setRegionalCover): all three must be set, and `coefficients`
-  // and `coarse` of `textures` are not read (normals still are).
+  // params.regional.x = 1 only (setRegionalCover): all three must be set, and `coefficients`,
+  // `levels` and `coarse` of `textures` are not read (normals still are).
   struct Regional {
     ImageId cover;                          // R16F, RegionalCoverTexture (the high cover)
     const Sampler* coverSampler = nullptr;  // linear, clamp (RegionalCoverTexture::sampler)

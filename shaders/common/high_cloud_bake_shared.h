@@ -9,6 +9,10 @@
 //                         edges (Kozlov fig. 3), each in [0, 1]
 //   normals      (N x N): xyz the unit tangent-space normal (x east, y north, z up), w = 0
 //   coarse       (C x C): the coefficients box-filtered over (N / C)^2 texels
+//   levels       ((N - 2C) x N/2): the coefficients' mip levels 1 .. L - 1 side by side
+//                         (L = log2(N / C); level L is the coarse texture), level l box-filtered
+//                         over 2^l x 2^l texels, N / 2^l on a side, at column N - 2N / 2^l
+//                         (common/high_cloud_levels.glsl)
 //   rank/shape   (N x N): R the texel's rank r, G its optical depth factor `shape`, BA = 0:
 //                         tau(c) = shape * presence(r, c, w) at any cover c
 //                         (common/high_cloud_coverage.glsl); procedural bakes only
@@ -28,6 +32,10 @@
 
 #define HIGH_CLOUD_NORMALS_BINDING_COEFFICIENTS 0
 #define HIGH_CLOUD_NORMALS_BINDING_NORMALS 1
+#define HIGH_CLOUD_NORMALS_BINDING_LEVELS 2
+
+#define HIGH_CLOUD_LEVELS_BINDING_COEFFICIENTS 0
+#define HIGH_CLOUD_LEVELS_BINDING_LEVELS 1
 
 #define HIGH_CLOUD_REDUCE_BINDING_COEFFICIENTS 0
 #define HIGH_CLOUD_REDUCE_BINDING_COARSE 1
@@ -42,7 +50,7 @@
 
 // The soft width w of each style's cover ramp: cloud appears where the rank exceeds
 // 1 - c (1 + w) and reaches its full optical depth w later (high_cloud_coverage.glsl).
-#define HIGH_CLOUD_RAMP_CIRRUS 0.35
+#define HIGH_CLOUD_RAMP_CIRRUS 0.2
 #define HIGH_CLOUD_RAMP_CIRROSTRATUS 0.5
 #define HIGH_CLOUD_RAMP_CIRROCUMULUS 0.25
 
@@ -65,6 +73,11 @@
 // the tile's width: 0.015 of a 50 km tile is 750 m of cloud-top relief, the order of a cirrus
 // layer's thickness.
 #define HIGH_CLOUD_NORMAL_RELIEF 0.015
+// Procedural cirrus's relief (its normals also come from a mip level, high_cloud_textures.cpp):
+// a third, 150 m of a 30 km tile. Thin ice wisps are translucent, lit by scattering more than
+// by the slope of a surface; at the full relief a low sun gave each wisp a bright and a grey
+// flank, darker than the sky beside the sun.
+#define HIGH_CLOUD_CIRRUS_NORMAL_RELIEF 0.005
 
 // The coarse texture is N / 16 texels on a side, and never smaller than 4.
 #define HIGH_CLOUD_COARSE_DIVISOR 16u
@@ -81,8 +94,15 @@ struct HighCloudBakeParams {
 
 // Push constants of high_cloud_normals.comp.
 struct HighCloudNormalsParams {
-  uvec4 size;    // x: N; yzw: unused
-  vec4 relief;   // x: HIGH_CLOUD_NORMAL_RELIEF * N, the height of opacity 1 in texels
+  uvec4 size;   // x: N; y: the mip level the height field is read from (0: the coefficients
+                // themselves, l > 0: level l of the levels texture); z: C; w: unused
+  vec4 relief;  // x: the relief (HIGH_CLOUD_NORMAL_RELIEF, or _CIRRUS_) * N, the height of
+                // opacity 1 in texels
+};
+
+// Push constants of high_cloud_levels.comp.
+struct HighCloudLevelsParams {
+  uvec4 size;  // x: N; y: C, the coarse size; zw: unused
 };
 
 // Push constants of high_cloud_reduce.comp.
@@ -104,6 +124,7 @@ static_assert(sizeof(sky::shared::HighCloudBakeParams) == 48,
 static_assert(sizeof(sky::shared::HighCloudNormalsParams) == 32,
               "layout of HighCloudNormalsParams");
 static_assert(sizeof(sky::shared::HighCloudReduceParams) == 16, "layout of HighCloudReduceParams");
+static_assert(sizeof(sky::shared::HighCloudLevelsParams) == 16, "layout of HighCloudLevelsParams");
 static_assert(sizeof(sky::shared::HighCloudCoverReduceParams) == 32,
               "layout of HighCloudCoverReduceParams");
 #endif

@@ -3,7 +3,7 @@
 // binds the atmosphere LUTs of passes/atmosphere_luts. The regional variant
 // (SKY_HIGH_CLOUDS_REGIONAL 1, chosen by regional.x) takes the cover per pixel from the
 // weather map's high layer: it binds the regional cover, the rank/shape texture and the
-// per-cover coarse texture instead of the coefficient and coarse textures.
+// per-cover coarse texture instead of the coefficient, levels and coarse textures.
 #ifndef SKY_SKY_HIGH_CLOUDS_SHARED_H
 #define SKY_SKY_HIGH_CLOUDS_SHARED_H
 #include "shared_prelude.h"
@@ -29,6 +29,8 @@
 #define SKY_HIGH_CLOUDS_BINDING_REGIONAL_COVER 11
 #define SKY_HIGH_CLOUDS_BINDING_RANK_SHAPE 12
 #define SKY_HIGH_CLOUDS_BINDING_COVER_COARSE 13
+// the scene's cover only (with COEFFICIENTS and COARSE):
+#define SKY_HIGH_CLOUDS_BINDING_LEVELS 14
 
 SKY_SHARED_BEGIN
 

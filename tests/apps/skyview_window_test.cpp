@@ -41,18 +41,20 @@ void expectNotBlank(const fs::path& png) {
 }
 
 TEST_F(SkyviewTest, ScreenshotMatchesSkyrender) {
-  // A few frames, the debug view cycled through the frame graph's images (the fifth is the
-  // clear sky) and shown full screen, then hidden again for the screenshot.
+  // A few frames, the debug view cycled through the frame graph's images (the sixth is the
+  // clear sky, after the five high-cloud textures) and shown full screen, then hidden again
+  // for the screenshot.
   const fs::path out = mDir / "out";
-  ViewRun r = run("--width 160 --height 90 --out " + out.string() +
-                  " --script 'wait 2; key tab; wait 1; key tab; key tab; key tab; key tab; "
-                  "wait 2; dump-debug " +
-                  (mDir / "debug.png").string() +
-                  "; key v; wait 1; key shift+tab; wait 1; screenshot; dump-frame " +
-                  (mDir / "screen.png").string() + "; wait 1; quit'");
+  ViewRun r =
+      run("--width 160 --height 90 --out " + out.string() +
+          " --script 'wait 2; key tab; wait 1; key tab; key tab; key tab; key tab; key tab; "
+          "wait 2; dump-debug " +
+          (mDir / "debug.png").string() +
+          "; key v; wait 1; key shift+tab; wait 1; screenshot; dump-frame " +
+          (mDir / "screen.png").string() + "; wait 1; quit'");
   ASSERT_EQ(r.rc, 0) << r.err;
   EXPECT_THAT(r.out, HasSubstr("skyview: high_cloud_coefficients (1/"));
-  EXPECT_THAT(r.out, HasSubstr("skyview: sky (5/"));
+  EXPECT_THAT(r.out, HasSubstr("skyview: sky (6/"));
   EXPECT_THAT(r.out, HasSubstr("160x90, full screen)"));
   const Image8 debug = readPng(mDir / "debug.png");
   EXPECT_EQ(debug.width, 160) << "the sky image, read back at the frame's size";

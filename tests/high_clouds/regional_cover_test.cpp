@@ -173,7 +173,7 @@ protected:
                                     resources[tex.coefficients.id].image.width,
                                     resources[tex.coarse.id].image.width, tex.mean);
     in.lighting = lighting.gpu;
-    in.textures = {tex.coefficients, tex.normals, tex.coarse, &textures().sampler()};
+    in.textures = {tex.coefficients, tex.normals, tex.coarse, &textures().sampler(), tex.levels};
     if (regional) {
       setRegionalCover(in.params, scene, map->region, tex);
       in.regional = {coverTexture().addTo(graph, *map, ++mRevision), &coverTexture().sampler(),
@@ -306,8 +306,13 @@ TEST_F(RegionalCoverTest, CacheRoundTripKeepsRankShapeAndTable) {
 // ---- The draw ----------------------------------------------------------------------------
 
 // The same cover everywhere on the map looks like that cover in the scene: the same mean
-// coverage overhead and toward the horizon (fine, coarse and far-field levels), and pixel by
-// pixel nearly the same clouds, since both come from the same rank and shape.
+// coverage overhead and toward the horizon (fine, coarse and far-field levels), and block by
+// block nearly the same clouds, since both come from the same rank and shape. Blocks of 9 x 9
+// pixels, because the two filter differently where a pixel covers a few texels: the scene's
+// coefficients through their mip levels, the regional ones between the per-pixel texel, which
+// aliases, and the per-cover coarse texture (docs/high-clouds.md, "Filtering"). The blocks'
+// difference halves from 4 x 4 to 9 x 9 pixels, as noise does; clouds in the wrong places
+// would differ by about the mean coverage (0.08 to 0.33) however large the blocks.
 TEST_F(RegionalCoverTest, UniformRegionalCoverMatchesTheSceneCover) {
   for (View view : {View::Up, View::EastHorizon})
     for (double cover : {0.3, 0.7}) {
@@ -320,18 +325,29 @@ TEST_F(RegionalCoverTest, UniformRegionalCoverMatchesTheSceneCover) {
       Scene sceneZero = scene;
       sceneZero.highClouds.cover = 0.0;  // ignored: the map sets the cover
       const Layer fromMap = draw(sceneZero, &map);
-      double difference = 0;
+      double difference = 0, pixels = 0;
       int covered = 0;
-      for (int y = 0; y < fromScene.height; ++y)
-        for (int x = 0; x < fromScene.width; ++x) {
-          difference += std::abs(fromScene.alpha(x, y) - fromMap.alpha(x, y));
-          covered += fromScene.alpha(x, y) > 0.0f;
+      const int block = 9;
+      for (int by = 0; by < fromScene.height / block; ++by)
+        for (int bx = 0; bx < fromScene.width / block; ++bx) {
+          double a = 0, b = 0;
+          for (int y = by * block; y < (by + 1) * block; ++y)
+            for (int x = bx * block; x < (bx + 1) * block; ++x) {
+              a += fromScene.alpha(x, y);
+              b += fromMap.alpha(x, y);
+              pixels += std::abs(fromScene.alpha(x, y) - fromMap.alpha(x, y));
+              covered += fromScene.alpha(x, y) > 0.0f;
+            }
+          difference += std::abs(a - b) / (block * block);
         }
-      difference /= double(fromScene.width * fromScene.height);
+      difference /= double(fromScene.width / block * (fromScene.height / block));
+      pixels /= double(fromScene.width / block * block * (fromScene.height / block * block));
       ASSERT_GT(covered, 100);
-      // Measured: means 0.005 apart at most, pixels 0.008 on average.
-      EXPECT_NEAR(fromMap.meanAlpha(), fromScene.meanAlpha(), 0.015)
-          << "scene " << fromScene.meanAlpha() << ", map " << fromMap.meanAlpha();
+      std::cout << "mean coverage: scene " << fromScene.meanAlpha() << ", map "
+                << fromMap.meanAlpha() << "; mean |difference| of 9x9 blocks " << difference
+                << ", of pixels " << pixels << "\n";
+      // Measured: means 0.009 apart at most, blocks 0.011 on average (pixels 0.055).
+      EXPECT_NEAR(fromMap.meanAlpha(), fromScene.meanAlpha(), 0.015);
       EXPECT_LT(difference, 0.02);
     }
 }
