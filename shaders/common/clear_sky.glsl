@@ -7,6 +7,7 @@
 // `atmosphere`, `skyViewSunLut` and (with LIGHTING_MOON) `skyViewMoonLut`.
 #ifndef SKY_CLEAR_SKY_GLSL
 #define SKY_CLEAR_SKY_GLSL
+#include "lighting.glsl"
 
 vec3 frameSkyRadiance(LightingState L, vec3 V) {
 #if SKY_PHYSICAL_SKY

@@ -55,8 +55,8 @@ TEST_F(SkyrenderCli, RendersTheDefaultSceneIntoExrPngAndReport) {
   }
   // By day (the sun 21 degrees up) the stars are drowned in the sky: no star passes.
   EXPECT_THAT(passNames,
-              ::testing::ElementsAre("sky_high_clouds", "volumetric_clouds", "cloud_shadow",
-                                     "atmosphere_composite", "readback"));
+              ::testing::ElementsAre("sky_high_clouds", "cloud_ambient", "volumetric_clouds",
+                                     "cloud_shadow", "atmosphere_composite", "readback"));
   EXPECT_EQ(report["light"]["key"], "sun");
   EXPECT_EQ(report["time"], "2024-06-21T19:00:00+02:00");
   EXPECT_TRUE(report.contains("gpu_ms_total"));

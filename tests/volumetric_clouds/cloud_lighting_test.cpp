@@ -121,13 +121,17 @@ TEST_F(CloudLightingTest, AtNightTheMoonIsTheKeyLight) {
 TEST_F(CloudLightingTest, MoonlitCloudsScaleWithTheMoonsIlluminance) {
   // The full moon of 2024-12-15 and the last quarter of 2024-12-22, both placed where the full
   // moon stands (so the same air mass dims them) at the same hour (the sun 64 degrees down in
-  // both). With the palette's ambient light off the moon is the only light: the clouds' radiance
-  // follows its illuminance above the atmosphere.
+  // both). The clouds' ambient light is the frame's sky (passes/cloud_ambient): with the
+  // palette's night keys dark (the sun's own night sky; the moonlit sky is the day keys at the
+  // moon's elevation, scaled by the moon) the moon is the only light, direct and through the
+  // sky and the ground, so the clouds' radiance follows its illuminance above the atmosphere.
   auto moonlit = [&](const std::string& time) {
     Scene scene = cloudScene("altocumulus_full_moon",
                              {"time=" + time, "moon.azimuth=131.79", "moon.elevation=64.59"});
-    for (PaletteKey& key : scene.lighting.palette)
+    for (PaletteKey& key : scene.lighting.palette) {
       key.ambientTop = key.ambientBottom = glm::vec3(0.0f);
+      if (key.sunElevation < 0.0) key.skyColor = key.fogColor = key.glowColor = glm::vec3(0.0f);
+    }
     return render(scene);
   };
   const RenderedFrame full = moonlit("2024-12-15T23:30:00+01:00");
