@@ -159,7 +159,7 @@ LightingState computeLighting(const Scene& scene, const IsoTime& time) {
   // near -12, was lifted 3 stops less there than at midnight: the time-lapse's twilight hole.
   // And a moonless night got the same lift as a moonlit one, which left it black. The sky is
   // taken at the horizon (the palettes' fog colour), which most frames show: it follows the
-  // frame's histogram metering within 0.7 stop from sunset to a moonlit midnight.
+  // frame's histogram metering to within 0.75 stop from sunset to a moonlit midnight.
   const double sky = light::luminance(glm::dvec3(st.palette.fogColor)) +
                      light::luminance(glm::dvec3(st.moonPalette.fogColor));
   // The brightest moonlit sky: a full moon at the mean distance, overhead.
