@@ -121,6 +121,22 @@ double nightLiftEv(double sunElevationDeg, double adaptation) {
          std::log2(twilightIlluminanceLux(0.0) / twilightIlluminanceLux(sunElevationDeg));
 }
 
+double sceneNightLiftEv(double sunElevationDeg, double skyLuminance, double moonlitSkyLuminance,
+                        double adaptation) {
+  // Every stop the twilight has lost: the most an eye can make up, 0 while the sun is up.
+  const double twilightStops = nightLiftEv(sunElevationDeg, 1.0);
+  // Anchored where a night ends up: the brightest moonlit sky gets the full night lift the
+  // sun's lift gives every night, a darker sky `adaptation` of each stop it is darker more.
+  // Through the twilight the cap is the tighter bound, so the exposure follows the fading sky
+  // all the way down to moonlight and makes up only part of the loss below it, roughly as an
+  // eye adapts almost fully in cone and mesopic light and only partly where the rods alone see.
+  const double night = skyLuminance > 0.0 && moonlitSkyLuminance > 0.0
+                           ? nightLiftEv(-90.0, adaptation) +
+                                 adaptation * std::log2(moonlitSkyLuminance / skyLuminance)
+                           : twilightStops;
+  return std::max(nightLiftEv(sunElevationDeg, adaptation), std::min(night, twilightStops));
+}
+
 double paletteExposureEv(double sunElevationDeg) {
   return nightLiftEv(sunElevationDeg, kPaletteNightAdaptation);
 }

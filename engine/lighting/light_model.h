@@ -63,9 +63,20 @@ double earthshineRatio(double moonIlluminatedFraction);
 // twilight 3.4, nautical 0.008, astronomical ~6e-4 lux, then the natural night floor).
 double twilightIlluminanceLux(double sunElevationDeg);
 
-// How far the exposure has followed the light down after sunset, in stops: `adaptation`
-// times the stops lost since sunset (0 while the sun is up).
+// How far the exposure has followed the twilight down after sunset, in stops: `adaptation`
+// times the stops lost since sunset (0 while the sun is up). The lower bound of the night
+// lift (sceneNightLiftEv) and the lift the palette is authored for (paletteExposureEv).
 double nightLiftEv(double sunElevationDeg, double adaptation);
+
+// The night lift of a scene whose sky (at the horizon) has luminance `skyLuminance`, with the
+// sun at `sunElevationDeg`: an eye follows the twilight's fall all the way (every stop of
+// nightLiftEv(h, 1)) down to the light of the brightest moonlit night, `moonlitSkyLuminance`
+// (a full moon overhead), where the lift is the full night lift nightLiftEv(-90, adaptation);
+// a darker sky is lifted by `adaptation` of the stops it is darker. Never less than the sun's
+// lift nightLiftEv(sunElevationDeg, adaptation) nor more than all the twilight's stops, so 0
+// by day. Luminances in any one unit. docs/lighting.md, "Night lift".
+double sceneNightLiftEv(double sunElevationDeg, double skyLuminance, double moonlitSkyLuminance,
+                        double adaptation);
 
 // The night adaptation the palette is authored for: lighting.palette holds the sky as it
 // should look after paletteExposureEv stops of night lift, the standard night_adaptation's.

@@ -11,6 +11,7 @@ namespace sky {
 namespace {
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kDeg = kPi / 180.0;
+constexpr double kMeanMoonDistanceKm = 384400.0;
 // How far toward the zenith full overcast lifts the kozlov sky's horizon haze (applyOvercast).
 constexpr double kOvercastHaze = 0.5;
 
@@ -118,10 +119,7 @@ LightingState computeLighting(const Scene& scene, const IsoTime& time) {
   st.moon.angularRadiusDeg =
       std::asin(light::kMoonRadiusKm / eph.moon.topocentricDistanceKm) / kDeg;
 
-  // Night: how far the display's automatic exposure follows the light down (docs/lighting.md).
-  // Nothing here applies it: the state is physical, the display path exposes it.
   st.dayFactor = light::dayFactor(st.sun.elevationDeg);
-  st.nightLiftEv = light::nightLiftEv(st.sun.elevationDeg, ls.nightAdaptation);
   st.key = st.dayFactor >= 0.5 ? "sun" : "moon";
 
   // Sun: top-of-atmosphere illuminance at this distance, through the air mass.
@@ -153,6 +151,23 @@ LightingState computeLighting(const Scene& scene, const IsoTime& time) {
   st.palette = physical(st.sun.elevationDeg);
   const double moonSky = moonToaLux / light::kSolarIlluminanceLux;
   st.moonPalette = scaled(physical(st.moon.elevationDeg), static_cast<float>(moonSky));
+
+  // Night: how far the display's automatic exposure follows the light down (docs/lighting.md,
+  // "Night lift"). Nothing here applies it: the state is physical, the display path exposes
+  // it. It follows the sky's light, the twilight's and the moon's together. On the sun's
+  // depression alone (full only at -18 degrees) a moonlit scene, whose light stops falling
+  // near -12, was lifted 3 stops less there than at midnight: the time-lapse's twilight hole.
+  // And a moonless night got the same lift as a moonlit one, which left it black. The sky is
+  // taken at the horizon (the palettes' fog colour), which most frames show: it follows the
+  // frame's histogram metering to within 0.75 stop from sunset to a moonlit midnight.
+  const double sky = light::luminance(glm::dvec3(st.palette.fogColor)) +
+                     light::luminance(glm::dvec3(st.moonPalette.fogColor));
+  // The brightest moonlit sky: a full moon at the mean distance, overhead.
+  const double moonlitSky = light::moonIlluminanceLux(0.0, kMeanMoonDistanceKm) /
+                            light::kSolarIlluminanceLux *
+                            light::luminance(glm::dvec3(physical(90.0).fogColor));
+  st.nightLiftEv =
+      light::sceneNightLiftEv(st.sun.elevationDeg, sky, moonlitSky, ls.nightAdaptation);
 
   shared::LightingState& g = st.gpu;
   g.sun.direction = v4(st.sun.direction, st.sun.angularRadiusDeg * kDeg);

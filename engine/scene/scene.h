@@ -23,8 +23,8 @@
 namespace sky {
 
 // output.exposure: how the display path exposes the physical scene-linear image (never the
-// EXR). auto: the lighting model's night lift (lighting.night_adaptation of the stops the
-// twilight has lost since sunset); histogram: metered from the frame's own luminance, adapting
+// EXR). auto: the lighting model's night lift (LightingState::nightLiftEv, following the
+// sky's light, twilight and moon); histogram: metered from the frame's own luminance, adapting
 // over a sequence's frames (exposure_adaptation_s); fixed: exposure_ev alone.
 enum class ExposureMode { Auto, Histogram, Fixed };
 constexpr auto enumNames(ExposureMode) {

@@ -1,7 +1,9 @@
 // engine/lighting's light model and LightingState: each formula against its source, and the
 // whole state over a day and night for continuity (no pop at any time step).
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <iostream>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -82,6 +84,25 @@ TEST(LightModel, DayFactorFallsFromDayToNight) {
   EXPECT_GT(handover, -12.0);
   EXPECT_DOUBLE_EQ(light::nightLiftEv(5.0, 0.8), 0.0);
   EXPECT_NEAR(light::nightLiftEv(-30.0, 0.8), 0.8 * light::nightLiftEv(-30.0, 1.0), 1e-12);
+}
+
+TEST(LightModel, TheSceneNightLiftFollowsTheSkysLight) {
+  const double moonlit = 2e-6;  // the brightest moonlit sky (renderer units)
+  const double full = light::nightLiftEv(-90.0, 0.8);
+  // The brightest moonlit night gets the full night lift; a darker sky 0.8 of its stops more.
+  EXPECT_NEAR(light::sceneNightLiftEv(-90.0, moonlit, moonlit, 0.8), full, 1e-12);
+  EXPECT_NEAR(light::sceneNightLiftEv(-90.0, moonlit / 4.0, moonlit, 0.8), full + 1.6, 1e-12);
+  // Nothing by day, however dark the sky and bright the moon.
+  EXPECT_EQ(light::sceneNightLiftEv(0.5, 1e-12, moonlit, 0.8), 0.0);
+  EXPECT_EQ(light::sceneNightLiftEv(30.0, 1e-12, moonlit, 0.8), 0.0);
+  // Between the sun's lift and every stop the twilight has lost.
+  for (double h : {-1.0, -4.0, -8.0, -12.0, -16.0, -20.0, -60.0}) {
+    for (double sky : {1e-10, 1e-8, 1e-6, 1e-4, 1e-2}) {
+      const double lift = light::sceneNightLiftEv(h, sky, moonlit, 0.8);
+      EXPECT_GE(lift, light::nightLiftEv(h, 0.8)) << h << " " << sky;
+      EXPECT_LE(lift, light::nightLiftEv(h, 1.0)) << h << " " << sky;
+    }
+  }
 }
 
 TEST(LightModel, HighCloudsStaySunlitAfterSunsetAndRedden) {
@@ -173,6 +194,41 @@ TEST(LightingState, FullMoonMidnightIsLitByTheMoon) {
   EXPECT_GT(st.gpu.moon.illuminance.g, 100.0f * st.gpu.sun.illuminance.g);
   // The bright limb tangent is perpendicular to the moon's direction.
   EXPECT_NEAR(glm::dot(glm::dvec3(st.gpu.moonLimb), st.moon.direction), 0.0, 1e-6);
+}
+
+// The README's time-lapse had a hole in its twilight: the night lift followed the sun alone
+// and reached its full 16.2 stops only at -18 degrees, while with the June 2024 full moon up
+// the sky's light stops falling near -12 (docs/lighting.md, "Night lift"). At 23:00, sun
+// -11.8 and moon 7 degrees up, the lift was 13.0 stops against 16.2 at 01:30: the moonlit
+// scene showed 9 times darker than at midnight. Now the lift follows the sky's light, moon
+// included: within 1 stop of midnight's there (16.27 against 16.67), and in one minute it
+// never moves by more than 0.3 stop, the rate at which the twilight itself falls (1.7 stops a
+// degree between -8 and -6, the sun 0.18 degree a minute; measured 0.24). A
+// moonless night, 2024-07-05/06, is lifted 0.8 of the stops it is darker than moonlight more.
+TEST(LightingState, TheNightLiftFollowsTheMoonlitSkyThroughTwilight) {
+  const Scene scene = zurich();
+  auto liftAt = [&](const char* t) {
+    return computeLighting(scene, IsoTime::parse(t).value()).nightLiftEv;
+  };
+  const double dip = liftAt("2024-06-21T23:00:00+02:00");
+  const double midnight = liftAt("2024-06-22T01:30:00+02:00");
+  std::cout << "night lift at 23:00 " << dip << ", at 01:30 " << midnight << "\n";
+  EXPECT_GT(dip, midnight - 1.0);
+  EXPECT_GT(midnight, light::nightLiftEv(-19.0, 0.8) - 1e-9);
+  const double moonless = liftAt("2024-07-06T01:30:00+02:00");
+  std::cout << "moonless night lift " << moonless << "\n";
+  EXPECT_GT(moonless, midnight + 2.0) << "a moonless night is lifted further";
+  for (const char* startText : {"2024-06-21T12:00:00+02:00", "2024-07-05T12:00:00+02:00"}) {
+    const IsoTime start = IsoTime::parse(startText).value();
+    double last = computeLighting(scene, start).nightLiftEv, worst = 0.0;
+    for (int m = 1; m <= 24 * 60; ++m) {
+      const double lift = computeLighting(scene, start.plusSeconds(60.0 * m)).nightLiftEv;
+      worst = std::max(worst, std::fabs(lift - last));
+      last = lift;
+    }
+    std::cout << startText << ": largest change of the night lift in a minute " << worst << "\n";
+    EXPECT_LT(worst, 0.3) << startText;
+  }
 }
 
 // No pop at any time step: over a day and a night in 1-minute steps, no float of the GPU
