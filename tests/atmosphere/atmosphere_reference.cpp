@@ -14,29 +14,6 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-// Gauss-Legendre nodes and weights on [-1, 1] (Newton's method on P_n).
-std::vector<std::pair<double, double>> gaussLegendre(int n) {
-  std::vector<std::pair<double, double>> out;
-  for (int i = 0; i < n; ++i) {
-    double x = std::cos(kPi * (i + 0.75) / (n + 0.5));
-    double dp = 1.0;
-    for (int iter = 0; iter < 100; ++iter) {
-      double p0 = 1.0, p1 = x;
-      for (int k = 2; k <= n; ++k) {
-        const double p2 = ((2.0 * k - 1.0) * x * p1 - (k - 1.0) * p0) / k;
-        p0 = p1;
-        p1 = p2;
-      }
-      dp = n * (x * p1 - p0) / (x * x - 1.0);
-      const double step = p1 / dp;
-      x -= step;
-      if (std::abs(step) < 1e-15) break;
-    }
-    out.emplace_back(x, 2.0 / ((1.0 - x * x) * dp * dp));
-  }
-  return out;
-}
-
 // Step boundaries along a ray: dense where the air is densest (see atmosphere.glsl: up-going
 // rays start in it, ground-bound rays end in it).
 enum class Warp { Uniform, Start, End };
@@ -64,6 +41,37 @@ double cornetteShanks(double g, double c) {
 }
 
 }  // namespace
+
+// Newton's method on the Legendre polynomial P_n.
+std::vector<std::pair<double, double>> gaussLegendre(int n) {
+  std::vector<std::pair<double, double>> out;
+  for (int i = 0; i < n; ++i) {
+    double x = std::cos(kPi * (i + 0.75) / (n + 0.5));
+    double dp = 1.0;
+    for (int iter = 0; iter < 100; ++iter) {
+      double p0 = 1.0, p1 = x;
+      for (int k = 2; k <= n; ++k) {
+        const double p2 = ((2.0 * k - 1.0) * x * p1 - (k - 1.0) * p0) / k;
+        p0 = p1;
+        p1 = p2;
+      }
+      dp = n * (x * p1 - p0) / (x * x - 1.0);
+      const double step = p1 / dp;
+      x -= step;
+      if (std::abs(step) < 1e-15) break;
+    }
+    out.emplace_back(x, 2.0 / ((1.0 - x * x) * dp * dp));
+  }
+  return out;
+}
+
+glm::dvec2 cornetteShanksMoments(double g) {
+  // Cornette-Shanks is 3 / (2 (2 + g^2)) (1 + c^2) times Henyey-Greenstein, whose Legendre
+  // moments are g^l; c (1 + c^2) and P_2(c) (1 + c^2) expanded in Legendre polynomials.
+  const double g2 = g * g, k = 3.0 / (2.0 * (2.0 + g2));
+  return {k * (8.0 * g + 2.0 * g * g2) / 5.0,
+          k * (2.0 / 15.0 + 32.0 / 21.0 * g2 + 12.0 / 35.0 * g2 * g2)};
+}
 
 namespace {
 

@@ -5,11 +5,22 @@
 // that needs it, by integrating second-order light over the sphere of directions. Lengths in
 // km, radii from the planet centre, the camera on the z axis; radiance per unit illuminance
 // in physical units (1/sr) unless a function says otherwise.
+#include <utility>
+#include <vector>
+
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include "engine/scene/scene.h"
 
 namespace sky::test {
+
+// Gauss-Legendre nodes and weights (x, w) on [-1, 1].
+std::vector<std::pair<double, double>> gaussLegendre(int n);
+
+// The first two Legendre moments (p_1, p_2) of the Cornette-Shanks phase function, P = sum
+// (2l + 1) p_l P_l(c) / (4 pi): p_1 is its mean cosine.
+glm::dvec2 cornetteShanksMoments(double g);
 
 struct ReferenceAtmosphere {
   double groundRadius = 0, topRadius = 0;
