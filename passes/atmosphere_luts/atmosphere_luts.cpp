@@ -116,10 +116,12 @@ AtmosphereLuts::AtmosphereLuts(const Context& ctx, ShaderCompiler& compiler)
                                       "transmittance to the top of the atmosphere (Hillaire 2020)",
                                       ATMOSPHERE_TRANSMITTANCE_WIDTH,
                                       ATMOSPHERE_TRANSMITTANCE_HEIGHT)),
-      mMultiScatteringLut(persistentLut(ctx, "atmosphere_multiscattering",
-                                        "multiple-scattering contribution Psi_ms (Hillaire 2020)",
-                                        ATMOSPHERE_MULTISCATTERING_SIZE,
-                                        ATMOSPHERE_MULTISCATTERING_SIZE)),
+      mMultiScatteringLut(persistentLut(
+          ctx, "atmosphere_multiscattering",
+          "multiple scattering: Psi_ms (Hillaire 2020) and the second order's dipole and "
+          "quadrupole, packed in blocks side by side",
+          ATMOSPHERE_MULTISCATTERING_SIZE * ATMOSPHERE_MS_TEXELS,
+          ATMOSPHERE_MULTISCATTERING_SIZE)),
       mSkyViewSunLut(persistentLut(ctx, "atmosphere_sky_view_sun",
                                    "sky radiance lit by the sun (Hillaire 2020)",
                                    ATMOSPHERE_SKY_VIEW_WIDTH, ATMOSPHERE_SKY_VIEW_HEIGHT)),
