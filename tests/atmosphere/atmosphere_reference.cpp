@@ -83,7 +83,7 @@ namespace {
 glm::dvec3 angstrom(const AtmosphereSettings& s) {
   glm::dvec3 f;
   for (int c = 0; c < 3; ++c)
-    f[c] = std::pow(light::kChannelWavelengthsNm[c] / 550.0, -s.mieAngstrom);
+    f[c] = std::pow(light::kChannelAerosolWavelengthsNm[c] / 550.0, -s.mieAngstrom);
   return f;
 }
 

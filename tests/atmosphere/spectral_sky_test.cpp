@@ -84,6 +84,34 @@ TEST(SpectralSky, SunTableMatchesDirectQuadrature) {
 namespace sky::test {
 namespace {
 
+TEST(SpectralSky, ChannelCoefficientsAreTheSpectrumsChannelAverages) {
+  // The renderer's defaults and the lighting model's channel constants are the channel
+  // averages of the spectral atmosphere (spectral_sky_reference.h: channelAverage), to the
+  // digits they are written with.
+  const SpectralAtmosphere a;
+  const AtmosphereSettings s;
+  const glm::dvec3 rayleigh = channelRayleighPerMm(a), ozone = channelOzonePerMm(a);
+  const glm::dvec3 aerosol = channelAngstromFactor(light::kAerosolAngstrom);
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_NEAR(s.rayleighScattering[c], rayleigh[c], 1e-3 * rayleigh[c]) << "channel " << c;
+    EXPECT_NEAR(s.ozoneAbsorption[c], ozone[c], 1e-3) << "channel " << c;
+    EXPECT_NEAR(std::pow(light::kChannelAerosolWavelengthsNm[c] / 550.0, -light::kAerosolAngstrom),
+                aerosol[c], 1e-4)
+        << "channel " << c;
+    // The cross-section: absorption at the tent's peak (1/km) times its half width over the
+    // column (molecules per cm^2).
+    EXPECT_NEAR(light::kChannelOzoneCrossSectionCm2[c] * 1e21,
+                ozone[c] * 1e-3 * a.ozoneHalfWidthKm / (a.ozoneColumnDu * 2.687e16) * 1e21, 2e-3)
+        << "channel " << c;
+  }
+  // Hansen & Travis' Rayleigh optical depth, averaged.
+  const glm::dvec3 ht = channelAverage([](double nm) {
+    const double l2 = nm * nm * 1e-6;
+    return 0.008569 / (l2 * l2) * (1.0 + 0.0113 / l2 + 0.00013 / (l2 * l2));
+  });
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(light::kChannelRayleighDepth[c], ht[c], 1e-5);
+}
+
 TEST(SpectralSky, ThinAtmosphereInChannelsIsItsSpectrum) {
   // Why the channel averages: an optically thin atmosphere (a thousandth of Earth's air, no
   // ozone, no aerosols) rendered in three channels with the averaged coefficients and lit by
