@@ -2,6 +2,7 @@
 // dome, case by case, for docs/atmosphere.md ("A spectral reference"). Runs on whatever Vulkan
 // device the engine picks (lavapipe here); the reference runs on the CPU.
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -15,6 +16,7 @@
 #include "atmosphere_reference.h"
 #include "engine/core/error.h"
 #include "engine/gpu/context.h"
+#include "engine/lighting/light_model.h"
 #include "engine/render/renderer.h"
 #include "engine/shader/shader_compiler.h"
 #include "spectral_sky_compare.h"
@@ -29,6 +31,7 @@ The LUT sky (sky.model physical) against the spectral brute-force reference over
 half of a sky probe, for Preetham turbidity 2 and 3 and the default scene.
   --sun DEG[,DEG...]   sun elevations (default 5,10,30,60)
   --case NAME          only the cases named "T 2", "T 3" or "default" (repeatable)
+  --turbidity T[,T...] instead, the default scene with these lighting.turbidity values
   --quality Q          reference resolution: test, default or fine (default: default)
   --step NM            wavelength step of the reference, a multiple of 5 (default 10)
   --size WxH           probe size (default 72x36: 5 degree cells)
@@ -38,6 +41,8 @@ half of a sky probe, for Preetham turbidity 2 and 3 and the default scene.
                        ("channels"), its second order made isotropic (Hillaire's Psi_ms) or
                        cut to its moments (the LUTs' model), and the direct reference of the
                        LUTs' model (atmosphere_reference.h)
+  --attribute          the zenith with the channels' coefficients at 680, 550 and 440 nm
+                       (before issue 30) one quantity at a time (Rayleigh, ozone, aerosols)
   --csv FILE           every direction of every case: elevation, azimuth from the sun, rgb of
                        the LUT, the reference and (with --decompose) the channels
   --against Q:NM       also the reference at quality Q every NM nm, against the main one
@@ -78,14 +83,52 @@ void printStats(const char* what, const SkyStats& s) {
             << fixed(s.zenithRgRef()) << " (" << fixed(s.zenithRg() / s.zenithRgRef()) << "x)\n";
 }
 
+// The zenith's R/G and luminance against the spectrum's with the channel integrator, its
+// coefficients the channel averages (the defaults since issue 30) and then one quantity at a
+// time at 680, 550 and 440 nm, the values before issue 30 (Hillaire's Table 1 for Rayleigh and
+// ozone, Angstrom's law at those wavelengths for the aerosols).
+void attributeZenith(const AtmosphereSettings& s, glm::dvec3 sun, glm::dvec3 L, int step,
+                     const BruteForceQuality& q) {
+  const glm::dvec3 zenith(0.0, 0.0, 1.0);
+  const glm::dvec3 want = BruteForceSky(spectralSky(spectralAtmosphere(s), step), q)
+                              .radiance(kCompareAltitudeKm, zenith, L)
+                              .total();
+  const glm::dvec3 rayleigh(5.802, 13.558, 33.1), ozone(0.650, 1.881, 0.085);
+  glm::dvec3 aerosols;
+  for (int c = 0; c < 3; ++c)
+    aerosols[c] = std::pow(glm::dvec3(680.0, 550.0, 440.0)[c] / 550.0, -s.mieAngstrom) /
+                  std::pow(light::kChannelAerosolWavelengthsNm[c] / 550.0, -s.mieAngstrom);
+  const char* names[] = {"channel averages", "Rayleigh at 680/550/440 nm",
+                         "ozone at 680/550/440 nm", "aerosols at 680/550/440 nm", "all three"};
+  std::cout << "  zenith, channels against the spectrum:";
+  for (int v = 0; v < 5; ++v) {
+    SkyMedium m = channelSky(s, sun);
+    for (int c = 0; c < 3; ++c) {
+      SkyBand& b = m.bands[static_cast<size_t>(c)];
+      if (v == 1 || v == 4) b.rayleigh = rayleigh[c] * 1e-3;
+      if (v == 2 || v == 4) b.ozone = ozone[c] * 1e-3;
+      if (v == 3 || v == 4) {
+        b.mieScattering *= aerosols[c];
+        b.mieExtinction *= aerosols[c];
+      }
+    }
+    const glm::dvec3 got = BruteForceSky(m, q).radiance(kCompareAltitudeKm, zenith, L).total();
+    std::cout << (v ? "; " : " ") << names[v] << " R/G "
+              << fixed((got.r / got.g) / (want.r / want.g)) << "x, Y "
+              << fixed(luminance709(got) / luminance709(want)) << "x";
+  }
+  std::cout << "\n";
+}
+
 int run(int argc, char** argv) {
   std::vector<double> suns = {5, 10, 30, 60};
   std::vector<std::string> only;
+  std::vector<double> turbidities;
   std::string qualityName = "default", csvPath, againstQuality;
   int againstStep = 0;
   int step = 10, threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   HalfDome dome;
-  bool whiteSun = false, decompose = false;
+  bool whiteSun = false, decompose = false, attribute = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto value = [&]() -> std::string {
@@ -97,6 +140,8 @@ int run(int argc, char** argv) {
       return 0;
     } else if (a == "--sun") {
       suns = parseList(value(), "--sun");
+    } else if (a == "--turbidity") {
+      turbidities = parseList(value(), "--turbidity");
     } else if (a == "--case") {
       only.push_back(value());
     } else if (a == "--quality") {
@@ -114,6 +159,8 @@ int run(int argc, char** argv) {
       whiteSun = true;
     } else if (a == "--decompose") {
       decompose = true;
+    } else if (a == "--attribute") {
+      attribute = true;
     } else if (a == "--csv") {
       csvPath = value();
     } else if (a == "--against") {
@@ -151,7 +198,20 @@ int run(int argc, char** argv) {
             << ", every " << step << " nm; probe " << dome.width << "x" << dome.height << "\n";
   const std::vector<glm::dvec3> directions = dome.directions();
   std::vector<SkyStats> all;
-  for (const SkyCase& c : standardCases(suns)) {
+  std::vector<SkyCase> cases = standardCases(suns);
+  if (!turbidities.empty()) {
+    cases.clear();
+    for (double t : turbidities)
+      for (double e : suns) {
+        SkyCase c;
+        c.name = "turbidity " + fixed(t);
+        c.scene.sky.model = SkyModel::Physical;
+        c.scene.lighting.turbidity = t;
+        c.sunElevationDeg = e;
+        cases.push_back(c);
+      }
+  }
+  for (const SkyCase& c : cases) {
     if (!only.empty() && std::find(only.begin(), only.end(), c.name) == only.end()) continue;
     const auto start = std::chrono::steady_clock::now();
     const AtmosphereLuts::Frame frame = caseFrame(c, sun);
@@ -194,6 +254,7 @@ int run(int argc, char** argv) {
       for (const glm::dvec3& v : lut) white.push_back(v / sun);
       printStats("LUT with the white sun vs spectral", compareSky(white, ref, dome));
     }
+    if (attribute) attributeZenith(frame.atmosphere, sun, L, step, q);
     std::vector<glm::dvec3> channels, direct, isotropic, moments;
     if (decompose) {
       const BruteForceSky channelRef(channelSky(frame.atmosphere, sun), q);
