@@ -33,7 +33,6 @@ void main() {
   // interpolate smoothly with it, rather than with a value frozen at its ground distance.
   float tEnd = atmosphereRayHitsGround(p, r0, V.z) ? 1e30 : atmosphereDistanceToTop(p, r0, V.z);
   vec3 Ls = p.sunDirection.xyz, Lm = p.moonDirection.xyz;
-  float nuS = dot(V, Ls), nuM = dot(V, Lm);
   vec3 Es = ATMOSPHERE_RENDERER_SCALE * p.sunIlluminance.rgb;
   vec3 Em = ATMOSPHERE_RENDERER_SCALE * p.moonIlluminance.rgb;
 
@@ -50,8 +49,8 @@ void main() {
         float r = length(pos);
         AtmosphereMedium m = atmosphereMedium(p, r - Rg);
         vec3 stepT = exp(-m.extinction * dt);
-        vec3 S = atmosphereInScattering(p, transmittanceLut, multiScatteringLut, m, pos, r, nuS, Ls) * Es +
-                 atmosphereInScattering(p, transmittanceLut, multiScatteringLut, m, pos, r, nuM, Lm) * Em;
+        vec3 S = atmosphereInScattering(p, transmittanceLut, multiScatteringLut, m, pos, r, V, Ls) * Es +
+                 atmosphereInScattering(p, transmittanceLut, multiScatteringLut, m, pos, r, V, Lm) * Em;
         radiance += T * atmosphereIntegrateStep(S, m.extinction, stepT, dt);
         T *= stepT;
       }

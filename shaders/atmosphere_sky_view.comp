@@ -26,7 +26,6 @@ vec3 skyRadiance(AtmosphereParams p, vec3 V, vec3 L) {
   vec3 origin = vec3(0.0, 0.0, r0);
   float tMax = atmosphereRayLength(p, r0, mu);
   int warp = atmosphereMarchWarp(p, r0, mu);
-  float nu = dot(V, L);
   vec3 radiance = vec3(0.0), T = vec3(1.0);
   const int steps = ATMOSPHERE_SKY_VIEW_STEPS;
   for (int i = 0; i < steps; ++i) {
@@ -37,7 +36,7 @@ vec3 skyRadiance(AtmosphereParams p, vec3 V, vec3 L) {
     float r = length(pos);
     AtmosphereMedium m = atmosphereMedium(p, r - Rg);
     vec3 stepT = exp(-m.extinction * dt);
-    vec3 S = atmosphereInScattering(p, transmittanceLut, multiScatteringLut, m, pos, r, nu, L);
+    vec3 S = atmosphereInScattering(p, transmittanceLut, multiScatteringLut, m, pos, r, V, L);
     radiance += T * atmosphereIntegrateStep(S, m.extinction, stepT, dt);
     T *= stepT;
   }

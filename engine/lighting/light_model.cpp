@@ -14,21 +14,8 @@ constexpr double kDeg = kPi / 180.0;
 // ground sees below.
 constexpr double kEarthRadiusM = GEO_EARTH_RADIUS_M;
 
-// Rayleigh optical depth of the whole atmosphere at sea level, Hansen & Travis (1974) eq. 2.29
-// with lambda in micrometres.
-double rayleighDepth(double lambdaNm) {
-  double l = lambdaNm * 1e-3;
-  double l2 = l * l;
-  return 0.008569 / (l2 * l2) * (1.0 + 0.0113 / l2 + 0.00013 / (l2 * l2));
-}
-
-// Ozone (300 Dobson units = 8.07e18 molecules/cm^2) times the Chappuis-band cross-section.
-double ozoneDepth(double lambdaNm) {
-  // Cross-sections in 1e-21 cm^2 at 440, 550, 680 nm (Serdyuchenko et al. 2014, rounded).
-  if (lambdaNm < 500.0) return 8.07e18 * 0.2e-21;
-  if (lambdaNm < 600.0) return 8.07e18 * 3.3e-21;
-  return 8.07e18 * 2.0e-21;
-}
+// Ozone, 300 Dobson units = 8.07e18 molecules/cm^2, times the channel's cross-section.
+constexpr double kOzoneColumnPerCm2 = 8.07e18;
 
 }  // namespace
 
@@ -41,10 +28,11 @@ double airMass(double apparentElevationDeg) {
 HazeMedium hazeMedium(double turbidity) {
   HazeMedium h;
   for (int c = 0; c < 3; ++c) {
-    const double lambda = kChannelWavelengthsNm[c];
     // A column of optical depth tau with scale height H has tau / H at its base.
-    h.rayleighPerM[c] = rayleighDepth(lambda) / h.rayleighHeightM;
-    h.aerosolPerM[c] = turbidity * std::pow(lambda / 550.0, -kAerosolAngstrom) / h.aerosolHeightM;
+    h.rayleighPerM[c] = kChannelRayleighDepth[c] / h.rayleighHeightM;
+    h.aerosolPerM[c] = turbidity *
+                       std::pow(kChannelAerosolWavelengthsNm[c] / 550.0, -kAerosolAngstrom) /
+                       h.aerosolHeightM;
   }
   return h;
 }
@@ -61,7 +49,8 @@ glm::dvec3 atmosphereTransmittance(double apparentElevationDeg, double altitudeM
       haze.aerosolPerM * haze.aerosolHeightM * std::exp(-h / haze.aerosolHeightM);
   glm::dvec3 t;
   for (int c = 0; c < 3; ++c) {
-    const double tau = rayleigh[c] + ozoneDepth(kChannelWavelengthsNm[c]) + aerosol[c];
+    const double tau =
+        rayleigh[c] + kOzoneColumnPerCm2 * kChannelOzoneCrossSectionCm2[c] + aerosol[c];
     t[c] = std::exp(-tau * m);  // Beer-Lambert along the slant path
   }
   return t;

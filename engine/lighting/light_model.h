@@ -17,8 +17,24 @@ constexpr double kMoonRadiusKm = 1737.4;
 // Angstrom exponent of the aerosols: their optical depth goes as (lambda / 550 nm)^-1.3.
 constexpr double kAerosolAngstrom = 1.3;
 
-// Wavelengths (nm) that stand for the R, G, B channels in the extinction model.
-constexpr glm::dvec3 kChannelWavelengthsNm{680.0, 550.0, 440.0};
+// What the R, G, B channels stand for in the extinction model (and in the physical sky). A
+// channel is a linear Rec. 709 component, so a spectral coefficient enters it averaged over
+// the channel's colour-matching function (CIE 1931 to Rec. 709) times the sun's spectrum (ASTM
+// E-490): the averages under which an optically thin atmosphere rendered in three channels is
+// its spectrum converted to Rec. 709. Single wavelengths (680, 550 and 440 nm until issue 30)
+// made the zenith a quarter too red with the sun 5 degrees up and the setting sun far too
+// bright (docs/atmosphere.md, "A spectral reference", which also says how to recompute these).
+//
+// Aerosols, (l / 550 nm)^-a: at these wavelengths the law gives the channel averages exactly
+// for a = 1.3 and within 0.5 % for a from 0.5 to 2.
+constexpr glm::dvec3 kChannelAerosolWavelengthsNm{642.1, 544.8, 441.8};
+// Rayleigh optical depth of the whole atmosphere at sea level, the channel averages of
+// Hansen & Travis (1974) eq. 2.29.
+constexpr glm::dvec3 kChannelRayleighDepth{0.05003, 0.09911, 0.23582};
+// Ozone's absorption cross-section at 293 K (Bogumil et al. 2003), channel averages in cm^2.
+// Blue's average is negative (its matching function dips below 0 where ozone absorbs most)
+// and is taken as 0: no medium adds light.
+constexpr glm::dvec3 kChannelOzoneCrossSectionCm2{5.029e-21, 3.218e-21, 0.0};
 
 // Kasten & Young (1989) relative air mass for an apparent elevation in degrees. Clamped at
 // -1 degree, below which the formula turns back; a body that low is hidden anyway.

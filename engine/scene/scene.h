@@ -137,18 +137,22 @@ constexpr auto enumNames(AerosolSource) {
 }
 
 // The planet's atmosphere for sky.model "physical" (Hillaire 2020, Earth defaults from his
-// Table 1). Coefficients are in 1/Mm (10^-6 per metre), heights in km.
+// Table 1). Coefficients are in 1/Mm (10^-6 per metre), heights in km. A channel's
+// coefficient is the average of the spectrum over that channel (light_model.h,
+// kChannelAerosolWavelengthsNm): Rayleigh and ozone are Hillaire's Earth (Bruneton & Neyret's
+// l^-4, 300 DU of ozone with the 293 K cross-section) averaged so; his Table 1 gives their
+// values at 680, 550 and 440 nm, which made the sky at a low sun too red (docs/atmosphere.md).
 struct AtmosphereSettings {
-  double groundRadiusKm = 6360.0;                        // 100..100000
-  double thicknessKm = 100.0;                            // top radius = ground + this, 1..1000
-  glm::vec3 rayleighScattering{5.802f, 13.558f, 33.1f};  // 1/Mm per channel
+  double groundRadiusKm = 6360.0;                         // 100..100000
+  double thicknessKm = 100.0;                             // top radius = ground + this, 1..1000
+  glm::vec3 rayleighScattering{7.051f, 13.827f, 32.19f};  // 1/Mm per channel
   double rayleighScaleHeightKm = 8.0;                    // 0.01..100
   double mieScattering = 3.996;                          // 1/Mm
   double mieExtinction = 4.40;                           // 1/Mm, >= mie_scattering
   double mieScaleHeightKm = 1.2;                         // 0.01..100
   double mieAnisotropy = 0.8;                            // g of Cornette-Shanks, -0.99..0.99
   AerosolSource aerosols = AerosolSource::Turbidity;
-  glm::vec3 ozoneAbsorption{0.650f, 1.881f, 0.085f};     // 1/Mm at the tent's peak
+  glm::vec3 ozoneAbsorption{2.703f, 1.730f, 0.0f};       // 1/Mm at the tent's peak
   double ozoneCenterKm = 25.0;                           // tent centre altitude
   double ozoneHalfWidthKm = 15.0;                        // tent half width, 0.01..100
   // Not a scene key: the renderer copies ground.albedo here, so the ground the composite

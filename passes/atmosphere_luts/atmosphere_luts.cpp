@@ -75,11 +75,12 @@ shared::AtmosphereParams atmosphereParams(const AtmosphereSettings& s) {
   shared::AtmosphereParams p{};
   p.radii = glm::vec4(s.groundRadiusKm, s.groundRadiusKm + s.thicknessKm, 0.0f, 0.0f);
   p.rayleighScattering = perKm(s.rayleighScattering, s.rayleighScaleHeightKm);
-  // The coefficients stand for 550 nm; each channel's wavelength scales them by Angstrom's law.
+  // The coefficients stand for 550 nm; Angstrom's law at each channel's aerosol wavelength
+  // (light_model.h: where the law gives the channel's average) scales them.
   glm::vec3 angstrom(1.0f);
   for (int c = 0; c < 3; ++c)
-    angstrom[c] =
-        static_cast<float>(std::pow(light::kChannelWavelengthsNm[c] / 550.0, -s.mieAngstrom));
+    angstrom[c] = static_cast<float>(
+        std::pow(light::kChannelAerosolWavelengthsNm[c] / 550.0, -s.mieAngstrom));
   p.mieScattering = perKm(glm::vec3(s.mieScattering) * angstrom, s.mieScaleHeightKm);
   p.mieExtinction = perKm(glm::vec3(s.mieExtinction) * angstrom, s.mieAnisotropy);
   p.ozoneAbsorption = perKm(s.ozoneAbsorption, 0.0);
@@ -116,10 +117,12 @@ AtmosphereLuts::AtmosphereLuts(const Context& ctx, ShaderCompiler& compiler)
                                       "transmittance to the top of the atmosphere (Hillaire 2020)",
                                       ATMOSPHERE_TRANSMITTANCE_WIDTH,
                                       ATMOSPHERE_TRANSMITTANCE_HEIGHT)),
-      mMultiScatteringLut(persistentLut(ctx, "atmosphere_multiscattering",
-                                        "multiple-scattering contribution Psi_ms (Hillaire 2020)",
-                                        ATMOSPHERE_MULTISCATTERING_SIZE,
-                                        ATMOSPHERE_MULTISCATTERING_SIZE)),
+      mMultiScatteringLut(persistentLut(
+          ctx, "atmosphere_multiscattering",
+          "multiple scattering: Psi_ms (Hillaire 2020) and the second order's dipole and "
+          "quadrupole, packed in blocks side by side",
+          ATMOSPHERE_MULTISCATTERING_SIZE * ATMOSPHERE_MS_TEXELS,
+          ATMOSPHERE_MULTISCATTERING_SIZE)),
       mSkyViewSunLut(persistentLut(ctx, "atmosphere_sky_view_sun",
                                    "sky radiance lit by the sun (Hillaire 2020)",
                                    ATMOSPHERE_SKY_VIEW_WIDTH, ATMOSPHERE_SKY_VIEW_HEIGHT)),

@@ -48,7 +48,8 @@ public:
   };
   struct Outputs {
     ImageId transmittance;      // 256x64, rgb transmittance to the top of the atmosphere
-    ImageId multiScattering;    // 32x32, Hillaire's Psi_ms (per unit illuminance)
+    ImageId multiScattering;    // 160x32: Hillaire's Psi_ms and the second order's moments
+                                // (per unit illuminance; packing in atmosphere_shared.h)
     ImageId skyViewSun;         // 192x108, sky radiance lit by the sun (illuminance applied)
     ImageId skyViewMoon;        // 192x108, the same lit by the moon
     ImageId aerialPerspective;  // 32x32x32 RGBA: rgb in-scattered radiance from camera to the

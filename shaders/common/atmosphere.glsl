@@ -203,29 +203,77 @@ mat3 transmittancesAlong(AtmosphereParams p, sampler2D lut, vec3 V, vec3 distanc
 }
 
 // Multiple-scattering LUT (Hillaire 2020, section 5.2): x = cos(light zenith) over [-1, 1],
-// y = altitude over [0, thickness]. Holds Psi_ms per unit illuminance (1/sr).
-vec2 atmosphereMultiScatteringUv(AtmosphereParams p, float r, float muS) {
-  float n = float(ATMOSPHERE_MULTISCATTERING_SIZE);
+// y = sqrt(altitude / thickness) (texels dense near the ground, where the aerosols are); the
+// blocks of atmosphere_shared.h side by side in x, each sampled within its texel centres so
+// that none bleeds into the next.
+vec2 atmosphereMultiScatteringUnit(AtmosphereParams p, float r, float muS) {
   float x = clamp(muS * 0.5 + 0.5, 0.0, 1.0);
-  float y = clamp((r - p.radii.x) / (p.radii.y - p.radii.x), 0.0, 1.0);
-  return vec2(atmosphereUnitToUv(x, n), atmosphereUnitToUv(y, n));
+  float y = sqrt(clamp((r - p.radii.x) / (p.radii.y - p.radii.x), 0.0, 1.0));
+  return vec2(x, y);
 }
 
-vec3 atmosphereMultiScattering(AtmosphereParams p, sampler2D lut, float r, float muS) {
-  return texture(lut, atmosphereMultiScatteringUv(p, r, muS)).rgb;
+vec4 atmosphereMultiScatteringTexel(sampler2D lut, vec2 unit, int block) {
+  float n = float(ATMOSPHERE_MULTISCATTERING_SIZE);
+  float u = (float(block) * n + 0.5 + unit.x * (n - 1.0)) / (n * float(ATMOSPHERE_MS_TEXELS));
+  return texture(lut, vec2(u, atmosphereUnitToUv(unit.y, n)));
 }
 
-// Light scattered toward the eye at `pos` (planet-centred, |pos| = r) per unit illuminance of
-// a light in direction L above the atmosphere, per km: single scattering with the Rayleigh and
-// Cornette-Shanks phase functions and the planet's shadow, plus multiple scattering
-// sigma_s Psi_ms (Hillaire 2020 (11)). cosViewLight = dot(V, L).
+// The first two Legendre moments (p1, p2) of the Cornette-Shanks phase function, P = sum
+// (2l + 1) p_l P_l(c) / (4 pi): it is 3 (1 + c^2) / (2 (2 + g^2)) times Henyey-Greenstein,
+// whose moments are g^l, and c (1 + c^2), P_2(c) (1 + c^2) expand in Legendre polynomials.
+vec2 atmosphereCornetteShanksMoments(float g) {
+  float g2 = g * g, k = 3.0 / (2.0 * (2.0 + g2));
+  return k * vec2((8.0 * g + 2.0 * g * g2) / 5.0,
+                  2.0 / 15.0 + 32.0 / 21.0 * g2 + 12.0 / 35.0 * g2 * g2);
+}
+// Rayleigh's 3 (1 + c^2) / (16 pi) = (1 + P_2(c) / 2) / (4 pi): p1 = 0, p2 = 1/10.
+const float ATMOSPHERE_RAYLEIGH_P2 = 0.1;
+
+// Light scattered toward the eye at `pos` (|pos| = r) along V (from the eye) by orders 2 and
+// up, per unit illuminance of a light in direction L, per km: sigma_s Psi_ms (Hillaire (11))
+// plus the second order's dependence on V (atmosphere_shared.h).
+vec3 atmosphereMultipleScattering(AtmosphereParams p, sampler2D lut, AtmosphereMedium m, vec3 pos,
+                                  float r, vec3 V, vec3 L) {
+  vec3 up = pos / r;
+  float muS = dot(up, L);
+  vec2 unit = atmosphereMultiScatteringUnit(p, r, muS);
+  vec4 t0 = atmosphereMultiScatteringTexel(lut, unit, 0);
+  vec4 t1 = atmosphereMultiScatteringTexel(lut, unit, 1);
+  vec4 t2 = atmosphereMultiScatteringTexel(lut, unit, 2);
+  vec4 t3 = atmosphereMultiScatteringTexel(lut, unit, 3);
+  vec4 t4 = atmosphereMultiScatteringTexel(lut, unit, 4);
+  vec3 psi = t0.rgb;
+  vec3 du = vec3(t0.a, t1.rg), dl = vec3(t1.ba, t2.r);
+  vec3 quu = t2.gba, qll = t3.rgb, qul = vec3(t3.a, t4.rg);
+  // The horizontal toward the light; with the light overhead every horizontal is the same and
+  // d_l, q_ul hold 0 and q_ll the across value.
+  vec3 h = L - muS * up;
+  float hLength = length(h);
+  h = hLength > 1e-6 ? h / hLength : vec3(0.0);
+  float vu = dot(V, up), vl = dot(V, h);
+  float across = max(1.0 - vu * vu - vl * vl, 0.0);
+  vec3 dipole = du * vu + dl * vl;
+  // V^T q V with the across component q_ee = -q_uu - q_ll (q is traceless).
+  vec3 quadrupole = quu * (vu * vu - across) + qll * (vl * vl - across) + 2.0 * qul * (vu * vl);
+  vec2 mie = atmosphereCornetteShanksMoments(p.mieExtinction.w);
+  vec3 s = m.scattering * psi + m.mie * mie.x * dipole +
+           (m.rayleigh * ATMOSPHERE_RAYLEIGH_P2 + m.mie * mie.y) * quadrupole;
+  // Two moments cannot make light negative where the second order is faint.
+  return max(s, vec3(0.0));
+}
+
+// Light scattered toward the eye at `pos` (planet-centred, |pos| = r) along V per unit
+// illuminance of a light in direction L above the atmosphere, per km: single scattering with
+// the Rayleigh and Cornette-Shanks phase functions and the planet's shadow, plus multiple
+// scattering (atmosphereMultipleScattering).
 vec3 atmosphereInScattering(AtmosphereParams p, sampler2D transmittanceLut, sampler2D msLut,
-                            AtmosphereMedium m, vec3 pos, float r, float cosViewLight, vec3 L) {
+                            AtmosphereMedium m, vec3 pos, float r, vec3 V, vec3 L) {
+  float cosViewLight = dot(V, L);
   float muS = dot(pos, L) / r;
   vec3 sun = transmittanceToTop(p, transmittanceLut, r, muS);
   vec3 single = (m.rayleigh * atmosphereRayleighPhase(cosViewLight) +
                  m.mie * atmosphereCornetteShanksPhase(p.mieExtinction.w, cosViewLight)) * sun;
-  return single + m.scattering * atmosphereMultiScattering(p, msLut, r, muS);
+  return single + atmosphereMultipleScattering(p, msLut, m, pos, r, V, L);
 }
 
 // ---- Sky-view LUT (Hillaire 2020, section 5.3) ----

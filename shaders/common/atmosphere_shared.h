@@ -12,6 +12,16 @@
 #define ATMOSPHERE_TRANSMITTANCE_WIDTH 256
 #define ATMOSPHERE_TRANSMITTANCE_HEIGHT 64
 #define ATMOSPHERE_MULTISCATTERING_SIZE 32
+// The multiple-scattering LUT holds, per texel of altitude and light elevation, 18 values per
+// unit illuminance (1/sr), each rgb: Psi_ms, the isotropic part of orders 2 and up (Hillaire
+// (10), (11)); and the second order's dependence on the direction V it is scattered into, in
+// the frame of the point (u up, l the horizontal toward the light): the once-scattered
+// light's dipole d_u, d_l (for the aerosols' phase function) and traceless quadrupole q_uu,
+// q_ll, q_ul (for both), so that the light scattered toward the eye is sigma_s Psi +
+// sigma_M p1 d.V + (sigma_R p2_R + sigma_M p2_M) V^T q V (docs/atmosphere.md). In that order
+// they fill ATMOSPHERE_MS_TEXELS RGBA texels side by side: the LUT is that many blocks of
+// SIZE x SIZE texels wide (five 2D samples cost lavapipe less than six of a 3D texture).
+#define ATMOSPHERE_MS_TEXELS 5
 #define ATMOSPHERE_SKY_VIEW_WIDTH 192
 #define ATMOSPHERE_SKY_VIEW_HEIGHT 108
 #define ATMOSPHERE_AP_SIZE 32    // froxels across and down the screen

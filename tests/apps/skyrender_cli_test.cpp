@@ -375,7 +375,7 @@ TEST_F(SkyrenderCli, DebugOutputsAreWrittenBesideTheFrame) {
   LayeredImage t = readExr(dir / "dbg.transmittance_lut.exr");
   EXPECT_EQ(t.width, 256);
   EXPECT_EQ(t.height, 64);
-  EXPECT_EQ(readExr(dir / "dbg.multiscattering_lut.exr").width, 32);
+  EXPECT_EQ(readExr(dir / "dbg.multiscattering_lut.exr").width, 5 * 32);  // 5 blocks of 32x32
   EXPECT_EQ(readExr(dir / "dbg.sky_view_sun_lut.exr").width, 192);
   EXPECT_EQ(readExr(dir / "dbg.sky_view_moon_lut.exr").height, 108);
   LayeredImage ap = readExr(dir / "dbg.aerial_perspective.exr");

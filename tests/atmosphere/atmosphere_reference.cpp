@@ -14,29 +14,6 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-// Gauss-Legendre nodes and weights on [-1, 1] (Newton's method on P_n).
-std::vector<std::pair<double, double>> gaussLegendre(int n) {
-  std::vector<std::pair<double, double>> out;
-  for (int i = 0; i < n; ++i) {
-    double x = std::cos(kPi * (i + 0.75) / (n + 0.5));
-    double dp = 1.0;
-    for (int iter = 0; iter < 100; ++iter) {
-      double p0 = 1.0, p1 = x;
-      for (int k = 2; k <= n; ++k) {
-        const double p2 = ((2.0 * k - 1.0) * x * p1 - (k - 1.0) * p0) / k;
-        p0 = p1;
-        p1 = p2;
-      }
-      dp = n * (x * p1 - p0) / (x * x - 1.0);
-      const double step = p1 / dp;
-      x -= step;
-      if (std::abs(step) < 1e-15) break;
-    }
-    out.emplace_back(x, 2.0 / ((1.0 - x * x) * dp * dp));
-  }
-  return out;
-}
-
 // Step boundaries along a ray: dense where the air is densest (see atmosphere.glsl: up-going
 // rays start in it, ground-bound rays end in it).
 enum class Warp { Uniform, Start, End };
@@ -63,7 +40,41 @@ double cornetteShanks(double g, double c) {
          ((2.0 + g2) * std::pow(1.0 + g2 - 2.0 * g * c, 1.5));
 }
 
+// Rayleigh's 3 (1 + c^2) / (16 pi) = (1 + P_2(c) / 2) / (4 pi): p_2 = 1/10.
+constexpr double kRayleighP2 = 0.1;
+
 }  // namespace
+
+glm::dvec2 cornetteShanksMoments(double g) {
+  // Cornette-Shanks is 3 / (2 (2 + g^2)) (1 + c^2) times Henyey-Greenstein, whose Legendre
+  // moments are g^l; c (1 + c^2) and P_2(c) (1 + c^2) expanded in Legendre polynomials.
+  const double g2 = g * g, k = 3.0 / (2.0 * (2.0 + g2));
+  return {k * (8.0 * g + 2.0 * g * g2) / 5.0,
+          k * (2.0 / 15.0 + 32.0 / 21.0 * g2 + 12.0 / 35.0 * g2 * g2)};
+}
+
+// Newton's method on the Legendre polynomial P_n.
+std::vector<std::pair<double, double>> gaussLegendre(int n) {
+  std::vector<std::pair<double, double>> out;
+  for (int i = 0; i < n; ++i) {
+    double x = std::cos(kPi * (i + 0.75) / (n + 0.5));
+    double dp = 1.0;
+    for (int iter = 0; iter < 100; ++iter) {
+      double p0 = 1.0, p1 = x;
+      for (int k = 2; k <= n; ++k) {
+        const double p2 = ((2.0 * k - 1.0) * x * p1 - (k - 1.0) * p0) / k;
+        p0 = p1;
+        p1 = p2;
+      }
+      dp = n * (x * p1 - p0) / (x * x - 1.0);
+      const double step = p1 / dp;
+      x -= step;
+      if (std::abs(step) < 1e-15) break;
+    }
+    out.emplace_back(x, 2.0 / ((1.0 - x * x) * dp * dp));
+  }
+  return out;
+}
 
 namespace {
 
@@ -71,7 +82,8 @@ namespace {
 // the lighting model's wavelengths (1 for grey aerosols, mieAngstrom 0).
 glm::dvec3 angstrom(const AtmosphereSettings& s) {
   glm::dvec3 f;
-  for (int c = 0; c < 3; ++c) f[c] = std::pow(light::kChannelWavelengthsNm[c] / 550.0, -s.mieAngstrom);
+  for (int c = 0; c < 3; ++c)
+    f[c] = std::pow(light::kChannelAerosolWavelengthsNm[c] / 550.0, -s.mieAngstrom);
   return f;
 }
 
@@ -160,7 +172,7 @@ glm::dvec3 AtmosphereReference::transmittanceToLight(glm::dvec3 pos, glm::dvec3 
   return glm::exp(-opticalDepth(pos, L, distanceToTop(mA, r, mu), mQ.lightSteps));
 }
 
-glm::dvec3 AtmosphereReference::psiMs(double r, double muS) const {
+ReferenceMultipleScattering AtmosphereReference::multipleScattering(double r, double muS) const {
   static thread_local std::vector<std::pair<double, double>> nodes;
   if (nodes.size() != static_cast<size_t>(mQ.sphereBands)) nodes = gaussLegendre(mQ.sphereBands);
   const glm::dvec3 origin(0.0, 0.0, r);
@@ -168,7 +180,10 @@ glm::dvec3 AtmosphereReference::psiMs(double r, double muS) const {
   // Split cos(zenith) at the horizon, where the ground cuts the integrand off.
   const double muH = -std::sqrt(std::max(1.0 - std::pow(mA.groundRadius / r, 2.0), 0.0));
   const double spans[2][2] = {{-1.0, muH}, {muH, 1.0}};
-  glm::dvec3 l2(0.0), fms(0.0);
+  // Means over the sphere of L_1, of the transfer path (9) and of L_1 times the moments of
+  // the direction in the light's frame (x toward its azimuth, z up): z, x, z^2 - 1/3,
+  // x^2 - 1/3, x z.
+  glm::dvec3 l2(0.0), fms(0.0), moment[5] = {};
   for (const auto& span : spans) {
     const double half = 0.5 * (span[1] - span[0]), mid = 0.5 * (span[1] + span[0]);
     for (const auto& [x, w] : nodes) {
@@ -181,6 +196,9 @@ glm::dvec3 AtmosphereReference::psiMs(double r, double muS) const {
       for (int k = 0; k < mQ.sphereAzimuths; ++k) {
         const double phi = kPi * (k + 0.5) / mQ.sphereAzimuths;
         const glm::dvec3 dir(sinT * std::cos(phi), sinT * std::sin(phi), mu);
+        // The light reaching the point from dir was scattered by the angle between dir and L.
+        const double cosLight = glm::dot(dir, L);
+        const double phaseR = rayleighPhase(cosLight), phaseM = cornetteShanks(mA.mieG, cosLight);
         glm::dvec3 tau(0.0), lp(0.0), fp(0.0);
         const int n = mQ.sphereSteps;
         for (int i = 0; i < n; ++i) {
@@ -190,10 +208,9 @@ glm::dvec3 AtmosphereReference::psiMs(double r, double muS) const {
           const glm::dvec3 p = origin + 0.5 * (t0 + t1) * dir;
           const Medium m = medium(mA, glm::length(p) - mA.groundRadius);
           const glm::dvec3 T = glm::exp(-(tau + 0.5 * dt * m.extinction));
-          const glm::dvec3 scattering = m.rayleigh + m.mie;
-          // Hillaire (7) with the isotropic phase function, and (9).
-          lp += T * scattering * (1.0 / (4.0 * kPi)) * transmittanceToLight(p, L) * dt;
-          fp += T * scattering * dt;
+          // Hillaire (7) with the phase functions, and (9).
+          lp += T * (m.rayleigh * phaseR + m.mie * phaseM) * transmittanceToLight(p, L) * dt;
+          fp += T * (m.rayleigh + m.mie) * dt;
           tau += m.extinction * dt;
         }
         if (ground) {
@@ -202,15 +219,30 @@ glm::dvec3 AtmosphereReference::psiMs(double r, double muS) const {
           lp += glm::exp(-tau) * mA.albedo / kPi * muG * transmittanceToLight(p, L);
         }
         // (1/4pi) over the sphere: weight in cos(zenith) times pi / n over the half circle,
-        // doubled for the mirror half.
+        // doubled for the mirror half (whose moments in y cancel, the rest are the same).
         const double sphere = weight * 2.0 * (kPi / mQ.sphereAzimuths) / (4.0 * kPi);
         l2 += lp * sphere;
         fms += fp * sphere;
+        const double moments[5] = {dir.z, dir.x, dir.z * dir.z - 1.0 / 3.0,
+                                   dir.x * dir.x - 1.0 / 3.0, dir.x * dir.z};
+        for (int m = 0; m < 5; ++m) moment[m] += lp * moments[m] * sphere;
       }
     }
   }
+  ReferenceMultipleScattering out;
   // Hillaire (10), (11).
-  return l2 / (glm::dvec3(1.0) - fms);
+  out.psi = l2 / (glm::dvec3(1.0) - fms);
+  // The phase functions' P_1 and P_2 terms against L_1 (shaders/common/atmosphere_shared.h).
+  out.dipoleUp = 3.0 * moment[0];
+  out.dipoleLight = 3.0 * moment[1];
+  out.quadrupoleUp = 7.5 * moment[2];
+  out.quadrupoleLight = 7.5 * moment[3];
+  out.quadrupoleCross = 7.5 * moment[4];
+  return out;
+}
+
+glm::dvec3 AtmosphereReference::psiMs(double r, double muS) const {
+  return multipleScattering(r, muS).psi;
 }
 
 glm::dvec3 AtmosphereReference::march(double r0, glm::dvec3 V, glm::dvec3 L, double length,
@@ -220,14 +252,29 @@ glm::dvec3 AtmosphereReference::march(double r0, glm::dvec3 V, glm::dvec3 L, dou
   const double nu = glm::dot(V, L);
   const double phaseR = rayleighPhase(nu), phaseM = cornetteShanks(mA.mieG, nu);
 
-  // Psi_ms varies slowly along a ray: it is evaluated directly at viewMsSteps + 1 evenly
+  // Multiple scattering varies slowly along a ray: its terms toward the camera (per unit
+  // Rayleigh and Mie scattering coefficient) are evaluated directly at viewMsSteps + 1 evenly
   // spaced points of the step parameter and interpolated linearly between them, while the
   // density, transmittance and sunlight change at every step.
-  std::vector<glm::dvec3> psi(static_cast<size_t>(mQ.viewMsSteps) + 1);
+  const glm::dvec2 mieMoments = cornetteShanksMoments(mA.mieG);
+  std::vector<glm::dvec3> towardR(static_cast<size_t>(mQ.viewMsSteps) + 1);
+  std::vector<glm::dvec3> towardM(towardR.size());
   for (int j = 0; j <= mQ.viewMsSteps; ++j) {
     const glm::dvec3 p = origin + warpT(double(j) / mQ.viewMsSteps, length, warp) * V;
     const double r = std::max(glm::length(p), mA.groundRadius);
-    psi[static_cast<size_t>(j)] = psiMs(r, glm::dot(p, L) / glm::length(p));
+    const glm::dvec3 up = glm::normalize(p);
+    const double muS = glm::dot(up, L);
+    const ReferenceMultipleScattering ms = multipleScattering(r, muS);
+    const glm::dvec3 h = L - muS * up;
+    const glm::dvec3 toward = glm::length(h) > 1e-9 ? glm::normalize(h) : glm::dvec3(0.0);
+    const double vu = glm::dot(V, up), vl = glm::dot(V, toward);
+    const double across = std::max(1.0 - vu * vu - vl * vl, 0.0);
+    const glm::dvec3 dipole = ms.dipoleUp * vu + ms.dipoleLight * vl;
+    const glm::dvec3 quadrupole = ms.quadrupoleUp * (vu * vu - across) +
+                                  ms.quadrupoleLight * (vl * vl - across) +
+                                  2.0 * ms.quadrupoleCross * (vu * vl);
+    towardR[static_cast<size_t>(j)] = ms.psi + kRayleighP2 * quadrupole;
+    towardM[static_cast<size_t>(j)] = ms.psi + mieMoments.x * dipole + mieMoments.y * quadrupole;
   }
 
   glm::dvec3 radiance(0.0), tau(0.0);
@@ -240,10 +287,12 @@ glm::dvec3 AtmosphereReference::march(double r0, glm::dvec3 V, glm::dvec3 L, dou
     const glm::dvec3 T = glm::exp(-(tau + 0.5 * dt * m.extinction));
     const double x = 0.5 * (s0 + s1) * mQ.viewMsSteps;
     const int j = std::min(static_cast<int>(x), mQ.viewMsSteps - 1);
-    const glm::dvec3 psiHere =
-        glm::mix(psi[static_cast<size_t>(j)], psi[static_cast<size_t>(j) + 1], x - j);
+    const size_t k = static_cast<size_t>(j);
+    const glm::dvec3 multiple = glm::max(m.rayleigh * glm::mix(towardR[k], towardR[k + 1], x - j) +
+                                             m.mie * glm::mix(towardM[k], towardM[k + 1], x - j),
+                                         glm::dvec3(0.0));
     const glm::dvec3 single = (m.rayleigh * phaseR + m.mie * phaseM) * transmittanceToLight(p, L);
-    radiance += T * (single + (m.rayleigh + m.mie) * psiHere) * dt;
+    radiance += T * (single + multiple) * dt;
     tau += m.extinction * dt;
   }
   if (transmittance) *transmittance = glm::exp(-tau);

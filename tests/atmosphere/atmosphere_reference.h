@@ -1,15 +1,38 @@
 #pragma once
-// A slow, independent CPU reference of the Hillaire 2020 atmosphere in double precision: no
-// LUTs anywhere. Transmittance is integrated along each ray as it is needed, and the
-// multiple-scattering term Psi_ms (Hillaire (5)-(11)) is evaluated directly at every point
-// that needs it, by integrating second-order light over the sphere of directions. Lengths in
-// km, radii from the planet centre, the camera on the z axis; radiance per unit illuminance
-// in physical units (1/sr) unless a function says otherwise.
+// A slow, independent CPU reference of the LUTs' model (Hillaire 2020, extended in issue 30)
+// in double precision: no LUTs anywhere. Transmittance is integrated along each ray as it is
+// needed, and the multiple-scattering terms are evaluated directly at every point that needs
+// them, by integrating the once-scattered light over the sphere of directions: Psi_ms
+// (Hillaire (5)-(11), with the true phase functions at the first scattering) and the second
+// order's dipole and quadrupole (shaders/common/atmosphere_shared.h). It checks the LUTs'
+// resolution; spectral_sky_reference.h checks the model. Lengths in km, radii from the
+// planet centre, the camera on the z axis; radiance per unit illuminance in physical units
+// (1/sr) unless a function says otherwise.
+#include <utility>
+#include <vector>
+
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include "engine/scene/scene.h"
 
 namespace sky::test {
+
+// Gauss-Legendre nodes and weights (x, w) on [-1, 1].
+std::vector<std::pair<double, double>> gaussLegendre(int n);
+
+// The first two Legendre moments (p_1, p_2) of the Cornette-Shanks phase function, P = sum
+// (2l + 1) p_l P_l(c) / (4 pi): p_1 is its mean cosine.
+glm::dvec2 cornetteShanksMoments(double g);
+
+// The multiple-scattering LUT's layers at one point (shaders/common/atmosphere_shared.h), per
+// unit illuminance, 1/sr: Psi_ms and the second order's dipole and quadrupole in the frame of
+// the point (up, and the horizontal toward the light).
+struct ReferenceMultipleScattering {
+  glm::dvec3 psi{0.0};
+  glm::dvec3 dipoleUp{0.0}, dipoleLight{0.0};
+  glm::dvec3 quadrupoleUp{0.0}, quadrupoleLight{0.0}, quadrupoleCross{0.0};
+};
 
 struct ReferenceAtmosphere {
   double groundRadius = 0, topRadius = 0;
@@ -53,8 +76,10 @@ public:
   // Transmittance from `pos` toward direction L to the top of the atmosphere; 0 if the ground
   // is in the way.
   glm::dvec3 transmittanceToLight(glm::dvec3 pos, glm::dvec3 L) const;
-  // Hillaire's Psi_ms at radius r for a light at cos(zenith) muS, evaluated directly.
+  // Hillaire's Psi_ms at radius r for a light at cos(zenith) muS, evaluated directly (with
+  // the true phase functions at the first scattering), and with it the second order's moments.
   glm::dvec3 psiMs(double r, double muS) const;
+  ReferenceMultipleScattering multipleScattering(double r, double muS) const;
   // Radiance the air scatters toward the camera at radius r0 along V, light L: single +
   // multiple scattering to the top of the atmosphere or the ground (the ground itself is the
   // composite's, as in the sky-view LUT).
