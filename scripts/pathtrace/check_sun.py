@@ -115,8 +115,8 @@ def main():
     p.add_argument("vdb", nargs="+")
     args = p.parse_args()
     print("| grid | sun elevation | altitude | illuminance (R, G, B) | its B/R | model's B/R | "
-          "integrated B/R | integrated / model (R, G, B) | spectral B/R |")
-    print("|---|---|---|---|---|---|---|---|---|")
+          "integrated B/R | integrated / model (R, G, B) | spectral B/R | R/G model | R/G spectral |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|")
     for path in args.vdb:
         meta = next(dict(g.metadata) for g in pyopenvdb.readAllGridMetadata(path) if g.name == "density")
         e = np.array(meta["sun_illuminance"])
@@ -128,7 +128,8 @@ def main():
         print(f"| {path.split('/')[-1]} | {elevation:.1f}° | {altitude:.0f} m | "
               f"{e[0]:.3f}, {e[1]:.3f}, {e[2]:.3f} | {e[2] / e[0]:.3f} | "
               f"{t_model[2] / t_model[0]:.3f} | {t_path[2] / t_path[0]:.3f} | "
-              f"{ratio[0]:.3f}, {ratio[1]:.3f}, {ratio[2]:.3f} | {t_spectral[2] / t_spectral[0]:.3f} |")
+              f"{ratio[0]:.3f}, {ratio[1]:.3f}, {ratio[2]:.3f} | {t_spectral[2] / t_spectral[0]:.3f} | "
+              f"{t_model[0] / t_model[1]:.2f} | {t_spectral[0] / t_spectral[1]:.2f} |")
 
 
 if __name__ == "__main__":

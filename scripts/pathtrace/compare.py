@@ -25,7 +25,8 @@ the same quantities) and DIR/SCENE.vdb (the scene's camera and sun), and reports
 - with DIR/SCENE_cycles_sun.exr and DIR/SCENE_cycles_sky.exr (compare.sh SPLIT=...): Cycles'
   light split into sunlight and skylight on the core (Cycles' darker half), the rim and the
   whole cloud: each one's share of the luminance and its blue/red, and how far sun + sky
-  misses the full render (noise);
+  misses the full render (noise); with DIR/SCENE_cycles_ground.exr too, the part of the
+  skylight that comes from below the horizontal (the ground and the air in front of it);
 - with DIR/SCENE_clear.exr and DIR/SCENE_world_check.exr (compare.sh with WORLD=sky): the
   check of Cycles' world, skyrender's view of the clear sky against Cycles' view of the
   equirectangular sky it was given, mean relative luminance error and blue/red of each.
@@ -154,6 +155,8 @@ def split(directory, scene, ref, y_ref_smooth, core_ref, rim, opaque):
     if not all(p.exists() for p in paths):
         return None
     sun, sky = (read_channels(p, ["R", "G", "B", "A"]) for p in paths)
+    ground_path = directory / f"{scene}_cycles_ground.exr"
+    ground = read_channels(ground_path, ["R", "G", "B", "A"]) if ground_path.exists() else None
     out = {}
     for name, where in (("core", core_ref), ("rim", rim), ("cloud", opaque)):
         y_sun, y_sky, y_all = (float(luminance(x)[where].mean()) for x in (sun, sky, ref))
@@ -165,6 +168,10 @@ def split(directory, scene, ref, y_ref_smooth, core_ref, rim, opaque):
             "blue_red_both": blue_red(ref, where),
             "closure": (y_sun + y_sky) / y_all - 1.0,
         }
+        if ground is not None:
+            # The world below the horizontal: the ground and the air in front of it.
+            out[name]["ground_share"] = float(luminance(ground)[where].mean()) / (y_sun + y_sky)
+            out[name]["blue_red_ground"] = blue_red(ground, where)
     return out
 
 
@@ -295,13 +302,15 @@ def markdown(results):
     if splits:
         lines += ["", "Cycles' light split into sunlight and skylight (share of the luminance, blue/red "
                   "of each; closure: (sun + sky) / full - 1):", "",
-                  "| scene | part | sky share | sun share | B/R sky | B/R sun | B/R both | closure |",
-                  "|---|---|---|---|---|---|---|---|"]
+                  "| scene | part | sky share | from below | sun share | B/R sky | B/R below "
+                  "| B/R sun | B/R both | closure |",
+                  "|---|---|---|---|---|---|---|---|---|---|"]
         for r in splits:
             for part, s in r["split"].items():
-                lines.append(f"| {r['scene']} | {part} | {pct(s['sky_share'])} | {pct(s['sun_share'])} | "
-                             f"{s['blue_red_sky']:.2f} | {s['blue_red_sun']:.2f} | {s['blue_red_both']:.2f} | "
-                             f"{100 * s['closure']:+.1f} % |")
+                below = (pct(s["ground_share"]), f"{s['blue_red_ground']:.2f}") if "ground_share" in s else ("", "")
+                lines.append(f"| {r['scene']} | {part} | {pct(s['sky_share'])} | {below[0]} | "
+                             f"{pct(s['sun_share'])} | {s['blue_red_sky']:.2f} | {below[1]} | "
+                             f"{s['blue_red_sun']:.2f} | {s['blue_red_both']:.2f} | {100 * s['closure']:+.1f} % |")
     checks = [r for r in results if r["world_check"]]
     if checks:
         lines += ["", "Check of Cycles' world (Cycles' view of our equirectangular sky against our own "

@@ -2,7 +2,7 @@
 path-traced reference for the raymarch (docs/cloud-model.md, "Path-traced reference").
 
     blender -b --factory-startup --python scripts/pathtrace/render_cycles.py -- \
-        --vdb cloud.vdb --out cycles.exr [--world sky.exr] [--lights both|sun|sky] \
+        --vdb cloud.vdb --out cycles.exr [--world sky.exr] [--lights both|sun|sky|ground] \
         [--samples 128] [--bounces 128] [--seed 1]
 
 Everything comes from the grid's metadata, so the scene is the one skyrender rendered:
@@ -22,7 +22,9 @@ Everything comes from the grid's metadata, so the scene is the one skyrender ren
   the world must not). Without --world, the old constant world: radiance ambient_top above
   the horizon and ambient_bottom below (the palette's ambient the raymarch used so far);
 - --lights sun or sky keeps only the sun lamp or only the world (both by default): light is
-  additive, so the two renders split the cloud's light into sunlight and skylight;
+  additive, so the two renders split the cloud's light into sunlight and skylight; ground
+  keeps only the world below the horizontal (the ground and the air in front of it), which
+  says how much of the skylight comes from below;
 - the camera: at the origin of the grid's frame (the camera's east-north-up, metres) with
   skyrender's view axes, vertical field of view and image size.
 The film is transparent (opaque with --world-only, which drops the cloud), so the EXR holds the cloud alone, premultiplied (RGB the light the
@@ -47,8 +49,9 @@ def parse_args():
     p.add_argument("--bounces", type=int, default=128)
     p.add_argument("--seed", type=int, default=1)
     p.add_argument("--world", help="equirectangular EXR of our sky (default: the constant ambient)")
-    p.add_argument("--lights", choices=("both", "sun", "sky"), default="both",
-                   help="which light sources shine: both, the sun lamp only, the world only")
+    p.add_argument("--lights", choices=("both", "sun", "sky", "ground"), default="both",
+                   help="which light sources shine: both, the sun lamp only, the world only, "
+                        "the world below the horizontal only")
     p.add_argument("--step-rate", type=float, default=1.0,
                    help="Cycles' volume step as a fraction of the voxel (checks the marching's bias)")
     p.add_argument("--world-only", action="store_true",
@@ -95,7 +98,7 @@ def black_world():
     return w
 
 
-def sky_world(path):
+def sky_world(path, below_only=False):
     # Cycles maps a direction d to the equirectangular u = 0.5 - atan2(d.y, d.x) / 2 pi and
     # v = elevation / pi + 0.5 (v up): the image's centre looks along +x, azimuth grows to the
     # right (clockwise seen from above, as skyrender's does) and the top row is the zenith.
@@ -114,7 +117,23 @@ def sky_world(path):
     background = nt.nodes.new("ShaderNodeBackground")
     background.inputs["Strength"].default_value = 1.0
     out = nt.nodes.new("ShaderNodeOutputWorld")
-    nt.links.new(texture.outputs["Color"], background.inputs["Color"])
+    if below_only:
+        # In a world shader "Generated" is the view direction; keep the map where z < 0.
+        coords = nt.nodes.new("ShaderNodeTexCoord")
+        xyz = nt.nodes.new("ShaderNodeSeparateXYZ")
+        below = nt.nodes.new("ShaderNodeMath")
+        below.operation = "LESS_THAN"
+        below.inputs[1].default_value = 0.0
+        mask = nt.nodes.new("ShaderNodeMixRGB")
+        mask.blend_type = "MULTIPLY"
+        mask.inputs["Fac"].default_value = 1.0
+        nt.links.new(coords.outputs["Generated"], xyz.inputs[0])
+        nt.links.new(xyz.outputs["Z"], below.inputs[0])
+        nt.links.new(texture.outputs["Color"], mask.inputs["Color1"])
+        nt.links.new(below.outputs[0], mask.inputs["Color2"])
+        nt.links.new(mask.outputs["Color"], background.inputs["Color"])
+    else:
+        nt.links.new(texture.outputs["Color"], background.inputs["Color"])
     nt.links.new(background.outputs[0], out.inputs["Surface"])
     # Importance-sample the map: the aureole around a low sun is small and bright.
     w.cycles.sampling_method = "MANUAL"
@@ -183,7 +202,9 @@ def main():
     if args.lights == "sun":
         scene.world = black_world()
     elif args.world:
-        scene.world = sky_world(args.world)
+        scene.world = sky_world(args.world, below_only=args.lights == "ground")
+    elif args.lights == "ground":
+        sys.exit("error: --lights ground needs --world")
     else:
         scene.world = constant_world(m)
 
