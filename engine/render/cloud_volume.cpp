@@ -130,6 +130,9 @@ CloudVolume makeCloudVolume(const Scene& cloudScene, const LightingState& lighti
   }
   // The sky light the raymarch's ambient term uses: radiance from the upper hemisphere and
   // from the ground below, the sun's and the moon's palettes together.
+  // Which sky the scene draws, so a path tracer that lights the grid with that sky (an
+  // equirectangular render of the same scene, scripts/pathtrace) can say which it was.
+  m["sky_model"] = std::string(enumName(cloudScene.sky.model));
   m["ambient_top"] = dvec(lighting.gpu.palette.ambientTop + lighting.gpu.moonPalette.ambientTop);
   m["ambient_bottom"] =
       dvec(lighting.gpu.palette.ambientBottom + lighting.gpu.moonPalette.ambientBottom);

@@ -2,7 +2,8 @@
 path-traced reference for the raymarch (docs/cloud-model.md, "Path-traced reference").
 
     blender -b --factory-startup --python scripts/pathtrace/render_cycles.py -- \
-        --vdb cloud.vdb --out cycles.exr [--samples 128] [--bounces 128] [--seed 1]
+        --vdb cloud.vdb --out cycles.exr [--world sky.exr] [--lights both|sun|sky|ground] \
+        [--samples 128] [--bounces 128] [--seed 1]
 
 Everything comes from the grid's metadata, so the scene is the one skyrender rendered:
 - the medium: the grid "density" is the extinction per metre; scattering = extinction (no
@@ -13,11 +14,20 @@ Everything comes from the grid's metadata, so the scene is the one skyrender ren
   illuminance the raymarch uses at the clouds. skyrender's units have illuminance 1 = pi x
   radiance 1 (shaders/common/lighting_shared.h); Cycles' sun strength is irradiance, and a
   white diffuse surface under strength S has radiance S / pi, so strength = pi x illuminance;
-- the sky: a world of radiance ambient_top for every direction above the horizon and
-  ambient_bottom below it (the raymarch's ambient light from the sky and from the ground);
+- the sky: with --world, our own sky: an equirectangular EXR that skyrender rendered of the
+  same scene with no clouds and no sun or moon disc (compare.sh: `camera.projection:
+  equirectangular`, heading 90 so the image's centre is east, Blender's +x), the ground below
+  the horizon as our composite draws it. Its R, G, B are radiance in skyrender's unit, which
+  is Cycles' background radiance at strength 1 (the sun lamp carries the disc's light, so
+  the world must not). Without --world, the old constant world: radiance ambient_top above
+  the horizon and ambient_bottom below (the palette's ambient the raymarch used so far);
+- --lights sun or sky keeps only the sun lamp or only the world (both by default): light is
+  additive, so the two renders split the cloud's light into sunlight and skylight; ground
+  keeps only the world below the horizontal (the ground and the air in front of it), which
+  says how much of the skylight comes from below;
 - the camera: at the origin of the grid's frame (the camera's east-north-up, metres) with
   skyrender's view axes, vertical field of view and image size.
-The film is transparent, so the EXR holds the cloud alone, premultiplied (RGB the light the
+The film is transparent (opaque with --world-only, which drops the cloud), so the EXR holds the cloud alone, premultiplied (RGB the light the
 cloud sends to the camera, A its opacity): what skyrender's `clouds` layer holds. No
 denoising, no clamping, fixed seed.
 """
@@ -38,6 +48,15 @@ def parse_args():
     p.add_argument("--samples", type=int, default=128)
     p.add_argument("--bounces", type=int, default=128)
     p.add_argument("--seed", type=int, default=1)
+    p.add_argument("--world", help="equirectangular EXR of our sky (default: the constant ambient)")
+    p.add_argument("--lights", choices=("both", "sun", "sky", "ground"), default="both",
+                   help="which light sources shine: both, the sun lamp only, the world only, "
+                        "the world below the horizontal only")
+    p.add_argument("--step-rate", type=float, default=1.0,
+                   help="Cycles' volume step as a fraction of the voxel (checks the marching's bias)")
+    p.add_argument("--world-only", action="store_true",
+                   help="no cloud and an opaque film: the camera sees the world itself (checks "
+                        "the world's orientation and units against skyrender's own view)")
     return p.parse_args(argv)
 
 
@@ -72,7 +91,57 @@ def volume_material(m):
     return mat
 
 
-def world(m):
+def black_world():
+    w = bpy.data.worlds.new("black")
+    w.use_nodes = True
+    w.node_tree.nodes["Background"].inputs["Strength"].default_value = 0.0
+    return w
+
+
+def sky_world(path, below_only=False):
+    # Cycles maps a direction d to the equirectangular u = 0.5 - atan2(d.y, d.x) / 2 pi and
+    # v = elevation / pi + 0.5 (v up): the image's centre looks along +x, azimuth grows to the
+    # right (clockwise seen from above, as skyrender's does) and the top row is the zenith.
+    # compare.sh renders our sky with heading 90 (east, our +x) at the centre, so no rotation;
+    # it checks that with --world-only against skyrender's own perspective view of the sky.
+    w = bpy.data.worlds.new("our_sky")
+    w.use_nodes = True
+    nt = w.node_tree
+    nt.nodes.clear()
+    image = bpy.data.images.load(path)
+    image.colorspace_settings.name = "Linear"  # scene-linear Rec.709, Blender 3.4's name
+    texture = nt.nodes.new("ShaderNodeTexEnvironment")
+    texture.image = image
+    texture.interpolation = "Linear"
+    texture.projection = "EQUIRECTANGULAR"
+    background = nt.nodes.new("ShaderNodeBackground")
+    background.inputs["Strength"].default_value = 1.0
+    out = nt.nodes.new("ShaderNodeOutputWorld")
+    if below_only:
+        # In a world shader "Generated" is the view direction; keep the map where z < 0.
+        coords = nt.nodes.new("ShaderNodeTexCoord")
+        xyz = nt.nodes.new("ShaderNodeSeparateXYZ")
+        below = nt.nodes.new("ShaderNodeMath")
+        below.operation = "LESS_THAN"
+        below.inputs[1].default_value = 0.0
+        mask = nt.nodes.new("ShaderNodeMixRGB")
+        mask.blend_type = "MULTIPLY"
+        mask.inputs["Fac"].default_value = 1.0
+        nt.links.new(coords.outputs["Generated"], xyz.inputs[0])
+        nt.links.new(xyz.outputs["Z"], below.inputs[0])
+        nt.links.new(texture.outputs["Color"], mask.inputs["Color1"])
+        nt.links.new(below.outputs[0], mask.inputs["Color2"])
+        nt.links.new(mask.outputs["Color"], background.inputs["Color"])
+    else:
+        nt.links.new(texture.outputs["Color"], background.inputs["Color"])
+    nt.links.new(background.outputs[0], out.inputs["Surface"])
+    # Importance-sample the map: the aureole around a low sun is small and bright.
+    w.cycles.sampling_method = "MANUAL"
+    w.cycles.sample_map_resolution = max(image.size[0], 256)
+    return w
+
+
+def constant_world(m):
     w = bpy.data.worlds.new("sky")
     w.use_nodes = True
     nt = w.node_tree
@@ -108,27 +177,36 @@ def main():
 
     # The volume, in the grid's own transform (metres in the camera's east-north-up frame,
     # which is Blender's x, y, z).
-    volume = bpy.data.volumes.new("cloud")
-    volume.filepath = args.vdb
-    volume.render.space = "WORLD"
-    volume.render.step_size = 0.0  # automatic: the grid's voxel size
-    volume.render.precision = "FULL"
-    volume.materials.append(volume_material(m))
-    obj = bpy.data.objects.new("cloud", volume)
-    scene.collection.objects.link(obj)
+    volume = bpy.data.volumes.new("cloud") if not args.world_only else None
+    if volume:
+        volume.filepath = args.vdb
+        volume.render.space = "WORLD"
+        volume.render.step_size = 0.0  # automatic: the grid's voxel size
+        volume.render.precision = "FULL"
+        volume.materials.append(volume_material(m))
+        obj = bpy.data.objects.new("cloud", volume)
+        scene.collection.objects.link(obj)
 
     # The sun: its lamp shines along its local -z, so +z points at the sun.
-    e = m["sun_illuminance"]
-    peak = max(e)
-    light = bpy.data.lights.new("sun", "SUN")
-    light.energy = math.pi * peak
-    light.color = tuple(c / peak for c in e) if peak > 0 else (1.0, 1.0, 1.0)
-    light.angle = 2.0 * math.radians(m["sun_angular_radius_deg"])
-    sun = bpy.data.objects.new("sun", light)
-    sun.rotation_mode = "QUATERNION"
-    sun.rotation_quaternion = mathutils.Vector(m["sun_direction"]).to_track_quat("Z", "Y")
-    scene.collection.objects.link(sun)
-    scene.world = world(m)
+    if args.lights in ("both", "sun"):
+        e = m["sun_illuminance"]
+        peak = max(e)
+        light = bpy.data.lights.new("sun", "SUN")
+        light.energy = math.pi * peak
+        light.color = tuple(c / peak for c in e) if peak > 0 else (1.0, 1.0, 1.0)
+        light.angle = 2.0 * math.radians(m["sun_angular_radius_deg"])
+        sun = bpy.data.objects.new("sun", light)
+        sun.rotation_mode = "QUATERNION"
+        sun.rotation_quaternion = mathutils.Vector(m["sun_direction"]).to_track_quat("Z", "Y")
+        scene.collection.objects.link(sun)
+    if args.lights == "sun":
+        scene.world = black_world()
+    elif args.world:
+        scene.world = sky_world(args.world, below_only=args.lights == "ground")
+    elif args.lights == "ground":
+        sys.exit("error: --lights ground needs --world")
+    else:
+        scene.world = constant_world(m)
 
     # The camera: Blender's camera looks along its -z with +y up and +x right.
     cam = bpy.data.cameras.new("camera")
@@ -152,7 +230,7 @@ def main():
     scene.render.resolution_x = width
     scene.render.resolution_y = height
     scene.render.resolution_percentage = 100
-    scene.render.film_transparent = True
+    scene.render.film_transparent = not args.world_only
     scene.render.threads_mode = "AUTO"
     c = scene.cycles
     c.device = "CPU"
@@ -168,7 +246,7 @@ def main():
     c.transparent_max_bounces = 8
     c.sample_clamp_direct = 0.0
     c.sample_clamp_indirect = 0.0
-    c.volume_step_rate = 1.0
+    c.volume_step_rate = args.step_rate
     c.volume_max_steps = 4096
     c.caustics_reflective = True
     c.caustics_refractive = True
@@ -179,7 +257,9 @@ def main():
     scene.render.image_settings.exr_codec = "ZIP"
     scene.render.filepath = args.out
     bpy.ops.render.render(write_still=True)
-    print(f"wrote {args.out} ({width}x{height}, {args.samples} samples, {args.bounces} bounces)")
+    world = "none" if args.lights == "sun" else (args.world or "constant ambient")
+    print(f"wrote {args.out} ({width}x{height}, {args.samples} samples, {args.bounces} bounces, "
+          f"lights {args.lights}, world {world})")
 
 
 main()

@@ -121,6 +121,7 @@ TEST_F(CloudVolumeExport, TinyGridRoundTripsThroughOpenVdb) {
   EXPECT_EQ(number("phase_g_back"), scene.clouds.gBack);
   EXPECT_EQ(number("phase_back_weight"), scene.clouds.backWeight);
   EXPECT_EQ(std::get<std::string>(file.metadata.at("phase")), "dual_lobe");
+  EXPECT_EQ(std::get<std::string>(file.metadata.at("sky_model")), "kozlov");
   EXPECT_LT(glm::length(vector("sun_direction") - frame.lighting.sun.direction), 1e-9);
   EXPECT_LT(glm::length(vector("camera_forward") -
                         glm::dvec3(glm::vec3(makeViewState(scene.camera, 96, 54).forward))),
