@@ -237,15 +237,17 @@ struct CloudRay {
   uvec2 pixel;     // the view's pixel, for the hashes
   uint seed;       // the frame's jitter seed, different for each of the pixel's marches
   float jitter;    // [0, 1): how far into its first step the march starts
+  float spreadPerM;  // what one sample of it resolves across, per metre of distance: a
+                     // pixel's width, or a sub-pixel's where a pixel marches several rays
   CloudRayAmbient ambient;
 };
 
 // Sub-pixel position `pixel` (in the view's pixels) of the ray: the camera's, or for a
 // top-down frame straight down from above the clouds over that point of the region (row 0 the
 // north edge, column 0 the west edge, equal lat/lon spacing).
-CloudRay cloudViewRay(vec2 pixel, uvec2 id, uint seed, float jitter) {
+CloudRay cloudViewRay(vec2 pixel, uvec2 id, uint seed, float jitter, float spreadPerM) {
   vec3 d = viewDirection(params.view, pixel);
-  CloudRay ray = CloudRay(vec3(0.0), d, id, seed, jitter, cloudRayAmbient(d));
+  CloudRay ray = CloudRay(vec3(0.0), d, id, seed, jitter, spreadPerM, cloudRayAmbient(d));
   if (CLOUD_TOPDOWN != 0) {
     vec2 uv = pixel / vec2(params.view.size.xy);
     vec4 b = params.region.bounds;
@@ -287,6 +289,8 @@ struct CloudMarch {
   float lastT;          // and where it was
   vec2 tau;             // the light (optical depth toward the sun, the moon) of the ray's
   int lightLayer;       // current cloud, and the layer it was marched in (-1: none yet)
+  float lightT;         // where along the ray it was marched
+  bool lightFar;        // for a sample of the far field
 };
 
 // Where the march stands inside one interval of the shells.
@@ -316,6 +320,10 @@ struct CloudStep {
 // shorter than CLOUD_STEP_MIN_M metres); half that in the reference.
 #define CLOUD_STEP_MAX_TAU (CLOUD_REFERENCE != 0 ? 0.25 : 0.5)
 #define CLOUD_STEP_MIN_M 2.0
+// The shortest view step as a multiple of the ray's spread at its distance (cloudBaseStep).
+#ifndef CLOUD_STEP_PER_SPREAD
+#define CLOUD_STEP_PER_SPREAD 2.0
+#endif
 #define CLOUD_NO_DEPTH_LIMIT 1e30
 
 // Once the view ray's transmittance is below this, what is left of the pixel (at most this
@@ -323,10 +331,37 @@ struct CloudStep {
 // cloud, instead of a new march: deep inside an opaque cloud half the samples lie past this
 // point, and the light march is most of a sample's cost.
 #define CLOUD_LIGHT_REUSE_T 0.1
+// Far-field samples within this share of the outline's cell of the last one marched take its
+// light (cloudLightSample).
+#define CLOUD_FAR_LIGHT_REUSE 4.0
 
-// The normal step at distance t: Lu's step that grows with distance.
-float cloudBaseStep(float t) {
-  return params.stepM + params.stepGrowth * t;
+// The band just above the horizon, where the clouds are a few pixels across: a pixel whose
+// ray reaches the shells where its width is at least CLOUD_BAND_FROM of the outline's cell
+// marches 4 rays, from 1.5 times that 9, each resolving its share of the pixel, up to
+// CLOUD_BAND_TO, where the outline fades into the far field even for those. One ray hit or
+// missed each small cloud at random, a speckle 20 % RMS off a 4x supersampled render
+// (docs/clouds.md, "The horizon"); nearer the clouds are many pixels across, farther the far
+// field is smooth.
+#define CLOUD_BAND_FROM 0.04
+#define CLOUD_BAND_TO 0.3
+// Only rays that rise by less than this sine (4 degrees): the band as a viewer on or under
+// the clouds sees it. Grazing rays cross many clouds a pixel: the band costs 1.4-1.5x the
+// still of a view with a horizon (benchmarks/README.md); taking every grazing ray, or those
+// that fall too (the layer below a camera at 4 km), cost up to 2.5x.
+#define CLOUD_BAND_SINE 0.07
+
+// The normal step at distance t along `ray`: Lu's step that grows with distance; in the far
+// field, where a sample resolves none of the clouds' outline (its spread at least half the
+// outline's cell), never shorter than the spread: the field is smooth there, a step finer
+// than a sample is wide gains nothing, and at the horizon, where a pixel is hundreds of
+// metres wide, such steps spent most of the frame. Nearer, Lu's step stays: steps of a
+// pixel's width at 20 km left the moonlit and high views 3-6 dB off the reference. The
+// reference keeps Lu's (halved) step everywhere.
+float cloudBaseStep(CloudRay ray, float t) {
+  float lu = params.stepM + params.stepGrowth * t;
+  float spread = ray.spreadPerM * t;
+  bool far = spread * 4.0 * params.shapeRepeatsPerM >= 0.5;
+  return CLOUD_REFERENCE == 0 && far ? max(lu, CLOUD_STEP_PER_SPREAD * spread) : lu;
 }
 
 // How many normal steps the clear step after this sample may stride: as far as the clearance
@@ -342,7 +377,7 @@ float cloudStrideCap(CloudRay ray, CloudStep st) {
   if (st.s.rangeGapM > 0.0) {
     float climb = abs(dot(ray.direction, geoUp(params.geo, st.p)));
     float reachM = st.s.rangeGapM / max(climb, 1e-3) - 0.5 * st.dt;
-    return clamp(reachM / (1.5 * cloudBaseStep(st.t)), 1.0, 4.0);
+    return clamp(reachM / (1.5 * cloudBaseStep(ray, st.t)), 1.0, 4.0);
   }
   return clamp(1.0 + 3.0 * st.s.clearance / CLOUD_STRIDE_CLEARANCE, 1.0, 4.0);
 }
@@ -356,7 +391,7 @@ float cloudStrideCap(CloudRay ray, CloudStep st) {
 bool cloudSeek(CloudRay ray, float end, inout CloudSeek seek, inout CloudMarch m,
                out CloudStep st) {
   while (seek.t < end && m.samples < int(params.maxSteps)) {
-    float stepLen = cloudBaseStep(seek.t) * seek.stretch;
+    float stepLen = cloudBaseStep(ray, seek.t) * seek.stretch;
     // A stretched step's length is random (mean unchanged): what strides still skip turns
     // into fine grain instead of lines where the strides of neighbouring rays line up.
     if (seek.stretch > 1.0) stepLen *= 0.5 + pixelHash(ray.pixel, ray.seed, uint(m.samples) + 1u);
@@ -367,7 +402,7 @@ bool cloudSeek(CloudRay ray, float end, inout CloudSeek seek, inout CloudMarch m
     // along the ray, the larger (top-down: full detail, the cover is measured there).
     st.footprint = CLOUD_TOPDOWN != 0
                        ? 0.0
-                       : max((seek.t + 0.5 * st.dt) * params.view.forward.w, 0.25 * st.dt);
+                       : max((seek.t + 0.5 * st.dt) * ray.spreadPerM, 0.25 * st.dt);
     vec3 lla = latLonAltitude(params.geo, st.p);
     st.altitudeM = lla.z;
     // The reference takes no coarse map.
@@ -416,7 +451,13 @@ vec3 cloudLightSample(CloudRay ray, CloudStep st, float tauView, inout CloudMarc
   vec3 scattering = cloudAmbientScattering(ray.ambient, st.s, tauView + 0.5 * sigmaT * st.dt);
   bool tail = CLOUD_REFERENCE == 0 && tauView > 0.0 && st.s.layer == m.lightLayer &&
               m.transmittance < CLOUD_LIGHT_REUSE_T;
-  if (!tail) {
+  // The far field is smooth over a cloud cell: its light changes little from one sample to
+  // the next, and a march at every one of its samples was most of the band at the horizon's
+  // cost (a thousand light samples a pixel there).
+  bool far = st.s.outline <= 0.0;
+  bool smoothFar = CLOUD_REFERENCE == 0 && far && m.lightFar && st.s.layer == m.lightLayer &&
+                st.t - m.lightT < CLOUD_FAR_LIGHT_REUSE * 0.25 / params.shapeRepeatsPerM;
+  if (!tail && !smoothFar) {
     // Each view sample places its light samples differently inside their steps (a
     // golden-ratio sequence seeded by the ray's jitter), so the texel grid of the noise does
     // not show through the shadows as a regular pattern.
@@ -424,6 +465,8 @@ vec3 cloudLightSample(CloudRay ray, CloudStep st, float tauView, inout CloudMarc
     CloudKeyLights k = marchKeyLights(st.p, st.altitudeM, st.s, st.footprint, offset);
     m.tau = k.tau;
     m.lightLayer = st.s.layer;
+    m.lightT = st.t;
+    m.lightFar = far;
     m.lightSamples += k.samples;
   }
   return scattering + cloudKeyLightScattering(ray.direction, st.s.layer, st.s.type, m.tau);
@@ -462,12 +505,12 @@ void cloudTakeOpaqueRest(inout CloudMarch m) {
 // lights it and adds its share, until the shells end, the ray's samples run out or the
 // transmittance falls below the cutoff.
 CloudMarch cloudMarchRay(CloudRay ray) {
-  CloudMarch m = CloudMarch(vec3(0.0), 1.0, 0.0, 0, 0, vec3(0.0), 0.0, vec2(0.0), -1);
+  CloudMarch m = CloudMarch(vec3(0.0), 1.0, 0.0, 0, 0, vec3(0.0), 0.0, vec2(0.0), -1, 0.0, false);
   if (params.anyCover <= 0.0) return m;
   vec2 iv[2];
   int n = cloudRayIntervals(ray, iv);
   for (int k = 0; k < n && m.samples < int(params.maxSteps); ++k) {
-    CloudSeek seek = CloudSeek(iv[k].x + ray.jitter * cloudBaseStep(iv[k].x), 1.0, 0.0,
+    CloudSeek seek = CloudSeek(iv[k].x + ray.jitter * cloudBaseStep(ray, iv[k].x), 1.0, 0.0,
                                CLOUD_NO_DEPTH_LIMIT);
     CloudStep st;
     while (m.transmittance > params.transmittanceCutoff && cloudSeek(ray, iv[k].y, seek, m, st)) {
@@ -493,17 +536,28 @@ void main() {
   // Where the pixel's centre ray first reaches the shells, -1 if it never does (the ground
   // comes first): the temporal pass's upsampling compares rays by it (cloud_temporal.comp).
   vec2 centreIv[2];
-  CloudRay centre = cloudViewRay(vec2(id) + 0.5, id, params.frameIndex, 0.0);
-  float shellEntry = cloudRayIntervals(centre, centreIv) > 0 ? centreIv[0].x : -1.0;
+  CloudRay centre = cloudViewRay(vec2(id) + 0.5, id, params.frameIndex, 0.0, params.view.forward.w);
+  bool meets = cloudRayIntervals(centre, centreIv) > 0;
+  float shellEntry = meets ? centreIv[0].x : -1.0;
+  // How wide the pixel is where its ray finds its clouds (for a camera inside the layers,
+  // a quarter of the way through them), against the clouds' outline cell.
+  float cloudsAt = meets ? max(centreIv[0].x, 0.25 * centreIv[0].y) : 0.0;
+  float width = cloudsAt * params.view.forward.w * 4.0 * params.shapeRepeatsPerM;
+  bool grazing = centre.direction.z >= 0.0 && centre.direction.z < CLOUD_BAND_SINE;
+  int band = CLOUD_TOPDOWN != 0 || !grazing || width < CLOUD_BAND_FROM || width > CLOUD_BAND_TO ? 1
+             : width < 1.5 * CLOUD_BAND_FROM                                     ? 4
+                                                                                 : 9;
 
   // clouds.samples marches per pixel, averaged: the first at the pixel's centre with the
   // frame's jitter (one sample is the plain march), the others at low-discrepancy positions
   // inside the pixel (the R2 sequence, Roberts 2018, rotated per pixel) with their starts
   // stratified over the step, so a still converges and its cloud edges are antialiased.
-  // A top-down pixel marches the CLOUD_TOPDOWN_SUBPIXELS^2 rays of a render that many times
-  // the size instead (cloudTopDownSubRay).
+  // Each resolves its share of the pixel (the footprint of a render sqrt(count) times the
+  // size). The band at the horizon takes at least `band`. A top-down pixel
+  // marches the CLOUD_TOPDOWN_SUBPIXELS^2 rays of a render that many times the size instead.
   int count = CLOUD_TOPDOWN != 0 ? CLOUD_TOPDOWN_SUBPIXELS * CLOUD_TOPDOWN_SUBPIXELS
-                                 : int(params.samplesPerPixel);
+                                 : max(int(params.samplesPerPixel), band);
+  float spread = params.view.forward.w / sqrt(float(count));
   float jitter0 = pixelHash(id, params.frameIndex, 0u) * params.jitter;
   vec2 rotation = vec2(pixelHash(id, params.frameIndex, 0x51u), pixelHash(id, params.frameIndex, 0x52u));
   vec3 radiance = vec3(0.0);
@@ -515,12 +569,14 @@ void main() {
       uvec2 sub = id * uint(CLOUD_TOPDOWN_SUBPIXELS) +
                   uvec2(i % CLOUD_TOPDOWN_SUBPIXELS, i / CLOUD_TOPDOWN_SUBPIXELS);
       ray = cloudViewRay((vec2(sub) + 0.5) / float(CLOUD_TOPDOWN_SUBPIXELS), sub,
-                         params.frameIndex, pixelHash(sub, params.frameIndex, 0u) * params.jitter);
+                         params.frameIndex, pixelHash(sub, params.frameIndex, 0u) * params.jitter,
+                         spread);
     } else {
       vec2 inPixel = i == 0 ? vec2(0.5)
                             : fract(rotation + float(i) * vec2(0.7548776662, 0.5698402910));
       float jitter = fract(jitter0 + float(i) / float(count));
-      ray = cloudViewRay(vec2(id) + inPixel, id, params.frameIndex + uint(i) * 0x632BE5ABu, jitter);
+      ray = cloudViewRay(vec2(id) + inPixel, id, params.frameIndex + uint(i) * 0x632BE5ABu, jitter,
+                         spread);
     }
     CloudMarch m = cloudMarchRay(ray);
     radiance += m.radiance;

@@ -402,8 +402,8 @@ void describe(V& v, LightingSettings& s) {
   v.field("turbidity", s.turbidity, NumberRange{0, 5},
           "aerosol optical depth at 550 nm (reddening of sun and moon light)");
   v.field("night_adaptation", s.nightAdaptation, NumberRange{0, 1},
-          "fraction of the darkening after sunset (in stops) that the exposure makes up for "
-          "moon and stars");
+          "share of the stops the night sky's light at the horizon (twilight and moon) has lost "
+          "since day that the automatic exposure makes up");
   v.field("star_brightness", s.starBrightness, NumberRange{0, 1e6},
           "multiplies the catalogue star fluxes (1: physical)");
   v.field("star_extinction", s.starExtinction, NumberRange{0, 2},
