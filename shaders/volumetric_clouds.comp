@@ -169,12 +169,12 @@ vec3 cloudKeyLightScattering(vec3 d, int layer, float type, vec2 tau) {
 }
 
 // The ambient light of a view ray (cloud_ambient_shared.h), the same at all its samples: the
-// sky's and the ground's light on a level surface (through the slab above and below a
-// sample) and on a surface facing back along the ray (through the face it entered by). From
+// sky's and the ground's light on a surface facing up (the layer's top), down (its bottom),
+// back along the ray (the face the ray entered by) and along it (the cloud's far side). From
 // the sky that is actually there, so a face turned from a low sun takes the darker, bluer sky
-// behind the camera.
+// behind the camera, and the far side of a backlit cloud the bright sky around the sun.
 struct CloudRayAmbient {
-  vec3 skyAbove, skyFace, groundBelow, groundFace;
+  vec3 above, below, face, back;
 };
 // The sky's light on a surface of unit normal n: the table bilinear in azimuth (wrapping) and
 // elevation.
@@ -195,18 +195,20 @@ vec3 cloudGroundLight(vec3 n) {
   return imageLoad(ambientImage, ivec2(0, CLOUD_AMBIENT_GROUND_ROW)).rgb *
          clamp(0.5 - 0.5 * n.z, 0.0, 1.0);
 }
+vec3 cloudAmbientLight(vec3 n) { return cloudSkyLight(n) + cloudGroundLight(n); }
 CloudRayAmbient cloudRayAmbient(vec3 d) {
-  return CloudRayAmbient(cloudSkyLight(vec3(0.0, 0.0, 1.0)), cloudSkyLight(-d),
-                         cloudGroundLight(vec3(0.0, 0.0, -1.0)), cloudGroundLight(-d));
+  return CloudRayAmbient(cloudAmbientLight(vec3(0.0, 0.0, 1.0)),
+                         cloudAmbientLight(vec3(0.0, 0.0, -1.0)), cloudAmbientLight(-d),
+                         cloudAmbientLight(d));
 }
 
-// The sky above and the ground below scattered toward the eye per unit of extinction (Tang's
+// The sky's and the ground's light scattered toward the eye per unit of extinction (Tang's
 // slab ambient with diffusion); tauView: the optical depth along the view ray from where it
 // entered this cloud.
 vec3 cloudAmbientScattering(CloudRayAmbient a, CloudSample s, float tauView) {
   float sigmaT = params.extinction * s.density;
-  return cloudAmbientDiffuse(a.skyAbove, a.skyFace, a.groundBelow, a.groundFace, sigmaT, s.hTop,
-                             s.hBottom, tauView, meanCosine(), params.multipleScattering);
+  return cloudAmbientDiffuse(a.above, a.below, a.face, a.back, sigmaT, s.hTop, s.hBottom, tauView,
+                             meanCosine(), params.multipleScattering);
 }
 
 // --- Random numbers -------------------------------------------------------------------------

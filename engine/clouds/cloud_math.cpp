@@ -88,18 +88,20 @@ float cloudDiffusionLeak(float type) {
   return 1.0f + 2.0f * std::clamp(2.0f * type - 1.0f, 0.0f, 1.0f);
 }
 
-glm::vec3 cloudAmbientDiffuse(glm::vec3 skyAbove, glm::vec3 skyFace, glm::vec3 groundBelow,
-                              glm::vec3 groundFace, float sigmaT, float hTopM, float hBottomM,
-                              float tauView, float g, float strength) {
+glm::vec3 cloudAmbientDiffuse(glm::vec3 above, glm::vec3 below, glm::vec3 face, glm::vec3 back,
+                              float sigmaT, float hTopM, float hBottomM, float tauView, float g,
+                              float strength) {
   const float k = std::clamp(strength, 0.0f, 1.0f);
-  const float throughView = diffuseTransmittance(tauView, g);
-  const glm::vec3 dTop =
-      glm::max(diffuseTransmittance(sigmaT * hTopM, g) * skyAbove, throughView * skyFace);
-  const glm::vec3 dBottom =
-      glm::max(diffuseTransmittance(sigmaT * hBottomM, g) * groundBelow, throughView * groundFace);
-  const glm::vec3 sTop = slabAmbient(-sigmaT * hTopM) * skyAbove;
-  const glm::vec3 sBottom = slabAmbient(-sigmaT * hBottomM) * groundBelow;
-  return 0.5f * (sTop + (dTop - sTop) * k + sBottom + (dBottom - sBottom) * k);
+  const float wTop = diffuseTransmittance(sigmaT * hTopM, g);
+  const float wBottom = diffuseTransmittance(sigmaT * hBottomM, g);
+  const float wFace = diffuseTransmittance(tauView, g);
+  const float wBack =
+      diffuseTransmittance(std::max(sigmaT * (hTopM + hBottomM) - tauView, 0.0f), g);
+  const glm::vec3 diffusion = (wTop * above + wBottom * below + wFace * face + wBack * back) /
+                              (wTop + wBottom + wFace + wBack);
+  const glm::vec3 tang =
+      0.5f * (slabAmbient(-sigmaT * hTopM) * above + slabAmbient(-sigmaT * hBottomM) * below);
+  return tang + (diffusion - tang) * k;
 }
 
 float cloudEdgeDensity(float d, float k) {

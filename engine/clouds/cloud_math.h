@@ -162,9 +162,9 @@ float diffuseTransmittance(float tau, float g);                   // two-stream,
 float cloudDiffuseInScatter(float tau, float g, float strength);  // the diffusion term
 float cloudDiffusionLeak(float type);      // faster fall-off through finite convective cells
 float cloudEdgeDensity(float d, float k);  // sharp boundaries
-glm::vec3 cloudAmbientDiffuse(glm::vec3 skyAbove, glm::vec3 skyFace, glm::vec3 groundBelow,
-                              glm::vec3 groundFace, float sigmaT, float hTopM, float hBottomM,
-                              float tauView, float g, float strength);  // Tang (6)(7) + diffusion
+glm::vec3 cloudAmbientDiffuse(glm::vec3 above, glm::vec3 below, glm::vec3 face, glm::vec3 back,
+                              float sigmaT, float hTopM, float hBottomM, float tauView, float g,
+                              float strength);  // Tang (6)(7) + diffusion between four faces
 glm::vec3 integrateStep(glm::vec3 S, float sigmaT, float dt);  // Hillaire 2016
 glm::vec3 integrateStepRiemann(glm::vec3 S, float dt);
 
@@ -199,9 +199,11 @@ float lightMarchDensity(const LightPath& path, DensityFn&& density) {
     float ds = 0.0f;
     for (int i = first; i < last; ++i) {
       const float start = lightStepStart(i, path.steps, path.distance);
-      const float len = lightStepLength(i, path.steps, path.distance) / static_cast<float>(path.split);
+      const float len =
+          lightStepLength(i, path.steps, path.distance) / static_cast<float>(path.split);
       for (int j = 0; j < path.split; ++j)
-        ds += density(path.origin + path.direction * (start + (static_cast<float>(j) + path.offset) * len),
+        ds += density(path.origin +
+                          path.direction * (start + (static_cast<float>(j) + path.offset) * len),
                       len, part) *
               len;
     }
@@ -209,9 +211,11 @@ float lightMarchDensity(const LightPath& path, DensityFn&& density) {
   };
   const int near = std::clamp(path.nearSteps, 0, path.steps);
   float ds = shortSteps(0, near, 0) + shortSteps(near, path.steps, 1);
-  const float len = (path.longEnd - path.distance) / static_cast<float>(std::max(path.longParts, 1));
+  const float len =
+      (path.longEnd - path.distance) / static_cast<float>(std::max(path.longParts, 1));
   for (int j = 0; j < path.longParts; ++j)
-    ds += density(path.origin + path.direction * (path.distance + (static_cast<float>(j) + path.offset) * len),
+    ds += density(path.origin + path.direction *
+                                    (path.distance + (static_cast<float>(j) + path.offset) * len),
                   len, 1) *
           len;
   return ds;

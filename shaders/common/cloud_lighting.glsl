@@ -126,26 +126,35 @@ float cloudDiffusionLeak(float type) {
 }
 
 // Tang (6)(7)'s ambient with the diffusion limit. Tang's slab share slabAmbient is the light
-// that reaches a point without scattering, E2(tau), gone ten optical depths in; sky light that
-// scatters on keeps diffuseTransmittance. And a cloud is no infinite slab: the surface the
-// view ray came in through is at most tauView away, and it faces back along the ray. Each
-// source (the sky, the ground) comes in by the better of the two paths: through the slab
-// above (skyAbove: the sky's light on a level surface facing up) or below (groundBelow), or
-// through that face (skyFace, groundFace: their light on a surface facing the eye, so a face
-// turned from a low sun sees the darker, bluer sky behind the camera; cloud_ambient_shared.h).
-// `strength` (clamped to [0, 1]) blends from Tang's (0) to this (1). Isotropic in-scattering
-// of a hemisphere of radiance is half of it, so the result is radiance per unit of extinction.
-vec3 cloudAmbientDiffuse(vec3 skyAbove, vec3 skyFace, vec3 groundBelow, vec3 groundFace,
-                         float sigmaT, float hTopM, float hBottomM, float tauView, float g,
-                         float strength) {
+// that reaches a point without scattering, E2(tau), gone ten optical depths in. But droplets
+// barely absorb: sky light that scatters on is not lost, it diffuses until it leaves through
+// some boundary, and the mean radiance inside a conservative scatterer lit from all sides is
+// the average of what comes in at its boundaries, each weighted by how near it is in
+// diffusion terms (the linear profile of the two-stream solution between two faces, Bohren &
+// Clothiaux 2006, 6.3; a cloud in a uniform sky is as bright as the sky, however deep). Four
+// boundaries, each with the sky's and the ground's light on a surface facing out of it: the
+// layer's top (above) and bottom (below), hTopM and hBottomM away; the face the view ray came
+// in through (face), tauView away; and the cloud's far side along the ray (back), taken as far
+// as the cloud is thick here less what the ray has crossed (a cumulus cell is about as wide
+// as it is tall). The faces stand in for a cumulus's sides: a face turned from a low sun sees
+// the darker, bluer sky behind the camera, the far side of a backlit cloud the bright sky
+// around the sun. Each weighs its diffuse transmittance from the point. The path tracer
+// (docs/cloud-model.md) puts 97 % of a backlit core's light on the sky, and the core at 2.2
+// times what halving and attenuating each source gave (the model before issue 30).
+// `strength` (clamped to [0, 1]) blends from Tang's (0: half of the light above and below,
+// isotropic in-scattering of a hemisphere) to this (1). Returns radiance per unit of
+// extinction.
+vec3 cloudAmbientDiffuse(vec3 above, vec3 below, vec3 face, vec3 back, float sigmaT, float hTopM,
+                         float hBottomM, float tauView, float g, float strength) {
   float k = clamp(strength, 0.0, 1.0);
-  float throughView = diffuseTransmittance(tauView, g);
-  vec3 dTop = max(diffuseTransmittance(sigmaT * hTopM, g) * skyAbove, throughView * skyFace);
-  vec3 dBottom =
-      max(diffuseTransmittance(sigmaT * hBottomM, g) * groundBelow, throughView * groundFace);
-  vec3 sTop = slabAmbient(-sigmaT * hTopM) * skyAbove;
-  vec3 sBottom = slabAmbient(-sigmaT * hBottomM) * groundBelow;
-  return 0.5 * (mix(sTop, dTop, k) + mix(sBottom, dBottom, k));
+  float wTop = diffuseTransmittance(sigmaT * hTopM, g);
+  float wBottom = diffuseTransmittance(sigmaT * hBottomM, g);
+  float wFace = diffuseTransmittance(tauView, g);
+  float wBack = diffuseTransmittance(max(sigmaT * (hTopM + hBottomM) - tauView, 0.0), g);
+  vec3 diffusion = (wTop * above + wBottom * below + wFace * face + wBack * back) /
+                   (wTop + wBottom + wFace + wBack);
+  vec3 tang = 0.5 * (slabAmbient(-sigmaT * hTopM) * above + slabAmbient(-sigmaT * hBottomM) * below);
+  return mix(tang, diffusion, k);
 }
 
 // Sharp cloud boundaries: real cumulus reach an optical depth of one within tens of metres of
