@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <initializer_list>
 
+#include "engine/lighting/spectral_tables.h"
 #include "shaders/common/geo_shared.h"
 
 namespace sky::light {
@@ -37,23 +39,55 @@ HazeMedium hazeMedium(double turbidity) {
   return h;
 }
 
+double rayleighDepth(double lambdaNm) {
+  const double l2 = (lambdaNm * 1e-3) * (lambdaNm * 1e-3);  // micrometres squared
+  return 0.008569 / (l2 * l2) * (1.0 + 0.0113 / l2 + 0.00013 / (l2 * l2));
+}
+
+namespace {
+
+// One slant path of a light's beam: `airMass` air masses from `altitudeM` up (negative: the
+// part of a longer path that another one counts twice).
+struct SlantPath {
+  double airMass;
+  double altitudeM;
+};
+
+// The broadband transmittance of the beam along the sum of `paths`, per channel: each
+// channel's share of the sunlight (spectral_tables.h) that the air lets through, every 5 nm.
+glm::dvec3 broadbandTransmittance(std::initializer_list<SlantPath> paths, double turbidity) {
+  const HazeMedium haze = hazeMedium(turbidity);
+  // Optical depth per unit of its 550 nm or per-wavelength column: the standard atmosphere's
+  // Rayleigh column (pressure scale height 8.434 km), the aerosols' (mostly below 1.2 km) and
+  // the ozone's (above 15 km, the same for every path that starts below it).
+  double rayleighColumns = 0.0, aerosolColumns = 0.0, ozoneColumns = 0.0;
+  for (const SlantPath& p : paths) {
+    const double h = std::max(p.altitudeM, 0.0);
+    rayleighColumns += p.airMass * std::exp(-p.altitudeM / haze.rayleighHeightM);
+    aerosolColumns += p.airMass * turbidity * std::exp(-h / haze.aerosolHeightM);
+    ozoneColumns += p.airMass;
+  }
+  glm::dvec3 through(0.0), all(0.0);
+  for (int i = 0; i < spectral::kCount; ++i) {
+    const double nm = spectral::wavelengthNm(i);
+    const double tau = rayleighDepth(nm) * rayleighColumns +
+                       kOzoneColumnPerCm2 * spectral::kOzoneCrossSection[i] * 1e-21 * ozoneColumns +
+                       std::pow(nm / 550.0, -kAerosolAngstrom) * aerosolColumns;
+    const glm::dvec3 sun =
+        spectral::tableWeight(i) * spectral::kSolarIrradiance[i] * spectral::rgbMatching(i);
+    through += sun * std::exp(-tau);  // Beer-Lambert along the path
+    all += sun;
+  }
+  // Blue's matching function dips below zero in the red: where only red light is left the
+  // blue channel's sum can go slightly negative, and no air adds light.
+  return glm::max(through / all, glm::dvec3(0.0));
+}
+
+}  // namespace
+
 glm::dvec3 atmosphereTransmittance(double apparentElevationDeg, double altitudeM,
                                    double turbidity) {
-  const double m = airMass(apparentElevationDeg);
-  const HazeMedium haze = hazeMedium(turbidity);
-  // Standard atmosphere: pressure scale height 8.434 km; aerosols mostly below 1.2 km.
-  const double h = std::max(altitudeM, 0.0);
-  const glm::dvec3 rayleigh =
-      haze.rayleighPerM * haze.rayleighHeightM * std::exp(-altitudeM / haze.rayleighHeightM);
-  const glm::dvec3 aerosol =
-      haze.aerosolPerM * haze.aerosolHeightM * std::exp(-h / haze.aerosolHeightM);
-  glm::dvec3 t;
-  for (int c = 0; c < 3; ++c) {
-    const double tau =
-        rayleigh[c] + kOzoneColumnPerCm2 * kChannelOzoneCrossSectionCm2[c] + aerosol[c];
-    t[c] = std::exp(-tau * m);  // Beer-Lambert along the slant path
-  }
-  return t;
+  return broadbandTransmittance({{airMass(apparentElevationDeg), altitudeM}}, turbidity);
 }
 
 double discAboveHorizon(double elevationDeg, double radiusDeg) {
@@ -165,9 +199,8 @@ glm::vec3 illuminanceAtAltitude(const glm::vec3& aboveAtmosphere, double elevati
     // path from ht less the one from h). Equal to the path from h at elevation 0.
     const double c = std::cos(std::min(-elevationDeg, dipDeg) * kDeg);
     const double ht = (kEarthRadiusM + h) * c - kEarthRadiusM;
-    const glm::dvec3 fromTangent = atmosphereTransmittance(0.0, ht, turbidity);
-    const glm::dvec3 fromPoint = atmosphereTransmittance(0.0, h, turbidity);
-    t = fromTangent * fromTangent / fromPoint;
+    const double horizontal = airMass(0.0);
+    t = broadbandTransmittance({{2.0 * horizontal, ht}, {-horizontal, h}}, turbidity);
   }
   return glm::vec3(glm::dvec3(aboveAtmosphere) * t * visible);
 }

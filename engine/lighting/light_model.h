@@ -56,7 +56,16 @@ HazeMedium hazeMedium(double turbidity);
 // Direct-beam transmittance of the atmosphere per channel: Rayleigh (Hansen & Travis 1974
 // optical depth, scaled by the standard-atmosphere pressure at the observer's altitude),
 // ozone (Chappuis band, 300 DU) and aerosol (Angstrom exponent 1.3, optical depth
-// `turbidity` at 550 nm, scale height 1.2 km), along `airMass(elevation)`.
+// `turbidity` at 550 nm, scale height 1.2 km), along `airMass(elevation)`. Integrated over
+// the spectrum: each channel's share of the sunlight (spectral_tables.h) that the air lets
+// through, every 5 nm. One optical depth a channel (the channel averages above) is right for
+// thin air but misses the colour through many air masses, where only the long-wavelength end
+// of each channel gets through: red/green 1.63 instead of 1.80 with the sun 3 degrees up.
+glm::dvec3 atmosphereTransmittance(double apparentElevationDeg, double altitudeM, double turbidity);
+
+// Rayleigh optical depth of the whole atmosphere at sea level at `lambdaNm`, Hansen & Travis
+// (1974) eq. 2.29.
+double rayleighDepth(double lambdaNm);
 glm::dvec3 atmosphereTransmittance(double apparentElevationDeg, double altitudeM, double turbidity);
 
 // Share of a disc of angular radius `radiusDeg` centred at `elevationDeg` that lies above the

@@ -9,7 +9,7 @@
 
 #include "atmosphere_reference.h"
 #include "passes/atmosphere_luts/atmosphere_luts.h"
-#include "spectral_tables.h"
+#include "engine/lighting/spectral_tables.h"
 
 namespace sky::test {
 namespace {
@@ -18,19 +18,8 @@ constexpr double kPi = 3.14159265358979323846;
 // One Dobson unit: 2.687e16 molecules per cm^2.
 constexpr double kDobsonPerCm2 = 2.687e16;
 
-// Linear Rec. 709 colour-matching function of table entry i (CIE 1931 through kXyzToSrgb).
-glm::dvec3 rgbMatching(int i) {
-  const double xyz[3] = {spectral::kCieX[i], spectral::kCieY[i], spectral::kCieZ[i]};
-  glm::dvec3 out(0.0);
-  for (int c = 0; c < 3; ++c)
-    for (int k = 0; k < 3; ++k) out[c] += spectral::kXyzToSrgb[c][k] * xyz[k];
-  return out;
-}
-
-// Trapezoid weights of the 5 nm table (its ends count half).
-double tableWeight(int i) {
-  return (i == 0 || i == spectral::kCount - 1) ? 0.5 : 1.0;
-}
+using spectral::rgbMatching;
+using spectral::tableWeight;
 
 // The sun's luminance in table units: the integral of y times the solar spectrum.
 double solarLuminance() {
