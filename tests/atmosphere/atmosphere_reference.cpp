@@ -8,6 +8,7 @@
 #include <glm/geometric.hpp>
 
 #include "engine/lighting/light_model.h"
+#include "reference_phase.h"
 
 namespace sky::test {
 namespace {
@@ -29,19 +30,6 @@ double warpT(double s, double length, Warp w) {
   }
   return length * s;
 }
-
-double rayleighPhase(double c) {
-  return 3.0 / (16.0 * kPi) * (1.0 + c * c);
-}
-
-double cornetteShanks(double g, double c) {
-  const double g2 = g * g;
-  return 3.0 / (8.0 * kPi) * (1.0 - g2) * (1.0 + c * c) /
-         ((2.0 + g2) * std::pow(1.0 + g2 - 2.0 * g * c, 1.5));
-}
-
-// Rayleigh's 3 (1 + c^2) / (16 pi) = (1 + P_2(c) / 2) / (4 pi): p_2 = 1/10.
-constexpr double kRayleighP2 = 0.1;
 
 }  // namespace
 

@@ -10,6 +10,7 @@
 #include "atmosphere_reference.h"
 #include "passes/atmosphere_luts/atmosphere_luts.h"
 #include "engine/lighting/spectral_tables.h"
+#include "reference_phase.h"
 
 namespace sky::test {
 namespace {
@@ -28,19 +29,6 @@ double solarLuminance() {
     y += tableWeight(i) * spectral::kCieY[i] * spectral::kSolarIrradiance[i];
   return y;
 }
-
-double rayleighPhase(double c) {
-  return 3.0 / (16.0 * kPi) * (1.0 + c * c);
-}
-
-double cornetteShanks(double g, double c) {
-  const double g2 = g * g;
-  return 3.0 / (8.0 * kPi) * (1.0 - g2) * (1.0 + c * c) /
-         ((2.0 + g2) * std::pow(1.0 + g2 - 2.0 * g * c, 1.5));
-}
-
-// Rayleigh's phase 3 (1 + c^2) / (16 pi) = (1 + P_2(c) / 2) / (4 pi): p_2 = 1/10.
-constexpr double kRayleighP2 = 0.1;
 
 // Ray geometry on the sphere, as in atmosphere_reference.cpp.
 bool hitsGround(double Rg, double r, double mu) {
