@@ -323,9 +323,7 @@ struct CloudStep {
 #define CLOUD_STEP_MAX_TAU (CLOUD_REFERENCE != 0 ? 0.25 : 0.5)
 #define CLOUD_STEP_MIN_M 2.0
 // The shortest view step as a multiple of the ray's spread at its distance (cloudBaseStep).
-#ifndef CLOUD_STEP_PER_SPREAD
 #define CLOUD_STEP_PER_SPREAD 2.0
-#endif
 #define CLOUD_NO_DEPTH_LIMIT 1e30
 
 // Once the view ray's transmittance is below this, what is left of the pixel (at most this
