@@ -29,7 +29,9 @@ PACKAGES=(
   # its smoke configuration, plots included.
   python3 python3-matplotlib
   # skyview's panel is Dear ImGui (Debian's 1.86); its tests open the window under Xvfb.
-  libimgui-dev xvfb
+  # xvfb-run needs xauth, which xvfb only recommends (a fresh machine without it failed the
+  # harness's window smoke test: "xvfb-run: error: xauth command not found").
+  libimgui-dev xvfb xauth
 )
 for arg in "$@"; do
   case "$arg" in
