@@ -134,8 +134,8 @@ TEST_F(AtmosphereTest, SkyMatchesTheDirectReferenceWithin35dB) {
   // A 64x32 equirectangular probe of the whole sphere (the air in front of the ground
   // included) against the direct reference (atmosphere_reference.h), for the sun at 30 and
   // at 2 degrees. The sun sits on the azimuth of column 16's centre, so the sky is
-  // mirror-symmetric about it and the reference computes columns 16..48 only. PSNR over rgb with the reference's maximum as
-  // the peak: at least 35 dB (56 and 68 dB measured on lavapipe).
+  // mirror-symmetric about it and the reference computes columns 16..48 only. PSNR over rgb with
+  // the reference's maximum as the peak: at least 35 dB (56 and 68 dB measured on lavapipe).
   constexpr int kW = 64, kH = 32, kSunColumn = 16;
   const double sunAzimuth = 360.0 * (kSunColumn + 0.5) / kW;
   for (double sunElevation : {30.0, 2.0}) {
@@ -334,9 +334,9 @@ TEST(OneAtmosphere, TheLightingModelsSunlightCrossesThePhysicalSkysAir) {
       const glm::dvec3 L(std::cos(e), 0.0, std::sin(e));
       const glm::dvec3 physical = ref.transmittanceToLight(glm::dvec3(0.0, 0.0, Rg + 1e-3), L);
       const glm::dvec3 model = light::atmosphereTransmittance(elevation, 0.0, turbidity);
-      std::cout << "turbidity " << turbidity << ", sun " << elevation << ": physical "
-                << physical.r << " " << physical.g << " " << physical.b << ", lighting model "
-                << model.r << " " << model.g << " " << model.b << "\n";
+      std::cout << "turbidity " << turbidity << ", sun " << elevation << ": physical " << physical.r
+                << " " << physical.g << " " << physical.b << ", lighting model " << model.r << " "
+                << model.g << " " << model.b << "\n";
       for (int c = 0; c < 3; ++c)
         EXPECT_NEAR(std::log(model[c]) / std::log(physical[c]), 1.0, 0.08)
             << "turbidity " << turbidity << ", sun " << elevation << ", channel " << c;

@@ -8,28 +8,12 @@
 #include <glm/geometric.hpp>
 
 #include "engine/lighting/light_model.h"
-#include "reference_phase.h"
+#include "reference_common.h"
 
 namespace sky::test {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-
-// Step boundaries along a ray: dense where the air is densest (see atmosphere.glsl: up-going
-// rays start in it, ground-bound rays end in it).
-enum class Warp { Uniform, Start, End };
-
-double warpT(double s, double length, Warp w) {
-  switch (w) {
-    case Warp::Start:
-      return length * s * s;
-    case Warp::End:
-      return length * (1.0 - (1.0 - s) * (1.0 - s));
-    case Warp::Uniform:
-      break;
-  }
-  return length * s;
-}
 
 }  // namespace
 
@@ -108,22 +92,8 @@ Medium medium(const ReferenceAtmosphere& a, double altitude) {
           a.rayleigh * dr + a.mieExtinction * dm + a.ozone * dO};
 }
 
-bool hitsGround(const ReferenceAtmosphere& a, double r, double mu) {
-  return mu < 0.0 && r * r * (mu * mu - 1.0) + a.groundRadius * a.groundRadius >= 0.0;
-}
-
-double distanceToGround(const ReferenceAtmosphere& a, double r, double mu) {
-  const double disc = r * r * (mu * mu - 1.0) + a.groundRadius * a.groundRadius;
-  return std::max(-r * mu - std::sqrt(std::max(disc, 0.0)), 0.0);
-}
-
-double distanceToTop(const ReferenceAtmosphere& a, double r, double mu) {
-  const double disc = r * r * (mu * mu - 1.0) + a.topRadius * a.topRadius;
-  return std::max(-r * mu + std::sqrt(std::max(disc, 0.0)), 0.0);
-}
-
 Warp warpFor(const ReferenceAtmosphere& a, double r, double mu) {
-  return mu >= 0.0 ? Warp::Start : (hitsGround(a, r, mu) ? Warp::End : Warp::Uniform);
+  return mu >= 0.0 ? Warp::Start : (hitsGround(a.groundRadius, r, mu) ? Warp::End : Warp::Uniform);
 }
 
 }  // namespace
@@ -150,14 +120,15 @@ glm::dvec3 AtmosphereReference::opticalDepth(glm::dvec3 origin, glm::dvec3 dir, 
 }
 
 double AtmosphereReference::rayLength(double r, double mu) const {
-  return hitsGround(mA, r, mu) ? distanceToGround(mA, r, mu) : distanceToTop(mA, r, mu);
+  return hitsGround(mA.groundRadius, r, mu) ? distanceToGround(mA.groundRadius, r, mu)
+                                            : distanceToTop(mA.topRadius, r, mu);
 }
 
 glm::dvec3 AtmosphereReference::transmittanceToLight(glm::dvec3 pos, glm::dvec3 L) const {
   const double r = glm::length(pos);
   const double mu = glm::dot(pos, L) / r;
-  if (hitsGround(mA, r, mu)) return glm::dvec3(0.0);
-  return glm::exp(-opticalDepth(pos, L, distanceToTop(mA, r, mu), mQ.lightSteps));
+  if (hitsGround(mA.groundRadius, r, mu)) return glm::dvec3(0.0);
+  return glm::exp(-opticalDepth(pos, L, distanceToTop(mA.topRadius, r, mu), mQ.lightSteps));
 }
 
 ReferenceMultipleScattering AtmosphereReference::multipleScattering(double r, double muS) const {
@@ -178,8 +149,9 @@ ReferenceMultipleScattering AtmosphereReference::multipleScattering(double r, do
       const double mu = mid + half * x;
       const double weight = w * half;
       const double sinT = std::sqrt(std::max(1.0 - mu * mu, 0.0));
-      const bool ground = hitsGround(mA, r, mu);
-      const double length = ground ? distanceToGround(mA, r, mu) : distanceToTop(mA, r, mu);
+      const bool ground = hitsGround(mA.groundRadius, r, mu);
+      const double length =
+          ground ? distanceToGround(mA.groundRadius, r, mu) : distanceToTop(mA.topRadius, r, mu);
       const Warp warp = warpFor(mA, r, mu);
       for (int k = 0; k < mQ.sphereAzimuths; ++k) {
         const double phi = kPi * (k + 0.5) / mQ.sphereAzimuths;

@@ -53,8 +53,8 @@ struct CieSky {
   double a, b, c, d, e;
   double operator()(double Z, double chi) const {
     const double gradation = 1.0 + a * std::exp(b / std::max(std::cos(Z), 1e-3));
-    const double indicatrix = 1.0 + c * (std::exp(d * chi) - std::exp(d * kPi / 2.0)) +
-                              e * std::cos(chi) * std::cos(chi);
+    const double indicatrix =
+        1.0 + c * (std::exp(d * chi) - std::exp(d * kPi / 2.0)) + e * std::cos(chi) * std::cos(chi);
     return gradation * indicatrix;
   }
 };
@@ -123,8 +123,8 @@ TEST_F(AtmosphereTest, PhysicalSkyAgainstCieAndPreetham) {
           const double theta = (90.0 - el) * kPi / 180.0;
           const glm::dvec3 c = xyz(rgbAt(col, row));
           const double relative = c.y / ourZenithY;
-          cie.push_back(std::abs(relative / (kCieClearSky(theta, gamma) /
-                                             kCieClearSky(0.0, thetaS)) - 1.0));
+          cie.push_back(
+              std::abs(relative / (kCieClearSky(theta, gamma) / kCieClearSky(0.0, thetaS)) - 1.0));
           preetham.push_back(std::abs(relative / (pY(theta, gamma) / pY(0.0, thetaS)) - 1.0));
           const double sum = c.x + c.y + c.z;
           const double x = c.x / sum, y = c.y / sum;

@@ -10,7 +10,7 @@
 #include "atmosphere_reference.h"
 #include "passes/atmosphere_luts/atmosphere_luts.h"
 #include "engine/lighting/spectral_tables.h"
-#include "reference_phase.h"
+#include "reference_common.h"
 
 namespace sky::test {
 namespace {
@@ -28,39 +28,6 @@ double solarLuminance() {
   for (int i = 0; i < spectral::kCount; ++i)
     y += tableWeight(i) * spectral::kCieY[i] * spectral::kSolarIrradiance[i];
   return y;
-}
-
-// Ray geometry on the sphere, as in atmosphere_reference.cpp.
-bool hitsGround(double Rg, double r, double mu) {
-  return mu < 0.0 && r * r * (mu * mu - 1.0) + Rg * Rg >= 0.0;
-}
-
-double distanceToGround(double Rg, double r, double mu) {
-  const double disc = r * r * (mu * mu - 1.0) + Rg * Rg;
-  const double far = -r * mu + std::sqrt(std::max(disc, 0.0));
-  // The near root as (product of the roots) / (far root), without cancellation.
-  return std::max((r - Rg) * (r + Rg), 0.0) / std::max(far, 1e-12);
-}
-
-double distanceToTop(double Rt, double r, double mu) {
-  const double disc = r * r * (mu * mu - 1.0) + Rt * Rt;
-  return std::max(-r * mu + std::sqrt(std::max(disc, 0.0)), 0.0);
-}
-
-// Step boundaries t(s), s in [0, 1]: dense at the start of rays going up, at the end of rays
-// that meet the ground (where the air is densest), uniform otherwise.
-enum class Warp { Uniform, Start, End };
-
-double warpT(double s, double length, Warp w) {
-  switch (w) {
-    case Warp::Start:
-      return length * s * s;
-    case Warp::End:
-      return length * (1.0 - (1.0 - s) * (1.0 - s));
-    case Warp::Uniform:
-      break;
-  }
-  return length * s;
 }
 
 struct Density {
