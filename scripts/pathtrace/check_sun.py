@@ -17,6 +17,9 @@ read from the metadata's sun colour at no cost: it is the scene's lighting.turbi
 already in the elevation). The last column does the integral per wavelength over the visible
 band (a 5778 K sun, the CIE 1931 observer, Rec.709), which says how far three wavelengths
 (680, 550, 440 nm) miss the colour of broadband light when the air reddens it strongly.
+The "model" and "integrated" columns are that three-wavelength model, which the renderer used
+until issue 30; since then the renderer integrates over the spectrum itself (its columns:
+"its B/R" and the R/G, to compare with the last column's spectral one).
 """
 import argparse
 import math
@@ -25,7 +28,7 @@ import numpy as np
 import pyopenvdb
 
 R_EARTH = 6371000.0
-WAVELENGTHS_NM = (680.0, 550.0, 440.0)   # R, G, B (engine/lighting/light_model.h)
+WAVELENGTHS_NM = (680.0, 550.0, 440.0)   # R, G, B of the lighting model before issue 30
 
 
 def rayleigh_depth(nm):
@@ -52,8 +55,9 @@ def model(elevation_deg, altitude_m, turbidity):
     return np.array(out)
 
 
-def integrated(elevation_deg, altitude_m, turbidity, steps=200000):
-    # Distance along the ray to 100 km up, then the midpoint rule in altitude along it.
+def columns(elevation_deg, altitude_m, steps=200000):
+    # The straight ray from altitude_m at elevation_deg to 100 km up, in the midpoint rule
+    # along it: the Rayleigh, aerosol and ozone columns it crosses, in vertical columns.
     r0 = R_EARTH + altitude_m
     mu = math.sin(math.radians(elevation_deg))
     top = R_EARTH + 100e3
@@ -64,6 +68,11 @@ def integrated(elevation_deg, altitude_m, turbidity, steps=200000):
     rayleigh = np.exp(-z / 8434.0).sum() * ds / 8434.0
     aerosol = np.exp(-z / 1200.0).sum() * ds / 1200.0
     ozone = ((z > 15e3) & (z < 35e3)).sum() * ds / 20e3
+    return rayleigh, aerosol, ozone
+
+
+def integrated(elevation_deg, altitude_m, turbidity):
+    rayleigh, aerosol, ozone = columns(elevation_deg, altitude_m)
     return np.array([math.exp(-(rayleigh_depth(nm) * rayleigh + ozone_depth(nm) * ozone +
                                 turbidity * (nm / 550.0) ** -1.3 * aerosol))
                      for nm in WAVELENGTHS_NM])
@@ -90,17 +99,7 @@ def spectral(elevation_deg, altitude_m, turbidity):
     nm = np.arange(380.0, 781.0, 1.0)
     planck = 1.0 / (nm * 1e-9) ** 5 / (np.exp(6.626e-34 * 2.998e8 / (nm * 1e-9 * 1.381e-23 * 5778.0)) - 1.0)
     o3 = 8.07e18 * 1e-21 * np.interp(nm, [400, 440, 500, 550, 600, 680, 750], [0.02, 0.2, 1.4, 3.3, 4.8, 2.0, 1.0])
-    r0 = R_EARTH + altitude_m
-    mu = math.sin(math.radians(elevation_deg))
-    top = R_EARTH + 100e3
-    length = -r0 * mu + math.sqrt(r0 * r0 * mu * mu - r0 * r0 + top * top)
-    steps = 200000
-    s = (np.arange(steps) + 0.5) * length / steps
-    z = np.sqrt(r0 * r0 + s * s + 2 * r0 * s * mu) - R_EARTH
-    ds = length / steps
-    rayleigh = np.exp(-z / 8434.0).sum() * ds / 8434.0
-    aerosol = np.exp(-z / 1200.0).sum() * ds / 1200.0
-    ozone = ((z > 15e3) & (z < 35e3)).sum() * ds / 20e3
+    rayleigh, aerosol, ozone = columns(elevation_deg, altitude_m)
     tau = (np.array([rayleigh_depth(l) for l in nm]) * rayleigh + o3 * ozone +
            turbidity * (nm / 550.0) ** -1.3 * aerosol)
     cmf = cie_1931(nm)
@@ -115,8 +114,9 @@ def main():
     p.add_argument("vdb", nargs="+")
     args = p.parse_args()
     print("| grid | sun elevation | altitude | illuminance (R, G, B) | its B/R | model's B/R | "
-          "integrated B/R | integrated / model (R, G, B) | spectral B/R | R/G model | R/G spectral |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|")
+          "integrated B/R | integrated / model (R, G, B) | spectral B/R | its R/G | R/G model | "
+          "R/G spectral |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|")
     for path in args.vdb:
         meta = next(dict(g.metadata) for g in pyopenvdb.readAllGridMetadata(path) if g.name == "density")
         e = np.array(meta["sun_illuminance"])
@@ -129,7 +129,7 @@ def main():
               f"{e[0]:.3f}, {e[1]:.3f}, {e[2]:.3f} | {e[2] / e[0]:.3f} | "
               f"{t_model[2] / t_model[0]:.3f} | {t_path[2] / t_path[0]:.3f} | "
               f"{ratio[0]:.3f}, {ratio[1]:.3f}, {ratio[2]:.3f} | {t_spectral[2] / t_spectral[0]:.3f} | "
-              f"{t_model[0] / t_model[1]:.2f} | {t_spectral[0] / t_spectral[1]:.2f} |")
+              f"{e[0] / e[1]:.2f} | {t_model[0] / t_model[1]:.2f} | {t_spectral[0] / t_spectral[1]:.2f} |")
 
 
 if __name__ == "__main__":
