@@ -99,8 +99,7 @@ glm::vec3 cloudAmbientDiffuse(glm::vec3 above, glm::vec3 below, glm::vec3 face, 
       diffuseTransmittance(std::max(sigmaT * (hTopM + hBottomM) - tauView, 0.0f), g);
   const glm::vec3 diffusion = (wTop * above + wBottom * below + wFace * face + wBack * back) /
                               (wTop + wBottom + wFace + wBack);
-  const glm::vec3 tang =
-      0.5f * (slabAmbient(-sigmaT * hTopM) * above + slabAmbient(-sigmaT * hBottomM) * below);
+  const glm::vec3 tang = 0.5f * cloudAmbient(above, below, sigmaT, hTopM, hBottomM);
   return tang + (diffusion - tang) * k;
 }
 

@@ -153,7 +153,7 @@ vec3 cloudAmbientDiffuse(vec3 above, vec3 below, vec3 face, vec3 back, float sig
   float wBack = diffuseTransmittance(max(sigmaT * (hTopM + hBottomM) - tauView, 0.0), g);
   vec3 diffusion = (wTop * above + wBottom * below + wFace * face + wBack * back) /
                    (wTop + wBottom + wFace + wBack);
-  vec3 tang = 0.5 * (slabAmbient(-sigmaT * hTopM) * above + slabAmbient(-sigmaT * hBottomM) * below);
+  vec3 tang = 0.5 * cloudAmbient(above, below, sigmaT, hTopM, hBottomM);  // Tang (6)(7)
   return mix(tang, diffusion, k);
 }
 
