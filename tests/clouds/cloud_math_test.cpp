@@ -235,6 +235,32 @@ TEST(CloudMath, SlabAmbientLimits) {
   EXPECT_NEAR(amb.z, 3.0f * slabAmbient(-1.0f) + 6.0f, 1e-6f);
 }
 
+// cloudAmbientDiffuse in the diffusion limit (strength 1): a conservative cloud lit alike from
+// every side is as bright as that light, however deep the point; lit from above alone it is
+// the brighter the nearer the top. The ambient before issue 30 (each source halved and
+// attenuated on its own way in) gave half the light at the face and a few per cent deep in.
+TEST(CloudMath, AmbientDiffusionIsTheMeanOfTheFacesLight) {
+  const glm::vec3 sky(0.2f, 0.3f, 0.5f), dark(0.0f);
+  for (float sigma : {0.01f, 0.05f, 0.1f})
+    for (float h : {10.0f, 300.0f, 1000.0f})
+      for (float tauView : {0.0f, 5.0f, 50.0f}) {
+        const glm::vec3 a =
+            cloudAmbientDiffuse(sky, sky, sky, sky, sigma, h, 2.0f * h, tauView, 0.42f, 1.0f);
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(a[c], sky[c], 1e-5f) << sigma << " " << h;
+      }
+  const float g = 0.42f, sigma = 0.05f;
+  const glm::vec3 nearTop =
+      cloudAmbientDiffuse(sky, dark, dark, dark, sigma, 20.0f, 980.0f, 40.0f, g, 1.0f);
+  const glm::vec3 nearBase =
+      cloudAmbientDiffuse(sky, dark, dark, dark, sigma, 980.0f, 20.0f, 40.0f, g, 1.0f);
+  EXPECT_GT(nearTop.b, 2.0f * nearBase.b);
+  EXPECT_LT(nearTop.b, sky.b);
+  // Strength 0 is Tang's: half the light above through the slab, half the light below.
+  const glm::vec3 tang =
+      cloudAmbientDiffuse(sky, dark, sky, sky, sigma, 20.0f, 980.0f, 0.0f, g, 0.0f);
+  EXPECT_NEAR(tang.b, 0.5f * sky.b * slabAmbient(-sigma * 20.0f), 1e-6f);
+}
+
 TEST(CloudMath, InScatterOctaves) {
   for (float tau : {0.0f, 0.5f, 3.0f, 20.0f})
     for (float cosTheta : {-1.0f, 0.0f, 0.7f, 1.0f}) {
