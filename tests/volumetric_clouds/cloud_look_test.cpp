@@ -1,6 +1,6 @@
 // What a viewer sees of the clouds, at tiny sizes with stated tolerances (issue 14): noon
 // tops brighter than the clear sky beside them, bases blue-grey rather than brown, backlit
-// edges brighter than the cores, a horizon band no noisier than a supersampled render of the
+// edges brighter than the cores, backlit cores blue-grey, a horizon band no noisier than a supersampled render of the
 // same view (and the default view's within 10 % RMS of it), no horizontal striations, altostratus
 // smoother than altocumulus, stratocumulus in rolls along the wind, and no periodic dither pattern.
 // Each check reads the final scene-linear image (the "beauty" layer) or the clouds' own layer, as
@@ -151,6 +151,48 @@ TEST_F(CloudLookTest, BacklitEdgesGlowBrighterThanTheCores) {
   std::cout << "backlit: edges " << edges << " (" << edgeCount << " px), cores " << cores << " ("
             << coreCount << " px)\n";
   EXPECT_GT(edges, 1.5 * cores);
+}
+
+// The blue/red ratio of the darker half (by luminance) of the opaque cloud pixels (opacity
+// above 0.9) of a path-traced scene (configs/pathtrace/, docs/cloud-model.md), from the clouds'
+// own layer, as scripts/pathtrace/compare.py reports it for the core.
+double coreBlueRed(const RenderedFrame& f) {
+  const CloudLayerView c(f);
+  std::vector<test::CloudPixel> opaque;
+  for (int y = 0; y < c.height(); ++y)
+    for (int x = 0; x < c.width(); ++x)
+      if (c.at(x, y).alpha > 0.9f) opaque.push_back(c.at(x, y));
+  EXPECT_GT(opaque.size(), 100u) << "the cloud fills a good part of the view";
+  std::sort(opaque.begin(), opaque.end(), [](const test::CloudPixel& p, const test::CloudPixel& q) {
+    return test::luminance(&p.rgb.x) < test::luminance(&q.rgb.x);
+  });
+  double red = 0.0, blue = 0.0;
+  for (size_t i = 0; i < opaque.size() / 2; ++i) {
+    red += opaque[i].rgb.r;
+    blue += opaque[i].rgb.b;
+  }
+  return red > 0.0 ? blue / red : 0.0;
+}
+
+TEST_F(CloudLookTest, BacklitCoresAreBlueGreyAndNoonCoresGrey) {
+  // Issue 30: the shadowed half of a cumulus lit from behind by a low sun takes most of its
+  // light from the sky (97 % in Cycles at 12 degrees), so it is blue-grey, not the tan of
+  // sunlight diffused through it: blue/red at least 0.8 with the sun 3 and 12 degrees up
+  // behind the cloud, in both sky models, and at least 0.9 at noon (the goal is 0.95; this
+  // view measures 0.95 at 320 x 180 and Cycles 1.05, so 0.9 leaves room for the smaller
+  // render's sampling, not for a beige cast, which measured 0.54 backlit before).
+  struct Case {
+    const char* scene;
+    double atLeast;
+  };
+  for (const Case c : {Case{"cumulus_sun12_toward", 0.8}, Case{"cumulus_sun3_toward", 0.8},
+                       Case{"cumulus_sun12_toward_kozlov", 0.8}, Case{"cumulus_side_noon", 0.9}}) {
+    const RenderedFrame f = render(loadSceneFile(configDir() / "pathtrace" / (std::string(c.scene) + ".yaml"),
+                                                 {"output.width=160", "output.height=90"}));
+    const double br = coreBlueRed(f);
+    std::cout << c.scene << ": core blue/red " << br << "\n";
+    EXPECT_GE(br, c.atLeast) << c.scene;
+  }
 }
 
 // The mean squared difference of horizontally adjacent luminances over rows [y0, y1): the
