@@ -33,6 +33,7 @@ layout(binding = CLOUD_AMBIENT_BINDING_SKY_VIEW_MOON) uniform sampler2D skyViewM
 #endif
 #endif
 #include "common/clear_sky.glsl"
+#include "common/cloud_lighting.glsl"
 
 #define AMBIENT_PI 3.14159265358979
 #define AMBIENT_DIRECTIONS (CLOUD_AMBIENT_RINGS * CLOUD_AMBIENT_AZIMUTHS)
@@ -41,6 +42,7 @@ layout(binding = CLOUD_AMBIENT_BINDING_SKY_VIEW_MOON) uniform sampler2D skyViewM
 // The sampled sky: direction j of a grid of rings equal in solid angle (uniform in the cosine
 // of the zenith angle) by azimuths, and its radiance (16 KB of shared memory: Vulkan's least).
 shared vec3 skyRadiance[AMBIENT_DIRECTIONS];
+shared vec3 groundShared;  // groundRadiance, once for the workgroup
 
 float ringCosZenith(int ring) {
   return (float(ring) + 0.5) / float(CLOUD_AMBIENT_RINGS);
@@ -76,6 +78,46 @@ vec3 skyLightOn(vec3 n) {
   return sum * (2.0 / float(AMBIENT_DIRECTIONS));
 }
 
+// The ground's radiance: Lambertian under the sun and the moon (their illuminance at the ground
+// on a surface facing them, times the sine of their elevation) and the sky (its light on a
+// level surface), with the share the cloud cover lets through, seen from the clouds through
+// air that adds the light of the sky at the horizon (the lowest ring).
+vec3 groundRadiance(LightingState L) {
+  vec3 sunlit = L.sun.illuminance.rgb * max(L.sun.direction.z, 0.0);
+#if LIGHTING_MOON
+  sunlit += L.moon.illuminance.rgb * max(L.moon.direction.z, 0.0);
+#endif
+  vec3 ground =
+      params.groundAlbedo.rgb * (sunlit + skyLightOn(vec3(0.0, 0.0, 1.0))) * params.groundLight;
+  vec3 horizon = vec3(0.0);
+  for (int j = 0; j < CLOUD_AMBIENT_AZIMUTHS; ++j) horizon += skyRadiance[j];
+  horizon /= float(CLOUD_AMBIENT_AZIMUTHS);
+  return mix(ground, horizon, params.groundHaze.rgb);
+}
+
+// The sky and the ground (radiance `ground`, a uniform lower hemisphere) scattered once toward
+// the eye by a ray along d, less their mean radiance (what an isotropic phase scatters):
+// P(d) - Lmean (cloud_ambient_shared.h). The lower hemisphere is the upper's grid mirrored.
+vec3 phaseExcess(vec3 d, vec3 ground) {
+  vec3 sum = vec3(0.0);
+  float groundPhase = 0.0;
+  vec3 skyMean = vec3(0.0);
+  for (int ring = 0; ring < CLOUD_AMBIENT_RINGS; ++ring)
+    for (int column = 0; column < CLOUD_AMBIENT_AZIMUTHS; ++column) {
+      vec3 s = gridDirection(ring, column);
+      vec3 L = skyRadiance[ring * CLOUD_AMBIENT_AZIMUTHS + column];
+      // Light seen in direction s travels along -s; toward the eye along -d: cos = s . d.
+      sum += L * dualLobeHG(dot(s, d), params.phaseG, params.phaseGBack, params.phaseBackWeight);
+      groundPhase += dualLobeHG(dot(vec3(s.xy, -s.z), d), params.phaseG, params.phaseGBack,
+                                params.phaseBackWeight);
+      skyMean += L;
+    }
+  float dw = 2.0 * AMBIENT_PI / float(AMBIENT_DIRECTIONS);  // each direction's solid angle
+  vec3 P = (sum + ground * groundPhase) * dw;
+  vec3 mean = (skyMean * dw + ground * (2.0 * AMBIENT_PI)) / (4.0 * AMBIENT_PI);
+  return P - mean;
+}
+
 void main() {
   int i = int(gl_LocalInvocationID.x);
   LightingState L = lighting;
@@ -92,20 +134,14 @@ void main() {
   // The ground's row: its first texel below, the rest zero (a clean debug image).
   if (i > 0 && i < CLOUD_AMBIENT_MAP_WIDTH)
     imageStore(ambientImage, ivec2(i, CLOUD_AMBIENT_GROUND_ROW), vec4(0.0));
-  if (i != 0) return;
-  // The ground: Lambertian under the sun and the moon (their illuminance at the ground on a
-  // surface facing them, times the sine of their elevation) and the sky (its light on a level
-  // surface), with the share the cloud cover lets through, seen from the clouds through air
-  // that adds the light of the sky at the horizon (the lowest ring).
-  vec3 sunlit = L.sun.illuminance.rgb * max(L.sun.direction.z, 0.0);
-#if LIGHTING_MOON
-  sunlit += L.moon.illuminance.rgb * max(L.moon.direction.z, 0.0);
-#endif
-  vec3 ground =
-      params.groundAlbedo.rgb * (sunlit + skyLightOn(vec3(0.0, 0.0, 1.0))) * params.groundLight;
-  vec3 horizon = vec3(0.0);
-  for (int j = 0; j < CLOUD_AMBIENT_AZIMUTHS; ++j) horizon += skyRadiance[j];
-  horizon /= float(CLOUD_AMBIENT_AZIMUTHS);
-  imageStore(ambientImage, ivec2(0, CLOUD_AMBIENT_GROUND_ROW),
-             vec4(mix(ground, horizon, params.groundHaze.rgb), 0.0));
+  if (i == 0) {
+    groundShared = groundRadiance(L);
+    imageStore(ambientImage, ivec2(0, CLOUD_AMBIENT_GROUND_ROW), vec4(groundShared, 0.0));
+  }
+  barrier();
+  if (i < AMBIENT_NORMALS) {
+    int column = i % CLOUD_AMBIENT_MAP_WIDTH, row = i / CLOUD_AMBIENT_MAP_WIDTH;
+    imageStore(ambientImage, ivec2(column, CLOUD_AMBIENT_PHASE_ROW + row),
+               vec4(phaseExcess(tableNormal(column, row), groundShared), 0.0));
+  }
 }

@@ -175,21 +175,23 @@ vec3 cloudKeyLightScattering(vec3 d, int layer, float type, vec2 tau) {
 // behind the camera, and the far side of a backlit cloud the bright sky around the sun.
 struct CloudRayAmbient {
   vec3 above, below, face, back;
+  vec3 phaseExcess;  // the sky scattered once along the ray less its mean (cloudPhaseSkyLight)
 };
-// The sky's light on a surface of unit normal n: the table bilinear in azimuth (wrapping) and
-// elevation.
-vec3 cloudSkyLight(vec3 n) {
+// Row `row0` + j of the table at unit vector n: bilinear in azimuth (wrapping) and elevation.
+vec3 cloudAmbientTable(vec3 n, int row0) {
   float x = atan(n.y, n.x) * (float(CLOUD_AMBIENT_MAP_WIDTH) / (2.0 * VIEW_PI));
   float y = (asin(clamp(n.z, -1.0, 1.0)) / VIEW_PI + 0.5) * float(CLOUD_AMBIENT_MAP_HEIGHT - 1);
   float x0 = floor(x), y0 = min(floor(y), float(CLOUD_AMBIENT_MAP_HEIGHT - 2));
   vec2 f = vec2(x - x0, y - y0);
   int i0 = int(x0) & (CLOUD_AMBIENT_MAP_WIDTH - 1), i1 = (i0 + 1) & (CLOUD_AMBIENT_MAP_WIDTH - 1);
-  int j0 = int(y0);
+  int j0 = row0 + int(y0);
   vec3 a = mix(imageLoad(ambientImage, ivec2(i0, j0)).rgb, imageLoad(ambientImage, ivec2(i1, j0)).rgb, f.x);
   vec3 b = mix(imageLoad(ambientImage, ivec2(i0, j0 + 1)).rgb,
                imageLoad(ambientImage, ivec2(i1, j0 + 1)).rgb, f.x);
   return mix(a, b, f.y);
 }
+// The sky's light on a surface of unit normal n.
+vec3 cloudSkyLight(vec3 n) { return cloudAmbientTable(n, 0); }
 // The ground's light on it: a uniform lower hemisphere.
 vec3 cloudGroundLight(vec3 n) {
   return imageLoad(ambientImage, ivec2(0, CLOUD_AMBIENT_GROUND_ROW)).rgb *
@@ -199,7 +201,7 @@ vec3 cloudAmbientLight(vec3 n) { return cloudSkyLight(n) + cloudGroundLight(n); 
 CloudRayAmbient cloudRayAmbient(vec3 d) {
   return CloudRayAmbient(cloudAmbientLight(vec3(0.0, 0.0, 1.0)),
                          cloudAmbientLight(vec3(0.0, 0.0, -1.0)), cloudAmbientLight(-d),
-                         cloudAmbientLight(d));
+                         cloudAmbientLight(d), cloudAmbientTable(d, CLOUD_AMBIENT_PHASE_ROW));
 }
 
 // The sky's and the ground's light scattered toward the eye per unit of extinction (Tang's
@@ -508,6 +510,7 @@ CloudMarch cloudMarchRay(CloudRay ray) {
   CloudMarch m = CloudMarch(vec3(0.0), 1.0, 0.0, 0, 0, vec3(0.0), 0.0, vec2(0.0), -1, 0.0, false);
   if (params.anyCover <= 0.0) return m;
   vec2 iv[2];
+  float tauTotal = 0.0;
   int n = cloudRayIntervals(ray, iv);
   for (int k = 0; k < n && m.samples < int(params.maxSteps); ++k) {
     CloudSeek seek = CloudSeek(iv[k].x + ray.jitter * cloudBaseStep(ray, iv[k].x), 1.0, 0.0,
@@ -519,7 +522,9 @@ CloudMarch cloudMarchRay(CloudRay ray) {
       seek.tauView += params.extinction * st.s.density * st.dt;
       seek.t += st.dt;
     }
+    tauTotal += seek.tauView;
   }
+  m.radiance += cloudPhaseSkyLight(ray.ambient.phaseExcess, tauTotal, m.transmittance);
   cloudTakeOpaqueRest(m);
   return m;
 }

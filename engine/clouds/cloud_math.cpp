@@ -103,6 +103,11 @@ glm::vec3 cloudAmbientDiffuse(glm::vec3 above, glm::vec3 below, glm::vec3 face, 
   return tang + (diffusion - tang) * k;
 }
 
+// The sky scattered once along the ray by the phase, less its mean: excess tau T.
+glm::vec3 cloudPhaseSkyLight(glm::vec3 excess, float tauTotal, float transmittance) {
+  return excess * (tauTotal * transmittance);
+}
+
 float cloudEdgeDensity(float d, float k) {
   if (d >= 1.0f) return d;
   return 1.0f - std::pow(1.0f - std::max(d, 0.0f), k);

@@ -165,6 +165,7 @@ float cloudEdgeDensity(float d, float k);  // sharp boundaries
 glm::vec3 cloudAmbientDiffuse(glm::vec3 above, glm::vec3 below, glm::vec3 face, glm::vec3 back,
                               float sigmaT, float hTopM, float hBottomM, float tauView, float g,
                               float strength);  // Tang (6)(7) + diffusion between four faces
+glm::vec3 cloudPhaseSkyLight(glm::vec3 excess, float tauTotal, float transmittance);  // tau T
 glm::vec3 integrateStep(glm::vec3 S, float sigmaT, float dt);  // Hillaire 2016
 glm::vec3 integrateStepRiemann(glm::vec3 S, float dt);
 

@@ -295,8 +295,10 @@ Renderer::CloudImages Renderer::addClouds(FrameGraph& graph, const FrameInputs& 
   in.textures = c.frame.textures;
   // The ambient light from the sky the frame draws (either model) and the ground under it.
   CloudAmbientPass::Inputs ambient;
+  const bool dualLobe = in.variant.phase == CloudPhase::DualLobe;
   ambient.params = cloudAmbientParams({scene.ground.albedo, scene.lighting.turbidity,
-                                       in.params.shellBaseM, out.lighting.overcast});
+                                       in.params.shellBaseM, out.lighting.overcast, in.params.g,
+                                       in.params.gBack, dualLobe ? in.params.backWeight : 0.0f});
   ambient.lighting = out.lighting.gpu;
   ambient.moon = !moonLightNegligible(out.lighting.gpu);
   if (f.physical)

@@ -17,6 +17,9 @@ shared::CloudAmbientParams cloudAmbientParams(const CloudAmbientSettings& s) {
                                                            s.turbidity);
   p.groundHaze = glm::vec4(glm::vec3(1.0 - toBase * toBase), 0.0f);
   p.groundLight = static_cast<float>(light::overcastGlobalShare(std::clamp(s.overcast, 0.0, 1.0)));
+  p.phaseG = static_cast<float>(s.phaseG);
+  p.phaseGBack = static_cast<float>(s.phaseGBack);
+  p.phaseBackWeight = static_cast<float>(s.phaseBackWeight);
   return p;
 }
 
@@ -37,14 +40,15 @@ CloudAmbientPass::Outputs CloudAmbientPass::setup(GraphBuilder& b, const Inputs&
   }
   ImageDesc desc;
   desc.width = CLOUD_AMBIENT_MAP_WIDTH;
-  desc.height = CLOUD_AMBIENT_MAP_HEIGHT + 1;
+  desc.height = CLOUD_AMBIENT_IMAGE_HEIGHT;
   // 32-bit: a moonlit night's sky is 1e-7 in renderer units, below half float's normal range.
   desc.format = VK_FORMAT_R32G32B32A32_SFLOAT;
   desc.name = "cloud_ambient";
   desc.about =
       "the clouds' ambient light from the frame's sky: the sky's light on a surface by its "
       "normal (azimuth across from east, elevation up from the nadir), the ground's radiance in "
-      "the last row's first texel";
+      "the next row's first texel, then the sky scattered once toward each view direction less "
+      "an isotropic phase's share (same grid)";
   mOutputs.ambient = b.write(b.create(desc), Access::StorageWriteCompute);
   return mOutputs;
 }

@@ -21,12 +21,17 @@ class Sampler;
 class ShaderCompiler;
 
 // What the pass takes from the scene: the ground's reflectance, the air between the clouds and
-// the ground, and the cover around the camera.
+// the ground, the cover around the camera and the clouds' phase function.
 struct CloudAmbientSettings {
   glm::vec3 groundAlbedo{0.1f};  // ground.albedo
   double turbidity = 0.1;        // lighting.turbidity: the haze below the clouds
   double cloudBaseM = 1500.0;    // the lowest marched cloud base (m above sea level)
   double overcast = 0.0;         // LightingState::overcast, the cover around the camera
+  // The clouds' phase function (clouds.g and clouds.phase): dualLobeHG(g, gBack, backWeight),
+  // backWeight 0 for Henyey-Greenstein.
+  double phaseG = 0.6;
+  double phaseGBack = -0.3;
+  double phaseBackWeight = 0.2;
 };
 
 // The pass's uniforms for `settings`.

@@ -22,6 +22,9 @@
 #              alone, to split the cloud's light into sunlight and skylight (default: none)
 #   OUT        working folder (default: out/pathtrace); IMAGES (default: docs/images/pathtrace)
 #   NICE       the niceness Blender and skyrender run at (default 10: a shared machine)
+#   VOXEL_M    the cumulus scenes' voxel size in metres (default 15: the raymarch's billows
+#              are 50-200 m across, and a 30 m grid blurred them enough to cost 5-8 points of
+#              per-pixel error that were shape, not light)
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 ./scripts/install-deps.sh --pathtracer
@@ -47,7 +50,7 @@ declare -A BOX VOXEL
 CUMULUS_BOX=-2000,4770,450,2000,8570,2550
 for s in cumulus_side_noon cumulus_backlit cumulus_sun3_toward cumulus_sun3_away \
          cumulus_sun12_toward cumulus_sun12_away cumulus_sun12_toward_kozlov; do
-  BOX[$s]=$CUMULUS_BOX; VOXEL[$s]=30
+  BOX[$s]=$CUMULUS_BOX; VOXEL[$s]=${VOXEL_M:-15}
 done
 BOX[stratocumulus_below]=-5000,-1500,450,5000,5500,1500; VOXEL[stratocumulus_below]=40
 ALL=(cumulus_side_noon cumulus_backlit stratocumulus_below

@@ -32,16 +32,19 @@ struct CloudAmbientParams {
   vec4 groundHaze;
   float groundLight;  // the share of the ground's clear-sky light that comes through the
                       // cloud cover around the camera (light::overcastGlobalShare)
-  float padding0;     // std140: the rest of the row
-  float padding1;
-  float padding2;
+  // The clouds' phase function (clouds.g, clouds.phase), for the table of the sky scattered
+  // once toward each direction: dualLobeHG(g, gBack, backWeight); Henyey-Greenstein with g
+  // where backWeight is 0.
+  float phaseG;
+  float phaseGBack;
+  float phaseBackWeight;
 };
 
 SKY_SHARED_END
 
 // The light around the clouds as the mean radiance a surface of unit normal n (east, north, up)
 // receives: its irradiance over pi, in renderer units its illuminance. An image of
-// CLOUD_AMBIENT_MAP_WIDTH x (CLOUD_AMBIENT_MAP_HEIGHT + 1) RGBA32F texels (the debug image
+// CLOUD_AMBIENT_MAP_WIDTH x CLOUD_AMBIENT_IMAGE_HEIGHT RGBA32F texels (the debug image
 // "cloud_ambient"): row j < CLOUD_AMBIENT_MAP_HEIGHT, column i holds the sky's light for the
 // normal at elevation -90 + 180 j / (HEIGHT - 1) degrees and azimuth 360 i / WIDTH degrees from
 // east toward north, the cosine-weighted sum over the sky's sampled radiance above the
@@ -52,6 +55,13 @@ SKY_SHARED_END
 #define CLOUD_AMBIENT_MAP_WIDTH 16
 #define CLOUD_AMBIENT_MAP_HEIGHT 9
 #define CLOUD_AMBIENT_GROUND_ROW CLOUD_AMBIENT_MAP_HEIGHT
+// Below the ground's row, CLOUD_AMBIENT_MAP_HEIGHT rows more on the same grid, now of view
+// directions d: the sky and the ground scattered once toward the eye by a ray along d, less
+// what an isotropic phase would scatter, P(d) - Lmean with P(d) = the integral over the sphere
+// of L(s) phase(s . d) ds and Lmean the sphere's mean radiance (cloudSkyPhaseExcess). Positive
+// toward a low sun's aureole, negative away from it.
+#define CLOUD_AMBIENT_PHASE_ROW (CLOUD_AMBIENT_GROUND_ROW + 1)
+#define CLOUD_AMBIENT_IMAGE_HEIGHT (CLOUD_AMBIENT_PHASE_ROW + CLOUD_AMBIENT_MAP_HEIGHT)
 
 #ifdef __cplusplus
 static_assert(sizeof(sky::shared::CloudAmbientParams) == 48, "std140 layout of CloudAmbientParams");

@@ -157,6 +157,21 @@ vec3 cloudAmbientDiffuse(vec3 above, vec3 below, vec3 face, vec3 back, float sig
   return mix(tang, diffusion, k);
 }
 
+// The sky scattered once by the phase function, for what the diffusion mean above leaves out.
+// That mean treats the sky's light as isotropic inside the cloud, which holds where it is
+// opaque and the light is diffuse. A thin part (a backlit cloud's silver rim) scatters the sky
+// once, mostly forward: before a low sun, from the bright aureole behind it (Cycles lights such
+// rims with 4x the sky light the diffusion mean gave; docs/cloud-model.md). `excess` is the
+// sky scattered once toward the eye by a ray along the view less its mean radiance,
+// P(d) - Lmean (cloud_ambient_shared.h). Light arriving straight along the ray and scattered
+// once toward the eye is, through any density along it, the integral of
+// sigma(x) T(0, x) T(x, end) dx = tau T (T(0, x) T(x, end) is the whole ray's T): at most 1/e
+// of the excess, at tau = 1, and nothing in opaque cloud. The light from behind the camera
+// (T(0, x)^2) is taken the same way, which is exact in the thin limit.
+vec3 cloudPhaseSkyLight(vec3 excess, float tauTotal, float transmittance) {
+  return excess * (tauTotal * transmittance);
+}
+
 // Sharp cloud boundaries: real cumulus reach an optical depth of one within tens of metres of
 // their edge, but the noise rises over hundreds. 1 - (1 - d)^k rises k times faster at the
 // boundary (slope k at d = 0) and keeps 1 at 1, so cores keep their relief. Densities at or

@@ -137,5 +137,6 @@ void main() {
   put(22, vec4(cloudAmbientDiffuse(r0.xyz, r0.zxy * r1.w, r1.xyz, r1.zxy * (1.0 - r1.w), sigmaT,
                                    2000.0 * r2.w, 2000.0 * r0.w, 10.0 * r2.x, gD, 1.5 * r2.z),
                cloudTypeTexture(typeD)));
-  put(23, vec4(cloudRollWeight(0, typeD), cloudRollWeight(1, typeD), 0.0, 0.0));
+  put(23, vec4(cloudRollWeight(0, typeD), cloudRollWeight(1, typeD),
+               cloudPhaseSkyLight(r0.xyz - 0.5, 10.0 * r2.x, r1.w).x, 0.0));
 }

@@ -56,7 +56,7 @@ enum KernelRow {
   kEnergy,
   kDiffusion,       // diffuseTransmittance, cloudDiffuseInScatter, cloudEdgeDensity, leak
   kAmbientDiffuse,  // cloudAmbientDiffuse
-  kRollWeight,      // cloudRollWeight, low and mid layer
+  kRollWeight,      // cloudRollWeight, low and mid layer; cloudPhaseSkyLight
 };
 
 // Float maths on lavapipe against float maths in C++: exp, log, pow and division differ in the
@@ -263,8 +263,11 @@ TEST_F(CloudKernelTest, LightingMatchesItsTwin) {
                                      2000.0f * r2.w, 2000.0f * r0.w, 10.0f * r2.x, gD, 1.5f * r2.z),
                  cloudTypeTexture(typeD)},
                 ambientNames, 2e-4);
-      const char* rollNames[4] = {"cloudRollWeight low", "cloudRollWeight mid", "", ""};
-      expectRow(kRollWeight, i, {cloudRollWeight(0, typeD), cloudRollWeight(1, typeD), 0.0f, 0.0f},
+      const char* rollNames[4] = {"cloudRollWeight low", "cloudRollWeight mid",
+                                  "cloudPhaseSkyLight", ""};
+      expectRow(kRollWeight, i,
+                {cloudRollWeight(0, typeD), cloudRollWeight(1, typeD),
+                 cloudPhaseSkyLight(glm::vec3(r0) - 0.5f, 10.0f * r2.x, r1.w).x, 0.0f},
                 rollNames);
     }
     const float stepSigma = at(kIntegrateInputs, i, 0), dt = at(kIntegrateInputs, i, 1);

@@ -261,6 +261,20 @@ TEST(CloudMath, AmbientDiffusionIsTheMeanOfTheFacesLight) {
   EXPECT_NEAR(tang.b, 0.5f * sky.b * slabAmbient(-sigma * 20.0f), 1e-6f);
 }
 
+TEST(CloudMath, ThePhaseSkyLightIsOnceScatteredAndGoneInOpaqueCloud) {
+  // excess tau T: the light arriving along the ray, scattered once (any density along it).
+  const glm::vec3 excess(0.3f, 0.2f, -0.1f);
+  EXPECT_EQ(cloudPhaseSkyLight(excess, 0.0f, 1.0f), glm::vec3(0.0f)) << "no cloud";
+  // A homogeneous cloud of optical depth tau: largest, 1/e of the excess, at tau = 1.
+  auto atDepth = [&](float tau) { return cloudPhaseSkyLight(excess, tau, std::exp(-tau)).r; };
+  EXPECT_NEAR(atDepth(1.0f), 0.3f / std::exp(1.0f), 1e-6f);
+  EXPECT_LT(atDepth(0.5f), atDepth(1.0f));
+  EXPECT_LT(atDepth(2.0f), atDepth(1.0f));
+  EXPECT_LT(atDepth(20.0f), 1e-6f) << "opaque cloud: the diffusion mean alone";
+  EXPECT_LT(cloudPhaseSkyLight(excess, 1.0f, std::exp(-1.0f)).b, 0.0f)
+      << "a sky darker behind the cloud than its mean takes light away";
+}
+
 TEST(CloudMath, InScatterOctaves) {
   for (float tau : {0.0f, 0.5f, 3.0f, 20.0f})
     for (float cosTheta : {-1.0f, 0.0f, 0.7f, 1.0f}) {
