@@ -260,6 +260,14 @@ Renderer::SkyImages Renderer::addSky(FrameGraph& graph, const FrameInputs& f, Re
     a.moonDirection = glm::vec3(out.lighting.moon.direction);
     a.sunIlluminance = glm::vec3(out.lighting.gpu.sunSpace);
     a.moonIlluminance = glm::vec3(out.lighting.gpu.moonSpace);
+    // The volumetric clouds' sky, from the middle of the low layer (where their sunlight is
+    // taken too, cloudParams): seen from the ground, the low sky was a third dimmer and less
+    // blue than the clouds see it, and a backlit core came out too dark and too warm against
+    // Cycles lit by the sky at the clouds (docs/cloud-model.md).
+    if (out.clouds) {
+      const CloudSettings& c = f.setup.volumetric.clouds;
+      a.cloudAltitudeM = 0.5 * (c.low.baseM + c.low.topM);
+    }
     s.luts = mAtmosphere.addTo(graph, a);
     sky.physical = true;
     sky.atmosphere = {mAtmosphere.params(), s.luts.transmittance, s.luts.skyViewSun,
@@ -302,9 +310,9 @@ Renderer::CloudImages Renderer::addClouds(FrameGraph& graph, const FrameInputs& 
   ambient.lighting = out.lighting.gpu;
   ambient.moon = !moonLightNegligible(out.lighting.gpu);
   if (f.physical)
-    ambient.atmosphere = CloudAmbientPass::Atmosphere{mAtmosphere.params(), sky.luts.transmittance,
-                                                      sky.luts.skyViewSun, sky.luts.skyViewMoon,
-                                                      &mAtmosphere.sampler()};
+    ambient.atmosphere = CloudAmbientPass::Atmosphere{
+        mAtmosphere.cloudParams(), sky.luts.transmittance, sky.luts.skyViewSunClouds,
+        sky.luts.skyViewMoonClouds, &mAtmosphere.sampler()};
   in.ambient = graph.add(mAmbient, ambient).ambient;
   // What the light volume and the shadow map are made from: kept while it holds.
   CloudFieldKey field;

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <memory>
 #include <string>
+#include <tuple>
 
 #include "engine/core/error.h"
 #include "engine/lighting/light_model.h"
@@ -123,12 +124,56 @@ AtmosphereLuts::AtmosphereLuts(const Context& ctx, ShaderCompiler& compiler)
           "quadrupole, packed in blocks side by side",
           ATMOSPHERE_MULTISCATTERING_SIZE * ATMOSPHERE_MS_TEXELS,
           ATMOSPHERE_MULTISCATTERING_SIZE)),
-      mSkyViewSunLut(persistentLut(ctx, "atmosphere_sky_view_sun",
+      mCameraSkyView{persistentLut(ctx, "atmosphere_sky_view_sun",
                                    "sky radiance lit by the sun (Hillaire 2020)",
-                                   ATMOSPHERE_SKY_VIEW_WIDTH, ATMOSPHERE_SKY_VIEW_HEIGHT)),
-      mSkyViewMoonLut(persistentLut(ctx, "atmosphere_sky_view_moon",
-                                    "sky radiance lit by the moon", ATMOSPHERE_SKY_VIEW_WIDTH,
-                                    ATMOSPHERE_SKY_VIEW_HEIGHT)) {}
+                                   ATMOSPHERE_SKY_VIEW_WIDTH, ATMOSPHERE_SKY_VIEW_HEIGHT),
+                     persistentLut(ctx, "atmosphere_sky_view_moon",
+                                   "sky radiance lit by the moon", ATMOSPHERE_SKY_VIEW_WIDTH,
+                                   ATMOSPHERE_SKY_VIEW_HEIGHT),
+                     std::nullopt},
+      mCloudSkyView{persistentLut(ctx, "atmosphere_sky_view_clouds_sun",
+                                  "sky radiance lit by the sun, seen from the clouds",
+                                  ATMOSPHERE_SKY_VIEW_WIDTH, ATMOSPHERE_SKY_VIEW_HEIGHT),
+                    persistentLut(ctx, "atmosphere_sky_view_clouds_moon",
+                                  "sky radiance lit by the moon, seen from the clouds",
+                                  ATMOSPHERE_SKY_VIEW_WIDTH, ATMOSPHERE_SKY_VIEW_HEIGHT),
+                    std::nullopt} {}
+
+std::pair<ImageId, ImageId> AtmosphereLuts::addSkyView(FrameGraph& graph, const char* name,
+                                                       SkyView& luts,
+                                                       const shared::AtmosphereParams& p,
+                                                       const SkyViewKey& key,
+                                                       ImageId transmittance,
+                                                       ImageId multiScattering) {
+  struct Handles {
+    ImageId transmittance, multiScattering, sun, moon;
+  };
+  auto h = std::make_shared<Handles>(Handles{transmittance, multiScattering,
+                                             graph.importImage(luts.sun),
+                                             graph.importImage(luts.moon)});
+  // A new transmittance or multiple scattering changes the atmosphere, hence the key.
+  if (!luts.key || *luts.key != key) {
+    GraphBuilder s = graph.addPass(name, [this, h, p, key, &luts](PassContext& ctx) {
+      ctx.dispatch(
+          mSkyView,
+          {Binding::of(ATMOSPHERE_BINDING_PARAMS, ctx.uniform(p)),
+           Binding::of(ATMOSPHERE_SKY_VIEW_BINDING_TRANSMITTANCE, h->transmittance, &mSampler),
+           Binding::of(ATMOSPHERE_SKY_VIEW_BINDING_MULTISCATTERING, h->multiScattering,
+                       &mSampler),
+           Binding::of(ATMOSPHERE_SKY_VIEW_BINDING_SUN, h->sun),
+           Binding::of(ATMOSPHERE_SKY_VIEW_BINDING_MOON, h->moon)},
+          mSkyView.groupsX(ATMOSPHERE_SKY_VIEW_WIDTH), mSkyView.groupsY(ATMOSPHERE_SKY_VIEW_HEIGHT),
+          2);  // z: 0 the sun, 1 the moon
+      // Recorded: later frames with the same lights and altitude keep the LUTs.
+      luts.key = key;
+    });
+    s.read(h->transmittance, Access::SampledCompute);
+    s.read(h->multiScattering, Access::SampledCompute);
+    h->sun = s.write(h->sun, Access::StorageWriteCompute);
+    h->moon = s.write(h->moon, Access::StorageWriteCompute);
+  }
+  return {h->sun, h->moon};
+}
 
 AtmosphereLuts::Outputs AtmosphereLuts::addTo(FrameGraph& graph, const Frame& frame) {
   shared::AtmosphereParams p = atmosphereParams(frame.atmosphere);
@@ -178,30 +223,18 @@ AtmosphereLuts::Outputs AtmosphereLuts::addTo(FrameGraph& graph, const Frame& fr
     out.multiScattering = m.write(out.multiScattering, Access::StorageWriteCompute);
   }
 
-  out.skyViewSun = graph.importImage(mSkyViewSunLut);
-  out.skyViewMoon = graph.importImage(mSkyViewMoonLut);
   const SkyViewKey key{frame.atmosphere,     frame.cameraAltitudeM, frame.sunDirection,
                        frame.moonDirection,  frame.sunIlluminance,  frame.moonIlluminance};
-  // A new transmittance or multiple scattering changes the atmosphere, hence the key.
-  if (!mSkyViewKey || *mSkyViewKey != key) {
-    GraphBuilder s = graph.addPass(kSkyViewName, [this, h, p, key](PassContext& ctx) {
-      ctx.dispatch(
-          mSkyView,
-          {Binding::of(ATMOSPHERE_BINDING_PARAMS, ctx.uniform(p)),
-           Binding::of(ATMOSPHERE_SKY_VIEW_BINDING_TRANSMITTANCE, h->out.transmittance, &mSampler),
-           Binding::of(ATMOSPHERE_SKY_VIEW_BINDING_MULTISCATTERING, h->out.multiScattering,
-                       &mSampler),
-           Binding::of(ATMOSPHERE_SKY_VIEW_BINDING_SUN, h->out.skyViewSun),
-           Binding::of(ATMOSPHERE_SKY_VIEW_BINDING_MOON, h->out.skyViewMoon)},
-          mSkyView.groupsX(ATMOSPHERE_SKY_VIEW_WIDTH), mSkyView.groupsY(ATMOSPHERE_SKY_VIEW_HEIGHT),
-          2);  // z: 0 the sun, 1 the moon
-      // Recorded: later frames with the same lights and altitude keep the LUTs.
-      mSkyViewKey = key;
-    });
-    s.read(out.transmittance, Access::SampledCompute);
-    s.read(out.multiScattering, Access::SampledCompute);
-    out.skyViewSun = s.write(out.skyViewSun, Access::StorageWriteCompute);
-    out.skyViewMoon = s.write(out.skyViewMoon, Access::StorageWriteCompute);
+  std::tie(out.skyViewSun, out.skyViewMoon) = addSkyView(
+      graph, kSkyViewName, mCameraSkyView, p, key, out.transmittance, out.multiScattering);
+  mCloudParams = p;
+  if (frame.cloudAltitudeM) {
+    setAtmosphereCamera(mCloudParams, *frame.cloudAltitudeM);
+    SkyViewKey cloudKey = key;
+    cloudKey.cameraAltitudeM = *frame.cloudAltitudeM;
+    std::tie(out.skyViewSunClouds, out.skyViewMoonClouds) =
+        addSkyView(graph, kSkyViewCloudsName, mCloudSkyView, mCloudParams, cloudKey,
+                   out.transmittance, out.multiScattering);
   }
 
   GraphBuilder a = graph.addPass(kAerialPerspectiveName, [this, h, p](PassContext& ctx) {

@@ -7,6 +7,7 @@
 // describes their contents, parametrisations and units.
 #include <cstdint>
 #include <optional>
+#include <utility>
 
 #include <glm/vec3.hpp>
 
@@ -45,6 +46,9 @@ public:
     glm::vec3 moonDirection{0, 0, -1};
     glm::vec3 sunIlluminance{0.0f};  // rgb above the atmosphere, renderer units
     glm::vec3 moonIlluminance{0.0f};
+    // Where the volumetric clouds are (above sea level): their sky, a second pair of sky-view
+    // LUTs seen from there (passes/cloud_ambient). Unset: none.
+    std::optional<double> cloudAltitudeM;
   };
   struct Outputs {
     ImageId transmittance;      // 256x64, rgb transmittance to the top of the atmosphere
@@ -52,6 +56,10 @@ public:
                                 // (per unit illuminance; packing in atmosphere_shared.h)
     ImageId skyViewSun;         // 192x108, sky radiance lit by the sun (illuminance applied)
     ImageId skyViewMoon;        // 192x108, the same lit by the moon
+    // The same two seen from Frame::cloudAltitudeM (invalid without one): from the clouds the
+    // low sky is bluer and brighter than from the ground, and below the horizon lies the air
+    // between them and the ground.
+    ImageId skyViewSunClouds, skyViewMoonClouds;
     ImageId aerialPerspective;  // 32x32x32 RGBA: rgb in-scattered radiance from camera to the
                                 // slice (sun + moon), a: mean transmittance
   };
@@ -60,6 +68,7 @@ public:
   static constexpr const char* kTransmittanceName = "atmosphere_transmittance";
   static constexpr const char* kMultiScatteringName = "atmosphere_multiscattering";
   static constexpr const char* kSkyViewName = "atmosphere_sky_view";
+  static constexpr const char* kSkyViewCloudsName = "atmosphere_sky_view_clouds";
   static constexpr const char* kAerialPerspectiveName = "atmosphere_aerial_perspective";
   static constexpr const char* kSkyProbeName = "atmosphere_sky_probe";
 
@@ -80,6 +89,9 @@ public:
   ImageId addSkyProbe(FrameGraph& graph, const Outputs& luts, uint32_t width, uint32_t height);
 
   const shared::AtmosphereParams& params() const { return mParams; }  // those of the last addTo
+  // The last addTo's with the camera at Frame::cloudAltitudeM: what skyViewRadiance() needs to
+  // read the clouds' sky-view LUTs.
+  const shared::AtmosphereParams& cloudParams() const { return mCloudParams; }
   const Sampler& sampler() const { return mSampler; }                 // linear clamp, for every LUT
 
 private:
@@ -101,10 +113,19 @@ private:
         moonIlluminance{0.0f};
     bool operator==(const SkyViewKey&) const = default;
   };
-  PersistentImage mSkyViewSunLut;
-  PersistentImage mSkyViewMoonLut;
-  std::optional<SkyViewKey> mSkyViewKey;
+  // A pair of sky-view LUTs and what they were last recorded for.
+  struct SkyView {
+    PersistentImage sun, moon;
+    std::optional<SkyViewKey> key;
+  };
+  // Adds the pass that makes `luts` for `p` unless they hold `key` already; returns them.
+  std::pair<ImageId, ImageId> addSkyView(FrameGraph& graph, const char* name, SkyView& luts,
+                                         const shared::AtmosphereParams& p, const SkyViewKey& key,
+                                         ImageId transmittance, ImageId multiScattering);
+  SkyView mCameraSkyView;  // seen from the camera
+  SkyView mCloudSkyView;   // seen from the clouds
   shared::AtmosphereParams mParams{};
+  shared::AtmosphereParams mCloudParams{};
 };
 
 }  // namespace sky
