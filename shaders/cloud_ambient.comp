@@ -78,44 +78,67 @@ vec3 skyLightOn(vec3 n) {
   return sum * (2.0 / float(AMBIENT_DIRECTIONS));
 }
 
-// The ground's radiance: Lambertian under the sun and the moon (their illuminance at the ground
-// on a surface facing them, times the sine of their elevation) and the sky (its light on a
-// level surface), with the share the cloud cover lets through, seen from the clouds through
-// air that adds the light of the sky at the horizon (the lowest ring).
+// The ground's own radiance: Lambertian under the sun and the moon (their illuminance at the
+// ground on a surface facing them, times the sine of their elevation) and the sky (its light
+// on a level surface), with the share the cloud cover lets through.
 vec3 groundRadiance(LightingState L) {
   vec3 sunlit = L.sun.illuminance.rgb * max(L.sun.direction.z, 0.0);
 #if LIGHTING_MOON
   sunlit += L.moon.illuminance.rgb * max(L.moon.direction.z, 0.0);
 #endif
-  vec3 ground =
-      params.groundAlbedo.rgb * (sunlit + skyLightOn(vec3(0.0, 0.0, 1.0))) * params.groundLight;
-  vec3 horizon = vec3(0.0);
-  for (int j = 0; j < CLOUD_AMBIENT_AZIMUTHS; ++j) horizon += skyRadiance[j];
-  horizon /= float(CLOUD_AMBIENT_AZIMUTHS);
-  return mix(ground, horizon, params.groundHaze.rgb);
+  return params.groundAlbedo.rgb * (sunlit + skyLightOn(vec3(0.0, 0.0, 1.0))) * params.groundLight;
 }
 
-// The sky and the ground (radiance `ground`, a uniform lower hemisphere) scattered once toward
-// the eye by a ray along d, less their mean radiance (what an isotropic phase scatters):
-// P(d) - Lmean (cloud_ambient_shared.h). The lower hemisphere is the upper's grid mirrored.
+// Below the horizon the clouds see the ground through the air between them (Koschmieder, as
+// the composite draws it): the ground's radiance, taking on the colour of the sky at the
+// horizon in the same azimuth (the lowest ring) by 1 - T, T = exp(-airDepth / sin(depression))
+// along the slant path. Straight down that is a tenth of the light; toward the horizon it is
+// the bright haze, which lights a cloud's sides and base. The grid is the upper one mirrored:
+// direction (ring, column) below has the depression of `ring` and the azimuth of `column`.
+// airTransmittance(ring) is T for the ring (one exp a ring, not one a direction: the table's
+// 144 normals times 1024 directions of exp were 200 ms of lavapipe).
+vec3 airTransmittance(int ring) {
+  return exp(-params.airDepth.rgb / ringCosZenith(ring));
+}
+vec3 belowRadiance(vec3 T, vec3 ground, int column) {
+  return mix(skyRadiance[column], ground, T);
+}
+vec3 belowDirection(int ring, int column) {
+  vec3 s = gridDirection(ring, column);
+  return vec3(s.xy, -s.z);
+}
+
+// The sky's and the ground's light on a surface of normal n (cloud_ambient_shared.h).
+vec3 lightOn(vec3 n, vec3 ground) {
+  vec3 below = vec3(0.0);
+  for (int ring = 0; ring < CLOUD_AMBIENT_RINGS; ++ring) {
+    vec3 T = airTransmittance(ring);
+    for (int column = 0; column < CLOUD_AMBIENT_AZIMUTHS; ++column)
+      below += belowRadiance(T, ground, column) * max(dot(belowDirection(ring, column), n), 0.0);
+  }
+  return skyLightOn(n) + below * (2.0 / float(AMBIENT_DIRECTIONS));
+}
+
+// The sky and the ground through the air scattered once toward the eye by a ray along d, less
+// their mean radiance (what an isotropic phase scatters): P(d) - Lmean
+// (cloud_ambient_shared.h).
 vec3 phaseExcess(vec3 d, vec3 ground) {
-  vec3 sum = vec3(0.0);
-  float groundPhase = 0.0;
-  vec3 skyMean = vec3(0.0);
-  for (int ring = 0; ring < CLOUD_AMBIENT_RINGS; ++ring)
+  vec3 sum = vec3(0.0), total = vec3(0.0);
+  for (int ring = 0; ring < CLOUD_AMBIENT_RINGS; ++ring) {
+    vec3 T = airTransmittance(ring);
     for (int column = 0; column < CLOUD_AMBIENT_AZIMUTHS; ++column) {
-      vec3 s = gridDirection(ring, column);
-      vec3 L = skyRadiance[ring * CLOUD_AMBIENT_AZIMUTHS + column];
+      vec3 up = skyRadiance[ring * CLOUD_AMBIENT_AZIMUTHS + column];
+      vec3 down = belowRadiance(T, ground, column);
       // Light seen in direction s travels along -s; toward the eye along -d: cos = s . d.
-      sum += L * dualLobeHG(dot(s, d), params.phaseG, params.phaseGBack, params.phaseBackWeight);
-      groundPhase += dualLobeHG(dot(vec3(s.xy, -s.z), d), params.phaseG, params.phaseGBack,
-                                params.phaseBackWeight);
-      skyMean += L;
+      sum += up * dualLobeHG(dot(gridDirection(ring, column), d), params.phaseG,
+                             params.phaseGBack, params.phaseBackWeight) +
+             down * dualLobeHG(dot(belowDirection(ring, column), d), params.phaseG,
+                               params.phaseGBack, params.phaseBackWeight);
+      total += up + down;
     }
+  }
   float dw = 2.0 * AMBIENT_PI / float(AMBIENT_DIRECTIONS);  // each direction's solid angle
-  vec3 P = (sum + ground * groundPhase) * dw;
-  vec3 mean = (skyMean * dw + ground * (2.0 * AMBIENT_PI)) / (4.0 * AMBIENT_PI);
-  return P - mean;
+  return sum * dw - total * dw / (4.0 * AMBIENT_PI);
 }
 
 void main() {
@@ -127,21 +150,19 @@ void main() {
                                                         j % CLOUD_AMBIENT_AZIMUTHS));
   }
   barrier();
-  if (i < AMBIENT_NORMALS) {
-    int column = i % CLOUD_AMBIENT_MAP_WIDTH, row = i / CLOUD_AMBIENT_MAP_WIDTH;
-    imageStore(ambientImage, ivec2(column, row), vec4(skyLightOn(tableNormal(column, row)), 0.0));
-  }
-  // The ground's row: its first texel below, the rest zero (a clean debug image).
-  if (i > 0 && i < CLOUD_AMBIENT_MAP_WIDTH)
-    imageStore(ambientImage, ivec2(i, CLOUD_AMBIENT_GROUND_ROW), vec4(0.0));
-  if (i == 0) {
-    groundShared = groundRadiance(L);
-    imageStore(ambientImage, ivec2(0, CLOUD_AMBIENT_GROUND_ROW), vec4(groundShared, 0.0));
-  }
+  if (i == 0) groundShared = groundRadiance(L);
   barrier();
   if (i < AMBIENT_NORMALS) {
     int column = i % CLOUD_AMBIENT_MAP_WIDTH, row = i / CLOUD_AMBIENT_MAP_WIDTH;
+    vec3 n = tableNormal(column, row);
+    vec3 ground = groundShared;
+    imageStore(ambientImage, ivec2(column, row), vec4(lightOn(n, ground), 0.0));
     imageStore(ambientImage, ivec2(column, CLOUD_AMBIENT_PHASE_ROW + row),
-               vec4(phaseExcess(tableNormal(column, row), groundShared), 0.0));
+               vec4(phaseExcess(n, ground), 0.0));
   }
+  // The ground's row: the ground's own radiance in its first texel (for the debug image; the
+  // table above already holds its light through the air), the rest zero.
+  if (i < CLOUD_AMBIENT_MAP_WIDTH)
+    imageStore(ambientImage, ivec2(i, CLOUD_AMBIENT_GROUND_ROW),
+               vec4(i == 0 ? groundShared : vec3(0.0), 0.0));
 }

@@ -204,14 +204,8 @@ vec3 cloudAmbientTable(vec3 n, int row0) {
                imageLoad(ambientImage, ivec2(i1, j0 + 1)).rgb, f.x);
   return mix(a, b, f.y);
 }
-// The sky's light on a surface of unit normal n.
-vec3 cloudSkyLight(vec3 n) { return cloudAmbientTable(n, 0); }
-// The ground's light on it: a uniform lower hemisphere.
-vec3 cloudGroundLight(vec3 n) {
-  return imageLoad(ambientImage, ivec2(0, CLOUD_AMBIENT_GROUND_ROW)).rgb *
-         clamp(0.5 - 0.5 * n.z, 0.0, 1.0);
-}
-vec3 cloudAmbientLight(vec3 n) { return cloudSkyLight(n) + cloudGroundLight(n); }
+// The sky's and the ground's light on a surface of unit normal n.
+vec3 cloudAmbientLight(vec3 n) { return cloudAmbientTable(n, 0); }
 CloudRayAmbient cloudRayAmbient(vec3 d) {
   return CloudRayAmbient(cloudAmbientLight(vec3(0.0, 0.0, 1.0)),
                          cloudAmbientLight(vec3(0.0, 0.0, -1.0)), cloudAmbientLight(-d),

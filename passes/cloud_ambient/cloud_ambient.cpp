@@ -10,12 +10,12 @@ namespace sky {
 shared::CloudAmbientParams cloudAmbientParams(const CloudAmbientSettings& s) {
   shared::CloudAmbientParams p{};
   p.groundAlbedo = glm::vec4(s.groundAlbedo, 0.0f);
-  // The air between the ground and the clouds' base, straight up; a view of the ground from
-  // the clouds crosses it at a slant, about twice the vertical path over the hemisphere.
+  // The air between the ground and the clouds' base, straight up (the shader takes it along
+  // each slant path below the horizon).
   const glm::dvec3 toBase = light::atmosphereTransmittance(90.0, 0.0, s.turbidity) /
                             light::atmosphereTransmittance(90.0, std::max(s.cloudBaseM, 0.0),
                                                            s.turbidity);
-  p.groundHaze = glm::vec4(glm::vec3(1.0 - toBase * toBase), 0.0f);
+  p.airDepth = glm::vec4(glm::vec3(-glm::log(glm::max(toBase, glm::dvec3(1e-30)))), 0.0f);
   p.groundLight = static_cast<float>(light::overcastGlobalShare(std::clamp(s.overcast, 0.0, 1.0)));
   p.phaseG = static_cast<float>(s.phaseG);
   p.phaseGBack = static_cast<float>(s.phaseGBack);
@@ -46,9 +46,10 @@ CloudAmbientPass::Outputs CloudAmbientPass::setup(GraphBuilder& b, const Inputs&
   desc.name = "cloud_ambient";
   desc.about =
       "the clouds' ambient light from the frame's sky: the sky's light on a surface by its "
-      "normal (azimuth across from east, elevation up from the nadir), the ground's radiance in "
-      "the next row's first texel, then the sky scattered once toward each view direction less "
-      "an isotropic phase's share (same grid)";
+      "normal (azimuth across from east, elevation up from the nadir; below the horizon the "
+      "ground through the air), the ground's own radiance in the next row's first texel, then "
+      "the sky scattered once toward each view direction less an isotropic phase's share (same "
+      "grid)";
   mOutputs.ambient = b.write(b.create(desc), Access::StorageWriteCompute);
   return mOutputs;
 }

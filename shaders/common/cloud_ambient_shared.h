@@ -26,10 +26,10 @@ SKY_SHARED_BEGIN
 
 struct CloudAmbientParams {
   vec4 groundAlbedo;  // rgb: ground.albedo (linear reflectance)
-  // rgb: the share of the ground's light, seen from the clouds, that is the air's between
-  // them and the ground instead (1 - the transmittance of that air along a typical slant
-  // path); the air's light is the sky's at the horizon.
-  vec4 groundHaze;
+  // rgb: the optical depth of the air straight down from the clouds' base to the ground;
+  // along a slant path below the horizon it is this over the sine of the depression, and the
+  // ground takes on the horizon sky's colour by 1 - its transmittance.
+  vec4 airDepth;
   float groundLight;  // the share of the ground's clear-sky light that comes through the
                       // cloud cover around the camera (light::overcastGlobalShare)
   // The clouds' phase function (clouds.g, clouds.phase), for the table of the sky scattered
@@ -45,11 +45,11 @@ SKY_SHARED_END
 // The light around the clouds as the mean radiance a surface of unit normal n (east, north, up)
 // receives: its irradiance over pi, in renderer units its illuminance. An image of
 // CLOUD_AMBIENT_MAP_WIDTH x CLOUD_AMBIENT_IMAGE_HEIGHT RGBA32F texels (the debug image
-// "cloud_ambient"): row j < CLOUD_AMBIENT_MAP_HEIGHT, column i holds the sky's light for the
-// normal at elevation -90 + 180 j / (HEIGHT - 1) degrees and azimuth 360 i / WIDTH degrees from
-// east toward north, the cosine-weighted sum over the sky's sampled radiance above the
-// horizon; the last row's first texel the ground's radiance (a uniform lower hemisphere, so
-// its light on the surface is that times (1 - n.z) / 2). Spherical harmonics of first order
+// "cloud_ambient"): row j < CLOUD_AMBIENT_MAP_HEIGHT, column i holds the light for the normal
+// at elevation -90 + 180 j / (HEIGHT - 1) degrees and azimuth 360 i / WIDTH degrees from east
+// toward north, the cosine-weighted sum over the sky's sampled radiance above the horizon and
+// below it the ground's through the air (brightest toward the horizon, the haze); the next
+// row's first texel the ground's own radiance (for the debug image). Spherical harmonics of first order
 // rang below zero on the side turned from a low sun's bright aureole, the very side a backlit
 // cloud shows the camera; a table of the cosine-weighted sums does not.
 #define CLOUD_AMBIENT_MAP_WIDTH 16
@@ -58,7 +58,7 @@ SKY_SHARED_END
 // Below the ground's row, CLOUD_AMBIENT_MAP_HEIGHT rows more on the same grid, now of view
 // directions d: the sky and the ground scattered once toward the eye by a ray along d, less
 // what an isotropic phase would scatter, P(d) - Lmean with P(d) = the integral over the sphere
-// of L(s) phase(s . d) ds and Lmean the sphere's mean radiance (cloudSkyPhaseExcess). Positive
+// of L(s) phase(s . d) ds and Lmean the sphere's mean radiance (cloudPhaseSkyLight). Positive
 // toward a low sun's aureole, negative away from it.
 #define CLOUD_AMBIENT_PHASE_ROW (CLOUD_AMBIENT_GROUND_ROW + 1)
 #define CLOUD_AMBIENT_IMAGE_HEIGHT (CLOUD_AMBIENT_PHASE_ROW + CLOUD_AMBIENT_MAP_HEIGHT)
