@@ -527,10 +527,10 @@ CloudMarch cloudMarchRay(CloudRay ray) {
     while (m.transmittance > params.transmittanceCutoff && cloudSeek(ray, iv[k].y, seek, m, st)) {
       vec3 scattering = cloudLightSample(ray, st, seek.tauView, m);
       cloudAccumulate(st, scattering, m);
+      tauTotal += params.extinction * st.s.density * st.dt;
       seek.tauView += params.extinction * st.s.density * st.dt;
       seek.t += st.dt;
     }
-    tauTotal += seek.tauView;
   }
   m.radiance += cloudPhaseSkyLight(ray.ambient.phaseExcess, tauTotal, m.transmittance);
   cloudTakeOpaqueRest(m);
