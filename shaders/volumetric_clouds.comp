@@ -92,16 +92,12 @@ vec3 keyLightDirection(int i) {
   return i == 0 ? params.sunDirection.xyz : params.moonDirection.xyz;
 }
 
-// The light path from a cloud sample at p (latitude and longitude latLon, altitude h) toward
-// L. Its long step ends where the path leaves the shells, if that comes before the march's
-// reach: past there is no cloud, and the parts left are spent where the cloud is. A low sun's
-// path runs through the layer for kilometres and takes the most parts, a high sun's few.
 // The short steps for a sample `footprintM` wide: the doubling schedule over the same
 // distance with its first step no shorter than half the footprint. A sample resolves no
 // shadow much finer than itself, and a distant one is hundreds of metres wide where the first
 // steps are tens of metres. A first step as long as the footprint saved 6-35 % of a still but
 // brightened a 64 x 36 render by 8 % (its samples no longer saw the cloud right next to them);
-// half of it saves up to 12 % and brightens by 1.4 % (docs/clouds.md, "Light march"). At least
+// half of it saves up to 12 % and brightens by 1.4 % (docs/clouds.md, Lighting). At least
 // one step; the light volume keeps the full schedule (its near part ends where its volume
 // starts).
 int cloudLightStepsFor(float footprintM, float distanceM) {
@@ -110,6 +106,10 @@ int cloudLightStepsFor(float footprintM, float distanceM) {
   return clamp(int(floor(log2(1.0 + 2.0 * distanceM / footprintM))), 1, steps);
 }
 
+// The light path from a cloud sample at p (latitude and longitude latLon, altitude h) toward
+// L. Its long step ends where the path leaves the shells, if that comes before the march's
+// reach: past there is no cloud, and the parts left are spent where the cloud is. A low sun's
+// path runs through the layer for kilometres and takes the most parts, a high sun's few.
 CloudLightPath cloudLightPath(vec3 p, vec2 latLon, float h, vec3 L, float footprintM,
                               float offset) {
   float distance = params.lightDistanceM;
