@@ -10,6 +10,7 @@
 #include <mutex>
 
 #include "engine/core/error.h"
+#include "engine/core/files.h"
 #include "engine/core/paths.h"
 
 namespace OCIO = OCIO_NAMESPACE;
@@ -89,6 +90,7 @@ OcioOutput OcioOutput::load(const std::optional<fs::path>& explicitConfig) {
   std::error_code ec;
   if (!fs::exists(path, ec)) inputError(where + ": file not found");
   if (fs::is_directory(path, ec)) inputError(where + ": is a directory, not a config file");
+  refuseSpecialFile(path);
 
   auto impl = std::make_unique<Impl>();
   impl->path = path;

@@ -12,10 +12,33 @@
 namespace sky {
 namespace fs = std::filesystem;
 
-std::string readTextFile(const fs::path& path) {
+void refuseSpecialFile(const fs::path& path) {
+  std::error_code ec;
+  const fs::file_status st = fs::status(path, ec);  // follows symlinks
+  if (ec) return;  // missing or unreadable: the open that follows says so
+  const char* kind = nullptr;
+  switch (st.type()) {
+    case fs::file_type::fifo: kind = "a FIFO"; break;
+    case fs::file_type::socket: kind = "a socket"; break;
+    case fs::file_type::character: kind = "a character device"; break;
+    case fs::file_type::block: kind = "a block device"; break;
+    case fs::file_type::regular:
+    case fs::file_type::directory:
+    case fs::file_type::not_found: return;
+    default: kind = "not a regular file"; break;
+  }
+  inputError(path.string() + ": is " + kind + ", not a regular file");
+}
+
+std::string readTextFile(const fs::path& path, std::uintmax_t maxBytes) {
   // An ifstream opens a folder and reads it as empty: say what it is instead.
   std::error_code ec;
   if (fs::is_directory(path, ec)) inputError(path.string() + ": is a directory, not a file");
+  refuseSpecialFile(path);
+  const std::uintmax_t size = fs::file_size(path, ec);
+  if (!ec && size > maxBytes)
+    inputError(path.string() + ": is " + std::to_string(size) + " bytes, more than the " +
+               std::to_string(maxBytes) + " read from it");
   std::ifstream in(path, std::ios::binary);
   if (!in) inputError(path.string() + ": cannot open file: " + std::strerror(errno));
   std::ostringstream ss;

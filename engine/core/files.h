@@ -9,8 +9,16 @@
 
 namespace sky {
 
-// Reads a whole file; a missing or unreadable file is an input error naming the path.
-std::string readTextFile(const std::filesystem::path& path);
+// Refuses, as an input error naming the path, anything that exists but is not a regular file
+// or a folder (after symlinks): opening a FIFO blocks until a writer comes, forever for a
+// render, and a device such as /dev/zero reads until memory runs out. Call it before a
+// library opens the path itself.
+void refuseSpecialFile(const std::filesystem::path& path);
+
+// Reads a whole file; a missing, unreadable or special file is an input error naming the
+// path, and so is one larger than `maxBytes`.
+std::string readTextFile(const std::filesystem::path& path,
+                         std::uintmax_t maxBytes = UINTMAX_MAX);
 std::vector<uint8_t> readBinaryFile(const std::filesystem::path& path);
 
 // Writes through a temporary file in the same folder and renames it over `path`, so a

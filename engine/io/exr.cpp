@@ -147,6 +147,7 @@ LayeredImage readExr(const fs::path& path) {
   std::error_code ec;
   if (!fs::exists(path, ec)) inputError(path.string() + ": cannot read EXR: file not found");
   if (fs::is_directory(path, ec)) inputError(path.string() + ": cannot read EXR: is a directory");
+  refuseSpecialFile(path);
 
   LayeredImage image;
   try {

@@ -65,9 +65,15 @@ bool saysNothing(std::string_view text, ConfigFormat format) {
 
 }  // namespace
 
+// The largest scene file read: the shipped ones are under 20 KB, and a scene written by a
+// program (a dataset's thousands of views in one file) stays far below this. A YAML parser's
+// tree costs tens of times the text, so without a cap a symlink to a huge file, or a
+// generated one gone wrong, took all memory before the first error.
+constexpr std::uintmax_t kMaxSceneFileBytes = 16u << 20;
+
 Scene loadSceneFile(const std::filesystem::path& path, const std::vector<std::string>& overrides) {
   ConfigFormat format = formatForPath(path);
-  const std::string text = readTextFile(path);
+  const std::string text = readTextFile(path, kMaxSceneFileBytes);
   if (saysNothing(text, format))
     inputError(path.string() +
                ": the scene file is empty; for the built-in default scene give no scene file, "
