@@ -159,7 +159,8 @@ namespace {
 
 // The signal that asked a render to stop (SIGINT or SIGTERM), 0 while none did. The handler
 // only records it: the frame being made is finished and written whole, then the loop stops.
-// SA_RESETHAND puts the default back, so a second Ctrl-C stops at once.
+// SA_RESETHAND puts the default back, so a second Ctrl-C stops at once; SA_RESTART keeps a
+// read or a driver call it interrupts from failing with "Interrupted system call".
 volatile sig_atomic_t gStopSignal = 0;
 
 void recordStop(int signal) {
@@ -172,7 +173,7 @@ public:
     gStopSignal = 0;
     struct sigaction action {};
     action.sa_handler = recordStop;
-    action.sa_flags = SA_RESETHAND;
+    action.sa_flags = SA_RESETHAND | SA_RESTART;  // a system call it lands in carries on
     sigemptyset(&action.sa_mask);
     sigaction(SIGINT, &action, &mOldInt);
     sigaction(SIGTERM, &action, &mOldTerm);
@@ -202,6 +203,11 @@ void warnIfCacheUnwritable() {
 }  // namespace
 
 int renderCommand(const std::vector<std::string>& argv) {
+  // First of all: a SIGINT or SIGTERM from here on stops the run cleanly (whole frames kept,
+  // a folder it made and wrote nothing into removed, exit 128 + the signal). Installed after
+  // the output folder was made, a signal in the first 0.7 s (the device and the pipelines)
+  // killed the process with no word and left the empty folder (issue 31, 8).
+  const StopOnSignals stop;
   CliArgs args("render", argv,
                {"--out", "--name", "--width", "--height", "--time", "--set", "--dump-graph",
                 "--gpu", "--ocio", "--debug-output", "--debug-passes"},
@@ -227,11 +233,22 @@ int renderCommand(const std::vector<std::string>& argv) {
   OcioOutput ocio = OcioOutput::load(ocioPath);
   ocio.checkDisplayView(scene.output.display, scene.output.view);
 
+  // --dump-graph names a file whose folder exists: checked now, not after the frame was
+  // rendered and written (issue 31, 3).
+  std::optional<fs::path> graphPath;
+  if (auto v = args.value("--dump-graph")) {
+    graphPath = *v;
+    std::error_code ec;
+    if (fs::is_directory(*graphPath, ec))
+      inputError("--dump-graph " + *v + ": is a directory; give a file name (out/graph.dot)");
+    const fs::path parent = graphPath->parent_path();
+    if (!parent.empty() && !fs::is_directory(parent, ec))
+      inputError("--dump-graph " + *v + ": the folder " + parent.string() + " does not exist");
+  }
+
   // Removed again, if the run made it, unless a frame was written into it.
   OutputFolder folder(args.value("--out").value_or("out"), "--out");
   const fs::path& outDir = folder.path();
-  std::optional<fs::path> graphPath;
-  if (auto v = args.value("--dump-graph")) graphPath = *v;
   warnIfCacheUnwritable();
 
   Context ctx(contextOptions(args));
@@ -239,7 +256,6 @@ int renderCommand(const std::vector<std::string>& argv) {
   Renderer renderer(ctx, compiler);
   renderer.setBakeProgress(bakeProgressBar());
 
-  const StopOnSignals stop;
   const int64_t count = scene.time.frameCount();
   Progress progress(count);
   RenderFiles first, last;

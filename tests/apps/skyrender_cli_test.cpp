@@ -775,5 +775,31 @@ TEST_F(SkyrenderCli, AHugeSceneFileIsRefusedBeforeItIsParsed) {
   EXPECT_THAT(r.err, HasSubstr("big.yaml: is 17825792 bytes, more than the 16777216 read from it"));
 }
 
+TEST_F(SkyrenderCli, DumpGraphIntoAFolderIsRefusedBeforeTheRender) {
+  // Issue 31, 3: it used to fail with exit 2 after sky.exr, sky.png and sky.json were written.
+  expectBadInput("--width 16 --height 9 --dump-graph " + mDir.string(),
+                 {"--dump-graph", "is a directory"});
+  expectBadInput("--width 16 --height 9 --dump-graph " + (mDir / "no" / "g.dot").string(),
+                 {"--dump-graph", "does not exist"});
+}
+
+TEST_F(SkyrenderCli, ASignalWhileTheDeviceStartsLeavesNoFolderAndExits143) {
+  // Issue 31, 8: SIGTERM 0.3 s in, while the device and pipelines are made, killed the process
+  // without a word and left the empty --out folder. Now the run stops before its first frame.
+  // A 97-frame time-lapse, so a fast device is still rendering when the signal comes: then
+  // the frames before it are kept whole. Either way the run says how far it got.
+  const fs::path dir = mDir / "early";
+  CliRun r = run("render --width 16 --height 9 --time 2024-06-21T00:00Z/2024-06-22T00:00Z/15m "
+                 "--out " + dir.string(),
+                 "timeout --preserve-status -s TERM 0.3");
+  EXPECT_EQ(r.rc, 143) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("interrupted after ")) << "the signal was caught, not fatal";
+  EXPECT_THAT(r.err, HasSubstr(" of 97 frames (SIGTERM)"));
+  if (r.err.find("interrupted after 0 of") != std::string::npos)
+    EXPECT_FALSE(fs::exists(dir)) << "the folder the run made and wrote nothing into is removed";
+  else
+    EXPECT_TRUE(fs::exists(dir / "sky_0001.json")) << "the frames before the signal are whole";
+}
+
 }  // namespace
 }  // namespace sky
