@@ -95,8 +95,7 @@ vec3 groundRadiance(LightingState L) {
 // along the slant path. Straight down that is a tenth of the light; toward the horizon it is
 // the bright haze, which lights a cloud's sides and base. The grid is the upper one mirrored:
 // direction (ring, column) below has the depression of `ring` and the azimuth of `column`.
-// airTransmittance(ring) is T for the ring (one exp a ring, not one a direction: the table's
-// 144 normals times 1024 directions of exp were 200 ms of lavapipe).
+// airTransmittance(ring) is T for the ring: one exp a ring, not one a direction.
 vec3 airTransmittance(int ring) {
   return exp(-params.airDepth.rgb / ringCosZenith(ring));
 }
