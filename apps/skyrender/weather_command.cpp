@@ -121,7 +121,6 @@ int weatherCommand(const std::vector<std::string>& argv) {
   const std::string stem = file.stem().string();
   const fs::path exrPath = outDir / (stem + ".weather.exr");
   const fs::path pngPath = outDir / (stem + ".weather.png");
-  writeExr(exrPath, image);
   // Preview: low cover red, mid green, high blue.
   std::vector<float> rgba(size_t(w) * h * 4);
   for (size_t i = 0; i < map.texels.size(); ++i) {
@@ -130,7 +129,14 @@ int weatherCommand(const std::vector<std::string>& argv) {
     rgba[i * 4 + 2] = map.coverHigh.empty() ? 0.0f : map.coverHigh[i];
     rgba[i * 4 + 3] = 1.0f;
   }
-  writePng8(pngPath, w, h, rgba, PngQuantize::Nearest);  // a data image: exact codes
+  // Both or neither, as a render's files: on a full disk the PNG failed after the EXR was in
+  // place (issue 31, 2).
+  AtomicFileSet files;
+  files.stage(exrPath, [&](const fs::path& tmp) { writeExr(tmp, image); });
+  files.stage(pngPath, [&](const fs::path& tmp) {
+    writePng8(tmp, w, h, rgba, PngQuantize::Nearest);  // a data image: exact codes
+  });
+  files.commit();
   folder.keep();
 
   std::printf("%s: %dx%d map over lat [%g, %g], lon [%g, %g], cover from %s\n",

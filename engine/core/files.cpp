@@ -5,9 +5,13 @@
 #include <cstring>
 #include <fstream>
 #include <sstream>
+#include <csignal>
+#include <signal.h>
+#include <cstdlib>
 #include <unistd.h>
 
 #include "engine/core/error.h"
+#include "engine/core/fault_injection.h"
 
 namespace sky {
 namespace fs = std::filesystem;
@@ -53,13 +57,26 @@ std::vector<uint8_t> readBinaryFile(const fs::path& path) {
 }
 
 namespace {
-// A unique temporary beside `path`; it keeps the final extension so format libraries that
-// look at it still work.
+// ".tmp-HOST-": the start of this host's temporaries. The host is in the name because an
+// output folder may be shared by the nodes of a cluster, where a process id says nothing
+// about another machine's processes.
+std::string temporaryPrefix() {
+  static const std::string prefix = [] {
+    char host[256] = {};
+    if (::gethostname(host, sizeof host - 1) != 0 || !host[0]) std::strcpy(host, "localhost");
+    return ".tmp-" + std::string(host) + "-";
+  }();
+  return prefix;
+}
+
+// A unique temporary beside `path`, ".tmp-HOST-PID-N-NAME": it keeps the final extension so
+// format libraries that look at it still work, and names the process that owns it
+// (removeStaleTemporaries).
 fs::path temporaryFor(const fs::path& path) {
   static std::atomic<unsigned> counter{0};
   fs::path dir = path.parent_path().empty() ? fs::path(".") : path.parent_path();
-  return dir / (".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++) + "-" +
-                path.filename().string());
+  return dir / (temporaryPrefix() + std::to_string(::getpid()) + "-" +
+                std::to_string(counter++) + "-" + path.filename().string());
 }
 
 // Runs write(tmp); an error it throws names the file the caller asked for, not the
@@ -120,12 +137,39 @@ void AtomicFileSet::stage(const fs::path& path, const std::function<void(const f
 }
 
 void AtomicFileSet::commit() {
+  // A rename that would fail (a folder in the file's place) is found before any is made, so
+  // the set is not left half in place.
+  for (const auto& [tmp, final] : mStaged) {
+    std::error_code ec;
+    if (fs::is_directory(final, ec))
+      inputError(final.string() + ": cannot write file: a folder of that name exists");
+  }
   for (const auto& [tmp, final] : mStaged) {
     std::error_code ec;
     fs::rename(tmp, final, ec);
     if (ec) inputError(final.string() + ": cannot write file: " + ec.message());
+    if (faultAt(FaultPoint::KillAfterRename)) ::raise(SIGKILL);  // a crash mid-commit, for tests
   }
   mStaged.clear();
+}
+
+int removeStaleTemporaries(const fs::path& folder) {
+  const std::string prefix = temporaryPrefix();
+  int removed = 0;
+  std::error_code ec;
+  for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name.rfind(prefix, 0) != 0) continue;
+    const size_t digits = name.find_first_not_of("0123456789", prefix.size());
+    if (digits == prefix.size() || digits == std::string::npos || name[digits] != '-') continue;
+    const long pid = std::strtol(name.c_str() + prefix.size(), nullptr, 10);
+    // Only a process that is gone: kill(pid, 0) fails with ESRCH. A live one (or one this
+    // user may not signal, EPERM) may still be writing.
+    if (pid <= 0 || pid == ::getpid() || ::kill(pid_t(pid), 0) == 0 || errno != ESRCH) continue;
+    std::error_code removeError;
+    if (it->is_regular_file(removeError) && fs::remove(it->path(), removeError)) ++removed;
+  }
+  return removed;
 }
 
 OutputFolder::OutputFolder(const fs::path& path, const std::string& what) : mPath(path) {
@@ -146,6 +190,7 @@ OutputFolder::OutputFolder(const fs::path& path, const std::string& what) : mPat
     mCreated.clear();
     inputError(what + " " + path.string() + ": cannot create folder: " + reason);
   }
+  removeStaleTemporaries(path);
 }
 
 OutputFolder::~OutputFolder() {

@@ -29,7 +29,8 @@ void writeFileAtomic(const std::filesystem::path& path,
 void writeFileAtomic(const std::filesystem::path& path, std::string_view bytes);
 
 // Several files that must appear together or not at all (a render's EXR, PNG and report):
-// stage() writes each to a temporary beside its target, commit() renames them all. Files
+// stage() writes each to a temporary beside its target, commit() renames them all, in the
+// order staged (stage the file that marks the set whole last). Files
 // staged but not committed are removed when the set goes away (an error on the way).
 class AtomicFileSet {
 public:
@@ -46,9 +47,15 @@ private:
   std::vector<std::pair<std::filesystem::path, std::filesystem::path>> mStaged;  // (tmp, final)
 };
 
+// Removes the temporaries (".tmp-HOST-PID-...") that processes of this host left in `folder`
+// when they were killed before they could: those whose process is gone. Returns how many.
+// Every output folder is swept when a run opens it (OutputFolder).
+int removeStaleTemporaries(const std::filesystem::path& folder);
+
 // An output folder created for a run: create() makes it and any missing parents; unless
 // keep() is called (something was written), the folders it made are removed again when it
-// goes away, if still empty, so a failed or interrupted run leaves nothing behind.
+// goes away, if still empty, so a failed or interrupted run leaves nothing behind. It also
+// removes what killed runs left there (removeStaleTemporaries).
 class OutputFolder {
 public:
   // BadInput "<what> <path>: cannot create folder: <reason>" when it cannot be made.

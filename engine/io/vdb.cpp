@@ -64,6 +64,20 @@ void writeVdb(const std::filesystem::path& path, const VdbGrid& grid, const VdbM
     } catch (const openvdb::Exception& e) {
       inputError(path.string() + ": cannot write: " + e.what());
     }
+    // OpenVDB writes through a std::ofstream whose errors it never checks: on a full disk
+    // it returned normally after a 4,096-byte or empty file (issue 31, 1). So the temporary
+    // is read back, and only a grid whole to its last voxel is renamed into place.
+    bool whole = false;
+    try {
+      openvdb::io::File check(tmp.string());
+      check.open();
+      openvdb::GridBase::Ptr back = check.hasGrid(grid.name) ? check.readGrid(grid.name) : nullptr;
+      check.close();
+      whole = back && back->activeVoxelCount() == vdb->activeVoxelCount();
+    } catch (const std::exception&) {
+      // A truncated file fails to read, with a message about OpenVDB's internals.
+    }
+    if (!whole) inputError(path.string() + ": write failed (disk full?)");
   });
 }
 

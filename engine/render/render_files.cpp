@@ -153,8 +153,6 @@ RenderFiles writeRenderFiles(const std::filesystem::path& dir, const std::string
     writePng8(tmp, frame.image.width, frame.image.height, display,
               scene.output.dither ? PngQuantize::Dither : PngQuantize::Nearest);
   });
-  set.stage(files.report,
-            [&](const std::filesystem::path& tmp) { writeFileAtomic(tmp, report.dump(2) + "\n"); });
   for (size_t i = 0; i < frame.debug.size(); ++i)
     set.stage(files.debug[i], [&frame, i](const std::filesystem::path& tmp) {
       writeExr(tmp, frame.debug[i].image);
@@ -162,6 +160,10 @@ RenderFiles writeRenderFiles(const std::filesystem::path& dir, const std::string
   if (graphPath)
     set.stage(*graphPath,
               [&](const std::filesystem::path& tmp) { writeFileAtomic(tmp, frame.graphDot); });
+  // The report last: the set commits in the order staged, so a report in the folder means its
+  // images are whole, even after a crash between two renames (docs/outputs.md).
+  set.stage(files.report,
+            [&](const std::filesystem::path& tmp) { writeFileAtomic(tmp, report.dump(2) + "\n"); });
   set.commit();
   return files;
 }

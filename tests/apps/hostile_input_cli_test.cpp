@@ -3,11 +3,13 @@
 // the device starts. The commands that could block run under `timeout`, so a regression fails
 // instead of hanging the suite.
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include "cli_fixture.h"
 
@@ -82,6 +84,88 @@ TEST_F(SkyrenderCli, ASignalWhileTheDeviceStartsLeavesNoFolderAndExits143) {
     EXPECT_FALSE(fs::exists(dir)) << "the folder the run made and wrote nothing into is removed";
   else
     EXPECT_TRUE(fs::exists(dir / "sky_0001.json")) << "the frames before the signal are whole";
+}
+
+}  // namespace
+}  // namespace sky
+
+namespace sky {
+namespace {
+
+// The files of `dir` whose names start with ".tmp-".
+std::vector<std::string> temporariesIn(const fs::path& dir) {
+  std::vector<std::string> names;
+  for (const auto& e : fs::directory_iterator(dir))
+    if (e.path().filename().string().rfind(".tmp-", 0) == 0) names.push_back(e.path().filename());
+  return names;
+}
+
+// A shell prefix that makes every file skyrender writes fail past `kib` KiB, as a full disk
+// does (RLIMIT_FSIZE; SIGXFSZ ignored, so the write returns EFBIG instead of killing it).
+std::string diskFullAfter(int kib) {
+  return "trap '' XFSZ; ulimit -f " + std::to_string(kib) + ";";
+}
+
+// Issue 31, 1: on a full disk export-volume printed "wrote a.vdb" and exited 0 with a
+// 4,096-byte file, or replaced a good file with an empty one. OpenVDB never checks its
+// writes, so the grid is read back before it is renamed into place.
+TEST_F(SkyrenderCli, ExportVolumeOnAFullDiskFailsAndKeepsTheFileThatWasThere) {
+  const fs::path vdb = mDir / "out" / "a.vdb";
+  CliRun r = run("export-volume --out " + vdb.string() + " --voxel-m 500");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const auto whole = fs::file_size(vdb);
+  ASSERT_GT(whole, 8192u) << "the test needs a grid larger than the 4 KiB the disk takes";
+  r = run("export-volume --out " + vdb.string() + " --voxel-m 500", diskFullAfter(4));
+  EXPECT_EQ(r.rc, 2) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "one line: " << r.err;
+  EXPECT_THAT(r.err, HasSubstr("a.vdb: write failed (disk full?)"));
+  EXPECT_THAT(r.out, Not(HasSubstr("wrote")));
+  EXPECT_EQ(fs::file_size(vdb), whole) << "the good file was replaced";
+  EXPECT_THAT(temporariesIn(mDir / "out"), ::testing::IsEmpty());
+}
+
+// Issue 31, 2: when the weather preview failed, the .weather.exr written before it stayed.
+// Now the two are written as one set, as a render's files are: both or neither.
+TEST_F(SkyrenderCli, WeatherWritesItsMapAndPreviewTogetherOrNeither) {
+  const std::string grib =
+      (fs::path(std::getenv("SKY_DATA_DIR")) / "tests/data/weather/gfs_2p5deg_r_gh_t_tcc_uv500.grib2")
+          .string();
+  const std::string stem = "gfs_2p5deg_r_gh_t_tcc_uv500.weather";
+  // The preview's place is taken by a folder: its rename would fail after the map's.
+  fs::create_directories(mDir / "out" / (stem + ".png"));
+  CliRun r = run("weather " + grib + " --out " + out());
+  EXPECT_EQ(r.rc, 2) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "one line: " << r.err;
+  EXPECT_THAT(r.err, HasSubstr(stem + ".png: cannot write file: a folder of that name exists"));
+  EXPECT_FALSE(fs::exists(mDir / "out" / (stem + ".exr"))) << "the map was kept without its preview";
+  // A full disk: nothing at all, and the folder the run made is gone again.
+  const fs::path dir = mDir / "full";
+  r = run("weather " + grib + " --out " + dir.string(), diskFullAfter(60));
+  EXPECT_EQ(r.rc, 2) << r.err;
+  EXPECT_THAT(r.err, HasSubstr(stem + ".exr: cannot write EXR"));
+  EXPECT_FALSE(fs::exists(dir));
+}
+
+// Issue 31, 4: a render killed between two renames left its temporaries for good, and a
+// folder with sky.exr but no report. The report is renamed last, so it marks a whole set;
+// the next render into the folder removes the temporaries of processes that are gone, and
+// only those.
+TEST_F(SkyrenderCli, AKilledCommitLeavesNoReportAndTheNextRenderSweepsItsTemporaries) {
+  CliRun r = run("render --width 16 --height 9 --out " + out(), "SKY_FAULT=kill_after_rename");
+  EXPECT_NE(r.rc, 0) << "killed after the first rename";
+  const fs::path dir = mDir / "out";
+  EXPECT_TRUE(fs::exists(dir / "sky.exr"));
+  EXPECT_FALSE(fs::exists(dir / "sky.json")) << "the report came before the images were whole";
+  EXPECT_EQ(temporariesIn(dir).size(), 2u) << "the PNG's and the report's";
+  // A temporary of a live process of this host (this test's) is left alone.
+  char host[256] = {};
+  ASSERT_EQ(::gethostname(host, sizeof host - 1), 0);
+  const std::string live = ".tmp-" + std::string(host) + "-" + std::to_string(::getpid()) + "-0-x.exr";
+  std::ofstream(dir / live) << "being written";
+  r = run("render --width 16 --height 9 --out " + out());
+  ASSERT_EQ(r.rc, 0) << r.err;
+  EXPECT_THAT(temporariesIn(dir), ::testing::ElementsAre(live));
+  for (const char* f : {"sky.exr", "sky.png", "sky.json"}) EXPECT_TRUE(fs::exists(dir / f)) << f;
 }
 
 }  // namespace
