@@ -151,6 +151,14 @@ public:
     auto it = mAnchors.find(anchor);
     if (it == mAnchors.end())
       return fail(mAt(mark), path(), "alias to an anchor that is not complete yet");
+    // Each alias is a copy of its anchor's tree. Nine levels of `&a [*b, *b, ...]` in 1 KB of
+    // text expand to billions of nodes (issue 31, 6): the copies are counted, and past a
+    // bound no scene needs the file is refused where the alias stands.
+    mAliasNodes += nodeCount(it->second);
+    if (mAliasNodes > kMaxAliasNodes)
+      return fail(mAt(mark), path(),
+                  "YAML aliases expand to more than " + std::to_string(kMaxAliasNodes) +
+                      " nodes (an alias bomb?)");
     ConfigNode copy = it->second;
     copy.pos = mAt(mark);
     place(std::move(copy), 0);
@@ -187,6 +195,20 @@ private:
     std::string key;
     SourcePos keyPos;
   };
+
+  // Nodes that aliases may add to a document, all together: a scene's tree is a few hundred
+  // nodes, and the text itself is capped (kMaxSceneFileBytes).
+  static constexpr size_t kMaxAliasNodes = 100000;
+  // The nodes of a tree, counted up to just past kMaxAliasNodes (a bomb's anchors are
+  // themselves huge).
+  static size_t nodeCount(const ConfigNode& node) {
+    size_t n = 1;
+    for (const ConfigNode& c : node.children) {
+      n += nodeCount(c);
+      if (n > kMaxAliasNodes) break;
+    }
+    return n;
+  }
 
   bool failed() const { return !mError.empty(); }
   // Records the error; every later event is ignored.
@@ -270,6 +292,7 @@ private:
   At mAt;
   std::vector<Frame> mStack;
   std::map<YAML::anchor_t, ConfigNode> mAnchors;
+  size_t mAliasNodes = 0;  // nodes added by aliases so far
   ConfigNode mRoot;
   bool mHasRoot = false;
   YAML::Mark mDocumentStart;

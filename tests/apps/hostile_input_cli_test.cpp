@@ -60,6 +60,24 @@ TEST_F(SkyrenderCli, AHugeSceneFileIsRefusedBeforeItIsParsed) {
   EXPECT_THAT(r.err, HasSubstr("big.yaml: is 17825792 bytes, more than the 16777216 read from it"));
 }
 
+// Issue 31, 6: 1 KB of nested aliases (`&a [*b, *b, ...]`, nine levels) grew past 20 GB.
+// The nodes aliases add are bounded; the error names the file, line and key.
+TEST_F(SkyrenderCli, AYamlAliasBombIsRefusedWithItsLine) {
+  std::string text = "a0: &a0 [1, 1, 1, 1, 1, 1, 1, 1, 1]\n";
+  for (int i = 1; i < 10; ++i) {
+    text += "a" + std::to_string(i) + ": &a" + std::to_string(i) + " [";
+    for (int j = 0; j < 9; ++j) text += (j ? ", *a" : "*a") + std::to_string(i - 1);
+    text += "]\n";
+  }
+  CliRun r = run("validate " + write("bomb.yaml", text).string(), "ulimit -v 4000000; timeout 60");
+  EXPECT_EQ(r.rc, 2) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "one line: " << r.err;
+  EXPECT_THAT(r.err, HasSubstr("bomb.yaml:6:10: a5: YAML aliases expand to more than 100000 nodes"));
+  // Aliases as a scene would use them still work.
+  r = run("validate " + write("alias.yaml", "camera: {pitch: &p 3, heading: *p}\n").string());
+  EXPECT_EQ(r.rc, 0) << r.err;
+}
+
 TEST_F(SkyrenderCli, DumpGraphIntoAFolderIsRefusedBeforeTheRender) {
   // Issue 31, 3: it used to fail with exit 2 after sky.exr, sky.png and sky.json were written.
   expectBadInput("--width 16 --height 9 --dump-graph " + mDir.string(),
