@@ -54,6 +54,24 @@ Scene loadScene(const CliArgs& args, bool required) {
   return loadSceneFile(args.positional()[0], overridesFrom(args));
 }
 
+// Runs `check`, which may raise an error about a scene key found only after loading
+// ("output.display: unknown OCIO display ..."), and says where that key was written: the
+// file, line and column, or the --set that gave it (issue 31, 12).
+void atSceneKey(const CliArgs& args, const std::function<void()>& check) {
+  try {
+    check();
+  } catch (const Error& e) {
+    const std::string what = e.what();
+    const size_t colon = what.find(": ");
+    const std::string key = what.substr(0, colon);
+    if (colon == std::string::npos || key.find_first_of(" /") != std::string::npos) throw;
+    const fs::path file = args.positional().empty() ? fs::path() : fs::path(args.positional()[0]);
+    const std::string where = sceneKeySource(file, overridesFrom(args), key);
+    if (where.empty()) throw;
+    throw Error(e.kind(), (where.rfind("--set ", 0) == 0 ? "--set " : where + ": ") + what);
+  }
+}
+
 // "\r[#####.....] text" on stderr: one line that redraws itself.
 void drawBar(double fraction, const std::string& text) {
   constexpr int kWidth = 30;
@@ -231,7 +249,7 @@ int renderCommand(const std::vector<std::string>& argv) {
   std::optional<fs::path> ocioPath;
   if (auto v = args.value("--ocio")) ocioPath = *v;
   OcioOutput ocio = OcioOutput::load(ocioPath);
-  ocio.checkDisplayView(scene.output.display, scene.output.view);
+  atSceneKey(args, [&] { ocio.checkDisplayView(scene.output.display, scene.output.view); });
 
   // --dump-graph names a file whose folder exists: checked now, not after the frame was
   // rendered and written (issue 31, 3).
@@ -271,7 +289,7 @@ int renderCommand(const std::vector<std::string>& argv) {
     } catch (const UnknownImageName& e) {
       debugOutputError(e, debug, "--debug-output");
     }
-    const std::string stem = frameStem(scene.output.name, i, count);
+    const std::string stem = frameStem(scene.output.name, i, count, scene.time.isRange());
     std::optional<DisplayTile> sheet;
     if (renderOptions.allDebugOutputs) {
       sheet = contactSheet(frame.debug, stem + "  " + time.format() + "  " + ctx.deviceName());
@@ -398,7 +416,8 @@ int validateCommand(const std::vector<std::string>& argv) {
   // Display and view are names in the OCIO config, so the config takes part in validation.
   std::optional<fs::path> ocioPath;
   if (auto v = args.value("--ocio")) ocioPath = *v;
-  OcioOutput::load(ocioPath).checkDisplayView(scene.output.display, scene.output.view);
+  const OcioOutput ocio = OcioOutput::load(ocioPath);
+  atSceneKey(args, [&] { ocio.checkDisplayView(scene.output.display, scene.output.view); });
   // Paths printed resolved: the printed scene renders the same from any folder.
   std::cout << writeScene(scene.withAbsolutePaths(), formatForPath(args.positional()[0]));
   return 0;

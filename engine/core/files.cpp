@@ -16,22 +16,38 @@
 namespace sky {
 namespace fs = std::filesystem;
 
+namespace {
+// What a special file is ("a FIFO"), or nullptr for a regular file, a folder or nothing.
+const char* specialKind(const fs::file_status& st) {
+  switch (st.type()) {
+    case fs::file_type::fifo: return "a FIFO";
+    case fs::file_type::socket: return "a socket";
+    case fs::file_type::character: return "a character device";
+    case fs::file_type::block: return "a block device";
+    case fs::file_type::regular:
+    case fs::file_type::directory:
+    case fs::file_type::not_found: return nullptr;
+    default: return "something";
+  }
+}
+}  // namespace
+
 void refuseSpecialFile(const fs::path& path) {
   std::error_code ec;
   const fs::file_status st = fs::status(path, ec);  // follows symlinks
   if (ec) return;  // missing or unreadable: the open that follows says so
-  const char* kind = nullptr;
-  switch (st.type()) {
-    case fs::file_type::fifo: kind = "a FIFO"; break;
-    case fs::file_type::socket: kind = "a socket"; break;
-    case fs::file_type::character: kind = "a character device"; break;
-    case fs::file_type::block: kind = "a block device"; break;
-    case fs::file_type::regular:
-    case fs::file_type::directory:
-    case fs::file_type::not_found: return;
-    default: kind = "not a regular file"; break;
-  }
-  inputError(path.string() + ": is " + kind + ", not a regular file");
+  if (const char* kind = specialKind(st))
+    inputError(path.string() + ": is " + kind + ", not a regular file");
+}
+
+std::string notARegularFile(const fs::path& path) {
+  std::error_code ec;
+  const fs::file_status st = fs::status(path, ec);  // follows symlinks
+  if (st.type() == fs::file_type::regular) return "";
+  if (st.type() == fs::file_type::directory) return "is a directory, not a file";
+  if (const char* kind = specialKind(st)) return std::string("is ") + kind + ", not a regular file";
+  if (ec && ec != std::errc::no_such_file_or_directory) return "cannot be read: " + ec.message();
+  return "file not found";
 }
 
 std::string readTextFile(const fs::path& path, std::uintmax_t maxBytes) {

@@ -15,6 +15,10 @@ namespace sky {
 // library opens the path itself.
 void refuseSpecialFile(const std::filesystem::path& path);
 
+// Why `path` is no regular file to read: "file not found", "is a directory, not a file",
+// "is a FIFO, not a regular file", ...; "" when it is one (after symlinks).
+std::string notARegularFile(const std::filesystem::path& path);
+
 // Reads a whole file; a missing, unreadable or special file is an input error naming the
 // path, and so is one larger than `maxBytes`.
 std::string readTextFile(const std::filesystem::path& path,

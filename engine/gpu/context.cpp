@@ -57,11 +57,26 @@ bool hasLayer(const char* name) {
   });
 }
 
+// The loader says little: a driver list it cannot parse came back as
+// VK_ERROR_OUT_OF_HOST_MEMORY from vkCreateInstance, or as a failed extension query (issue
+// 31, 12). Say that no device could be made, and name the variables that choose the drivers
+// when they are set.
+[[noreturn]] void loaderFailed(VkResult r) {
+  std::string why = std::string("the Vulkan loader failed with ") + vkResultName(r);
+  for (const char* var : {"VK_ICD_FILENAMES", "VK_DRIVER_FILES", "VK_ADD_DRIVER_FILES"})
+    if (const char* v = std::getenv(var); v && *v)
+      why += std::string("; ") + var + "=" + v + " chooses the drivers: is it a driver manifest?";
+  internalError("no Vulkan device could be created: " + why);
+}
+
 bool hasInstanceExtension(const char* name) {
   uint32_t count = 0;
-  vkEnumerateInstanceExtensionProperties(nullptr, &count, nullptr);
+  if (VkResult r = vkEnumerateInstanceExtensionProperties(nullptr, &count, nullptr); r != VK_SUCCESS)
+    loaderFailed(r);
   std::vector<VkExtensionProperties> exts(count);
-  vkEnumerateInstanceExtensionProperties(nullptr, &count, exts.data());
+  if (VkResult r = vkEnumerateInstanceExtensionProperties(nullptr, &count, exts.data());
+      r != VK_SUCCESS && r != VK_INCOMPLETE)
+    loaderFailed(r);
   return std::any_of(exts.begin(), exts.end(), [&](const VkExtensionProperties& e) {
     return std::strcmp(e.extensionName, name) == 0;
   });
@@ -202,7 +217,7 @@ void Context::createInstance(const ContextOptions& options) {
 
   VkResult r = vkCreateInstance(&info, nullptr, &mInstance);
   if (r == VK_ERROR_INCOMPATIBLE_DRIVER) internalError(kNoDevice);
-  SKY_VK(r);
+  if (r != VK_SUCCESS) loaderFailed(r);
 
   if (mValidation) {
     auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(

@@ -47,8 +47,8 @@ nlohmann::ordered_json processMemoryJson() {
 
 }  // namespace
 
-std::string frameStem(const std::string& name, int64_t index, int64_t count) {
-  if (count <= 1) return name;
+std::string frameStem(const std::string& name, int64_t index, int64_t count, bool range) {
+  if (!range) return name;
   std::string number = std::to_string(index + 1);
   size_t width = std::max<size_t>(4, std::to_string(count).size());
   return name + "_" + std::string(width - std::min(width, number.size()), '0') + number;

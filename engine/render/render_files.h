@@ -22,9 +22,10 @@ struct RenderFiles {
   std::optional<std::filesystem::path> graph;  // --dump-graph
 };
 
-// Where frame `index` (0-based) of `count` goes: NAME for one frame, NAME_0001 (at least
-// four digits, more when the count needs them) for a sequence.
-std::string frameStem(const std::string& name, int64_t index, int64_t count);
+// Where frame `index` (0-based) of `count` goes: NAME for an instant, NAME_0001 (at least
+// four digits, more when the count needs them) for a time range, even one of a single frame
+// (START = END): a script that renders ranges finds the same names whatever their length.
+std::string frameStem(const std::string& name, int64_t index, int64_t count, bool range);
 
 // `dir` must exist. `exposure` is the frame's (ExposureMeter): the PNG is exposed by it, the
 // report and the EXR's "skylayers:exposure_ev" attribute say what it was. `graphPath`, when

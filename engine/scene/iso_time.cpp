@@ -125,6 +125,13 @@ std::optional<IsoTime> IsoTime::parse(std::string_view t, std::string* why) {
   r.unixSeconds =
       daysFromCivil(year, static_cast<unsigned>(month), static_cast<unsigned>(day)) * 86400 +
       hour * 3600 + minute * 60 + second - offset * 60;
+  // The zone can carry an instant written inside the years accepted outside them
+  // (9999-12-31T23:59-18:00 is in the year 10000 UTC): UTC, which the ephemeris and every
+  // report use, stays inside them too.
+  const int64_t firstUtc = daysFromCivil(1, 1, 1) * 86400;
+  const int64_t lastUtc = daysFromCivil(9999, 12, 31) * 86400 + 86399;
+  if (r.unixSeconds < firstUtc || r.unixSeconds > lastUtc)
+    return fail(why, "the instant in UTC is outside 0001-01-01T00:00:00Z to 9999-12-31T23:59:59Z");
   r.subsecond = frac;
   r.offsetMinutes = offset;
   return r;

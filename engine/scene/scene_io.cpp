@@ -83,6 +83,29 @@ Scene loadSceneFile(const std::filesystem::path& path, const std::vector<std::st
   return scene;
 }
 
+std::string sceneKeySource(const std::filesystem::path& sceneFile,
+                           const std::vector<std::string>& overrides, std::string_view keyPath) {
+  const std::string prefix = std::string(keyPath) + "=";
+  for (auto it = overrides.rbegin(); it != overrides.rend(); ++it)
+    if (it->rfind(prefix, 0) == 0) return "--set " + std::string(keyPath);
+  if (sceneFile.empty()) return "";
+  try {
+    const std::string text = readTextFile(sceneFile, kMaxSceneFileBytes);
+    const ConfigNode root = formatForPath(sceneFile) == ConfigFormat::Yaml
+                                ? parseYamlTree(text, sceneFile.string())
+                                : parseJsonTree(text, sceneFile.string());
+    const ConfigNode* node = &root;
+    for (size_t start = 0; node && start <= keyPath.size();) {
+      const size_t dot = std::min(keyPath.find('.', start), keyPath.size());
+      node = node->isMap() ? node->find(keyPath.substr(start, dot - start)) : nullptr;
+      start = dot + 1;
+    }
+    return node ? node->pos.str() : "";
+  } catch (const Error&) {
+    return "";  // the file loaded once; if it changed since, say nothing rather than wrong
+  }
+}
+
 std::string writeScene(const Scene& scene, ConfigFormat format) {
   ConfigNode root = sceneTree(scene);
   return format == ConfigFormat::Yaml ? detail::toYamlText(root) : detail::toJsonText(root);

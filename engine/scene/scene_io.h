@@ -22,6 +22,12 @@ Scene loadSceneFile(const std::filesystem::path& path,
 // Same for text already in memory; sourceName is used in error messages.
 Scene loadSceneText(std::string_view text, ConfigFormat format, const std::string& sourceName,
                     const std::vector<std::string>& overrides = {});
+// Where a scene key got its value, for errors found after loading (a name the OCIO config
+// lacks, a file a key names that cannot be read): "--set KEY" when an override gave it,
+// else "FILE:LINE:COLUMN" of the value in the scene file, else "" (a default). `keyPath` is
+// dotted ("output.display"); `sceneFile` may be empty (the built-in scene).
+std::string sceneKeySource(const std::filesystem::path& sceneFile,
+                           const std::vector<std::string>& overrides, std::string_view keyPath);
 // By extension (.yaml, .yml, .json, any case); anything else is BadInput.
 ConfigFormat formatForPath(const std::filesystem::path& path);
 // The effective settings (defaults filled in) as file text; loading it gives an identical Scene.

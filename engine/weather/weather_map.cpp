@@ -12,6 +12,7 @@
 #include <glm/trigonometric.hpp>
 
 #include "engine/core/error.h"
+#include "engine/core/files.h"
 #include "engine/io/exr.h"
 #include "engine/io/png.h"
 #include "engine/weather/cloud_layers_from_fields.h"
@@ -50,8 +51,8 @@ WeatherMap readImageMap(const Scene& scene, const WeatherRegion& region) {
   const std::string& written = scene.weather.image;
   if (written.empty()) inputError("weather.image: is required when source is image");
   const fs::path path = scene.resolvePath(written);
-  std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) imageError(written, "file not found (" + path.string() + ")");
+  if (const std::string why = notARegularFile(path); !why.empty())
+    imageError(written, why + " (" + path.string() + ")");
   const std::string ext = lowerExtension(path);
   if (ext != ".png" && ext != ".exr") imageError(written, "must be a PNG or EXR file");
 
@@ -170,9 +171,8 @@ namespace {
 
 // One forecast file, by its extension or signature. `written` is how the scene names it.
 WeatherFields readOneWeatherFile(const fs::path& path, const std::string& written) {
-  std::error_code ec;
-  if (!fs::is_regular_file(path, ec))
-    inputError("weather.file: " + written + ": file not found (" + path.string() + ")");
+  if (const std::string why = notARegularFile(path); !why.empty())
+    inputError("weather.file: " + written + ": " + why + " (" + path.string() + ")");
   const std::string ext = lowerExtension(path);
   char magic[8] = {};
   std::ifstream(path, std::ios::binary).read(magic, sizeof magic);

@@ -186,5 +186,69 @@ TEST_F(SkyrenderCli, AKilledCommitLeavesNoReportAndTheNextRenderSweepsItsTempora
   for (const char* f : {"sky.exr", "sky.png", "sky.json"}) EXPECT_TRUE(fs::exists(dir / f)) << f;
 }
 
+
+// Issue 31, 12: errors that said neither what nor where.
+TEST_F(SkyrenderCli, LateErrorsSayWhereTheKeyWasWrittenAndWhatIsWrong) {
+  // An OCIO display the config lacks, found after loading: the file, line and column.
+  const fs::path scene = write("display.yaml", "camera: {pitch: 3}\noutput:\n  display: bogus\n");
+  CliRun r = run("validate " + scene.string());
+  EXPECT_EQ(r.rc, 2) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("display.yaml:3:12: output.display: unknown OCIO display 'bogus'"));
+  expectBadInput(scene.string() + " --width 16 --height 9",
+                 {"display.yaml:3:12: output.display: unknown OCIO display"});
+  // Given by --set, the --set is named.
+  expectBadInput("--width 16 --height 9 --set output.view=bar",
+                 {"--set output.view: unknown OCIO view 'bar'"});
+  // A folder or a FIFO as the forecast is not "file not found".
+  fs::create_directories(mDir / "forecast");
+  expectBadInput("--width 16 --height 9 --set weather.source=file --set weather.file=" +
+                     (mDir / "forecast").string(),
+                 {"weather.file: ", "forecast: is a directory, not a file"});
+  ASSERT_EQ(::mkfifo((mDir / "fifo.grib2").c_str(), 0600), 0);
+  CliRun f = run("render --width 16 --height 9 --set weather.source=file --set weather.file=" +
+                     (mDir / "fifo.grib2").string() + " --out " + out(),
+                 "timeout 60");
+  EXPECT_EQ(f.rc, 2) << f.err;
+  EXPECT_THAT(f.err, HasSubstr("fifo.grib2: is a FIFO, not a regular file"));
+  // A driver list that is no driver manifest: no device, and which variable chose it.
+  const fs::path icd = write("icd.json", "garbage\n");
+  r = run("render --width 16 --height 9 --out " + out(), "VK_ICD_FILENAMES=" + icd.string());
+  EXPECT_EQ(r.rc, 1) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "one line: " << r.err;
+  EXPECT_THAT(r.err, HasSubstr("no Vulkan device could be created: "));
+  EXPECT_THAT(r.err, HasSubstr("VK_ICD_FILENAMES=" + icd.string()));
+  EXPECT_TRUE(outEmpty());
+}
+
+// Issue 31, 13: `camera: {}` was accepted though an empty section is an error.
+TEST_F(SkyrenderCli, AnEmptySectionIsAnErrorInBothFormats) {
+  expectBadInput(write("empty.yaml", "camera: {}\n").string(),
+                 {"empty.yaml:1:9: camera: an empty section"});
+  expectBadInput(write("empty.json", "{\"sun\": {\"azimuth\": 1, \"elevation\": 2}, \"sky\": {}}").string(),
+                 {"empty.json:1:41: sky: an empty section"});
+  // The file itself may be {}: the format's defaults.
+  EXPECT_EQ(run("validate " + write("all.json", "{}").string()).rc, 0);
+}
+
+// Issue 31, 14: a range of one frame (START = END) wrote sky.* where the docs promise the
+// numbered names of a range.
+TEST_F(SkyrenderCli, ARangeOfOneFrameIsNumberedLikeAnyRange) {
+  CliRun r = run("render --width 16 --height 9 --time 2024-06-21T12:00Z/2024-06-21T12:00Z/1h --out " + out());
+  ASSERT_EQ(r.rc, 0) << r.err;
+  for (const char* f : {"sky_0001.exr", "sky_0001.png", "sky_0001.json"})
+    EXPECT_TRUE(fs::exists(mDir / "out" / f)) << f;
+  EXPECT_FALSE(fs::exists(mDir / "out" / "sky.exr"));
+}
+
+// Issue 31, 15: a zone carried an accepted local time out of the years accepted, in UTC
+// ("10000-01-01..." and year 0000 in the report).
+TEST_F(SkyrenderCli, TimesStayInsideTheAcceptedYearsInUtc) {
+  for (const char* t : {"9999-12-31T23:59-18:00", "0001-01-01T00:00+18:00"})
+    expectBadInput(std::string("--width 16 --height 9 --time ") + t,
+                   {"the instant in UTC is outside 0001-01-01T00:00:00Z to 9999-12-31T23:59:59Z"});
+  // The edges themselves are fine.
+  EXPECT_EQ(run("validate " + write("late.yaml", "time: \"9999-12-31T23:59:59Z\"\n").string()).rc, 0);
+}
+
 }  // namespace
 }  // namespace sky

@@ -18,9 +18,6 @@ TEST(SceneRoundTrip, EmptyFilesGiveDefaults) {
   Scene defaults;
   expectSameScene(loadSceneText("", ConfigFormat::Yaml, "e.yaml"), defaults);
   expectSameScene(loadSceneText("{}", ConfigFormat::Json, "e.json"), defaults);
-  expectSameScene(
-      loadSceneText("output: {}\nsun: {}\nmoon: {}\nlighting: {}\n", ConfigFormat::Yaml, "e.yaml"),
-      defaults);
   // The defaults themselves: an instant, and the built-in palette.
   EXPECT_FALSE(defaults.time.isRange());
   EXPECT_EQ(defaults.time.frameCount(), 1);

@@ -60,6 +60,10 @@ public:
     std::string path = childPath(key);
     if (!node->isMap())
       fail(*node, path, "expected a map of settings, got " + node->describeKind());
+    // `camera: {}` says nothing, like `camera:`; more likely keys lost on the way than a wish
+    // (docs/scene-format.md, Strictness). Only the file itself may be {}.
+    if (node->children.empty())
+      fail(*node, path, "an empty section; give its keys, or leave it out for its defaults");
     read(*node, path, settings);
   }
 
