@@ -6,8 +6,10 @@
 #include <algorithm>
 #include <charconv>
 #include <chrono>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <functional>
 #include <iostream>
@@ -418,6 +420,16 @@ int validateCommand(const std::vector<std::string>& argv) {
   if (auto v = args.value("--ocio")) ocioPath = *v;
   const OcioOutput ocio = OcioOutput::load(ocioPath);
   atSceneKey(args, [&] { ocio.checkDisplayView(scene.output.display, scene.output.view); });
+  // The files a render would read, so validate passes no scene that render rejects for a
+  // missing one (issue 31, 11).
+  for (const SceneInputFile& f : sceneInputFiles(scene))
+    atSceneKey(args, [&] {
+      if (const std::string why = notARegularFile(f.path); !why.empty())
+        inputError(std::string(f.key) + ": " + f.written + ": " + why + " (" + f.path.string() + ")");
+      if (::access(f.path.c_str(), R_OK) != 0)
+        inputError(std::string(f.key) + ": " + f.written + ": cannot be read: " +
+                   std::strerror(errno) + " (" + f.path.string() + ")");
+    });
   // Paths printed resolved: the printed scene renders the same from any folder.
   std::cout << writeScene(scene.withAbsolutePaths(), formatForPath(args.positional()[0]));
   return 0;

@@ -141,15 +141,25 @@ std::vector<std::string> OcioOutput::views(const std::string& display) const {
   return out;
 }
 
-void OcioOutput::checkDisplayView(const std::string& display, const std::string& view) const {
-  std::vector<std::string> known = displays();
+namespace {
+// BadInput naming what the config has when it lacks the display or the view.
+void checkNames(const OcioOutput& ocio, const std::string& display, const std::string& view) {
+  std::vector<std::string> known = ocio.displays();
   if (std::find(known.begin(), known.end(), display) == known.end())
     inputError("output.display: unknown OCIO display '" + display +
                "' (available: " + joinNames(known) + ")");
-  std::vector<std::string> viewNames = views(display);
+  std::vector<std::string> viewNames = ocio.views(display);
   if (std::find(viewNames.begin(), viewNames.end(), view) == viewNames.end())
     inputError("output.view: unknown OCIO view '" + view + "' for display '" + display +
                "' (available: " + joinNames(viewNames) + ")");
+}
+}  // namespace
+
+void OcioOutput::checkDisplayView(const std::string& display, const std::string& view) const {
+  checkNames(*this, display, view);
+  // The processor reads the files the view's transforms name (LUTs): one that is missing
+  // fails here, in `validate` and before a render, not after its frame (issue 31, 11).
+  mImpl->processor(*this, display, view, 0.0);
 }
 
 OCIO::ConstCPUProcessorRcPtr OcioOutput::Impl::processor(const OcioOutput& self,
@@ -160,7 +170,7 @@ OCIO::ConstCPUProcessorRcPtr OcioOutput::Impl::processor(const OcioOutput& self,
   std::lock_guard<std::mutex> lock(mutex);
   if (auto it = processors.find(key); it != processors.end()) return it->second;
 
-  self.checkDisplayView(display, view);
+  checkNames(self, display, view);
   try {
     // Exposure is part of the OCIO chain (not a separate loop) so the processor can fold it
     // into the first matrix of the view: one pass over the pixels instead of two.

@@ -31,7 +31,8 @@ public:
   // Active views of `display`, in config order; empty for an unknown display.
   std::vector<std::string> views(const std::string& display) const;
   // Call while validating settings, before any rendering: BadInput naming the available
-  // displays (or views of that display) when the pair does not exist.
+  // displays (or views of that display) when the pair does not exist, or naming the config
+  // when its transforms for the pair cannot be built (a LUT file missing).
   void checkDisplayView(const std::string& display, const std::string& view) const;
   // Multiplies RGB by 2^exposureEv, then converts scene_linear -> display/view in place on
   // interleaved RGBA floats (alpha untouched). Thread-safe; processors are cached per

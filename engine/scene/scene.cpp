@@ -72,4 +72,23 @@ Scene Scene::withAbsolutePaths() const {
   return out;
 }
 
+std::vector<SceneInputFile> sceneInputFiles(const Scene& scene) {
+  std::vector<SceneInputFile> files;
+  auto add = [&](const char* key, const std::string& written) {
+    if (!written.empty()) files.push_back({key, written, scene.resolvePath(written)});
+  };
+  const HighCloudSettings& h = scene.highClouds;
+  if (h.source == HighCloudSource::Image) {
+    add("high_clouds.coefficients", h.coefficients);
+    add("high_clouds.normals", h.normals);
+  } else {
+    add("high_clouds.cover_map", h.coverMap);
+  }
+  const WeatherSettings& w = scene.weather;
+  if (w.source == WeatherMapSource::Image) add("weather.image", w.image);
+  if (w.source == WeatherMapSource::File && w.file.find_first_of("*?") == std::string::npos)
+    add("weather.file", w.file);
+  return files;
+}
+
 }  // namespace sky

@@ -502,4 +502,16 @@ struct Scene {
   Scene withAbsolutePaths() const;
 };
 
+// A file a render of the scene reads, by the key that names it.
+struct SceneInputFile {
+  const char* key;              // "high_clouds.coefficients"
+  std::string written;          // as the scene gives it
+  std::filesystem::path path;   // resolved (Scene::resolvePath)
+};
+// The files a render reads with the scene's sources: high_clouds.coefficients and normals
+// for high_clouds.source image, cover_map for procedural high clouds, weather.image or
+// weather.file by weather.source. A weather.file with '*' or '?' is left out (it names
+// files by a pattern). `skyrender validate` checks each.
+std::vector<SceneInputFile> sceneInputFiles(const Scene& scene);
+
 }  // namespace sky

@@ -250,5 +250,45 @@ TEST_F(SkyrenderCli, TimesStayInsideTheAcceptedYearsInUtc) {
   EXPECT_EQ(run("validate " + write("late.yaml", "time: \"9999-12-31T23:59:59Z\"\n").string()).rc, 0);
 }
 
+
+// Issue 31, 11: validate passed scenes that render rejects for a file: a missing high-cloud
+// image, an OCIO view whose LUT is missing. It now checks what a render would read.
+TEST_F(SkyrenderCli, ValidateChecksTheFilesARenderWouldRead) {
+  const fs::path scene =
+      write("image.yaml", "high_clouds:\n  source: image\n  coefficients: nope.exr\n");
+  CliRun r = run("validate " + scene.string());
+  EXPECT_EQ(r.rc, 2) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "one line: " << r.err;
+  EXPECT_THAT(r.err, HasSubstr("image.yaml:3:17: high_clouds.coefficients: nope.exr: file not found"));
+  fs::create_directories(mDir / "map.png");
+  r = run("validate " + scene.string() + " --set high_clouds.source=procedural"
+          " --set weather.source=image --set weather.image=" + (mDir / "map.png").string());
+  EXPECT_EQ(r.rc, 2) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("--set weather.image: "));
+  EXPECT_THAT(r.err, HasSubstr("map.png: is a directory, not a file"));
+  const fs::path ocio = write("lut.ocio", R"(ocio_profile_version: 2
+search_path: "."
+roles:
+  default: linear
+  scene_linear: linear
+displays:
+  sRGB:
+    - !<View> {name: LUT, colorspace: lut}
+colorspaces:
+  - !<ColorSpace>
+    name: linear
+  - !<ColorSpace>
+    name: lut
+    from_scene_reference: !<FileTransform> {src: missing.cube}
+)");
+  const std::string args = " --ocio " + ocio.string() + " --set output.view=LUT";
+  r = run("validate " + write("plain.yaml", "camera: {pitch: 3}\n").string() + args);
+  EXPECT_EQ(r.rc, 2) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "one line: " << r.err;
+  EXPECT_THAT(r.err, HasSubstr("lut.ocio: OCIO cannot build display 'sRGB' view 'LUT'"));
+  EXPECT_THAT(r.err, HasSubstr("missing.cube"));
+  expectBadInput("--width 16 --height 9" + args, {"lut.ocio: OCIO cannot build", "missing.cube"});
+}
+
 }  // namespace
 }  // namespace sky
