@@ -210,14 +210,18 @@ private:
 };
 
 // Once per process: a cache that cannot be written makes every run bake and compile again.
+// Called before the work (a folder that takes no probe) and after it (a write that failed on
+// the way, such as a full disk).
 void warnIfCacheUnwritable() {
-  const CacheStatus& cache = cacheStatus();
-  if (!cache.writable)
-    std::fprintf(stderr,
-                 "warning: the cache folder %s cannot be written (%s): baked textures and "
-                 "compiled shaders are not kept, so the next run makes them again (set "
-                 "SKY_CACHE_DIR to a writable folder)\n",
-                 cache.folder.string().c_str(), cache.reason.c_str());
+  static bool warned = false;
+  const CacheStatus cache = cacheStatus();
+  if (cache.writable || warned) return;
+  warned = true;
+  std::fprintf(stderr,
+               "warning: the cache folder %s cannot be written (%s): baked textures and "
+               "compiled shaders are not kept, so the next run makes them again (set "
+               "SKY_CACHE_DIR to a writable folder)\n",
+               cache.folder.string().c_str(), cache.reason.c_str());
 }
 
 }  // namespace
@@ -315,6 +319,7 @@ int renderCommand(const std::vector<std::string>& argv) {
     ++written;
   }
   progress.done();
+  warnIfCacheUnwritable();  // a cache write that failed during the frames
   if (const int signal = stop.signal()) {
     std::fprintf(stderr, "interrupted after %lld of %lld frames (%s)\n",
                  static_cast<long long>(written), static_cast<long long>(count),

@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <mutex>
 
 namespace sky {
 namespace fs = std::filesystem;
@@ -46,8 +47,18 @@ fs::path cacheDir() {
   return dir;
 }
 
-const CacheStatus& cacheStatus() {
-  static const CacheStatus status = [] {
+namespace {
+std::mutex gCacheFailureMutex;
+std::string gCacheFailure;  // the first failed cache write, "" while none has failed
+}  // namespace
+
+void noteCacheWriteFailed(const std::string& error) {
+  std::lock_guard<std::mutex> lock(gCacheFailureMutex);
+  if (gCacheFailure.empty()) gCacheFailure = error.empty() ? "a write failed" : error;
+}
+
+CacheStatus cacheStatus() {
+  static const CacheStatus probed = [] {
     CacheStatus s;
     s.folder = cacheDir();
     std::error_code ec;
@@ -67,6 +78,12 @@ const CacheStatus& cacheStatus() {
     s.writable = true;
     return s;
   }();
+  CacheStatus status = probed;
+  std::lock_guard<std::mutex> lock(gCacheFailureMutex);
+  if (status.writable && !gCacheFailure.empty()) {
+    status.writable = false;
+    status.reason = gCacheFailure;
+  }
   return status;
 }
 

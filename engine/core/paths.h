@@ -13,15 +13,18 @@ std::filesystem::path configDir();  // dataRoot()/configs
 // else ~/.cache/skylayers. Created on first use.
 std::filesystem::path cacheDir();
 
-// Whether cacheDir() takes files, checked once per process by writing a probe file. A cache
-// that cannot be written only makes runs slower (bakes and shader compiles repeat), so
-// callers warn rather than fail.
+// Whether cacheDir() takes files: checked once per process by writing a probe file, and
+// false from the first cache write that failed (a full disk takes a probe but not a 30 MB
+// bake: issue 31, 10). A cache that cannot be written only makes runs slower (bakes and
+// shader compiles repeat), so callers warn rather than fail.
 struct CacheStatus {
   std::filesystem::path folder;
   bool writable = false;
   std::string reason;  // why not, when not writable
 };
-const CacheStatus& cacheStatus();
+CacheStatus cacheStatus();
+// Records that a write into the cache failed, with the error; the first one is kept.
+void noteCacheWriteFailed(const std::string& error);
 
 // The project's version (CMake's PROJECT_VERSION), for --version and render reports.
 const char* skylayersVersion();

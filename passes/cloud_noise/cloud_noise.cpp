@@ -163,8 +163,9 @@ void CloudNoise::bake(uint32_t modelId, const std::string& key, const fs::path& 
   try {
     cloud_noise::writeCacheEntry(file, key, entry);
     mActivity.wroteCache = true;
-  } catch (const Error&) {
-    // An unwritable cache folder costs a bake next time, not the render.
+  } catch (const Error& e) {
+    // An unwritable cache folder costs a bake next time, not the render; the report says so.
+    noteCacheWriteFailed(e.what());
   }
   setVolumes(std::move(entry.shape), std::move(entry.detail));
   mActivity.baked = true;

@@ -352,8 +352,9 @@ void HighCloudTextures::bake(const Scene& scene, uint32_t size, const std::strin
   try {
     high_clouds::writeCacheEntry(file, key, entry);
     mActivity.wroteCache = true;
-  } catch (const Error&) {
-    // An unwritable cache folder costs a bake next time, not the render.
+  } catch (const Error& e) {
+    // An unwritable cache folder costs a bake next time, not the render; the report says so.
+    noteCacheWriteFailed(e.what());
   }
   mActivity.baked = true;
   report(1.0);

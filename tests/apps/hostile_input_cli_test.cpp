@@ -290,5 +290,20 @@ colorspaces:
   expectBadInput("--width 16 --height 9" + args, {"lut.ocio: OCIO cannot build", "missing.cube"});
 }
 
+
+// Issue 31, 10: a cache folder on a full disk took the probe file but not the bakes, and the
+// report said "writable": true without a word. The first failed cache write now makes the
+// render warn and the report say why; the render itself succeeds.
+TEST_F(SkyrenderCli, AFullCacheDiskIsReportedButDoesNotFailTheRender) {
+  const fs::path cache = mDir / "cache";
+  CliRun r = run("render --width 16 --height 9 --out " + out(),
+                 diskFullAfter(200) + " SKY_CACHE_DIR=" + cache.string());
+  ASSERT_EQ(r.rc, 0) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("warning: the cache folder " + cache.string() + " cannot be written"));
+  const std::string report = readTextFile(mDir / "out" / "sky.json");
+  EXPECT_THAT(report, HasSubstr("\"writable\": false"));
+  EXPECT_THAT(report, HasSubstr("\"not_written_because\": \"" + cache.string()));
+}
+
 }  // namespace
 }  // namespace sky

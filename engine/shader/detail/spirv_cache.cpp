@@ -7,6 +7,7 @@
 #include <system_error>
 
 #include "engine/core/files.h"
+#include "engine/core/paths.h"
 
 namespace sky::detail {
 namespace fs = std::filesystem;
@@ -56,8 +57,10 @@ void storeCachedSpirv(const fs::path& dir, uint64_t key, std::span<const uint32_
     std::error_code ec;
     fs::create_directories(dir, ec);
     writeFileAtomic(spirvCachePath(dir, key), bytes);
-  } catch (const std::exception&) {
-    // Deliberately ignored, see the header: a cache that cannot be written is only slower.
+  } catch (const std::exception& e) {
+    // Not an error, see the header: a cache that cannot be written is only slower. The
+    // render's report and warning say so (cacheStatus).
+    noteCacheWriteFailed(e.what());
   }
 }
 
