@@ -3,11 +3,11 @@
 #include <eccodes.h>
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
-#include <iostream>
 #include <limits>
 #include <map>
 #include <memory>
@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "engine/core/error.h"
+#include "engine/weather/field_checks.h"
 #include "engine/scene/iso_time.h"
 
 namespace sky {
@@ -28,10 +29,6 @@ namespace {
 // when an allocation fails). 2^27 points is a 0.02-degree global grid, finer than any
 // operational model.
 constexpr long kMaxPoints = 1L << 27;
-
-// Values of a fraction field further than this outside [0, 1] earn the one warning line;
-// packing noise of a percent field lies well inside it.
-constexpr double kRangeSlack = 0.01;
 
 // ecCodes reports its errors through a logging callback, by default several lines on
 // stderr. We keep the last one to put into our own one-line message instead.
@@ -311,31 +308,6 @@ long pointCount(const Message& m) {
   return n;
 }
 
-double normaliseLon(double lon) {
-  while (lon >= 360.0) lon -= 360.0;
-  while (lon < -180.0) lon += 360.0;
-  return lon;
-}
-
-// Latitude a function of the row only, longitude of the column only, both monotonic.
-bool isRegular(const GridGeometry& g) {
-  auto monotonic = [](auto at, uint32_t count) {
-    if (count < 2) return true;
-    double sign = at(1) - at(0);
-    if (sign == 0.0) return false;
-    for (uint32_t k = 1; k < count; ++k)
-      if ((at(k) - at(k - 1)) * sign <= 0.0) return false;
-    return true;
-  };
-  for (uint32_t y = 0; y < g.ny; ++y)
-    for (uint32_t x = 0; x < g.nx; ++x) {
-      size_t i = size_t(y) * g.nx + x;
-      if (g.latDeg[i] != g.latDeg[size_t(y) * g.nx] || g.lonDeg[i] != g.lonDeg[x]) return false;
-    }
-  return monotonic([&](uint32_t x) { return g.lonDeg[x]; }, g.nx) &&
-         monotonic([&](uint32_t y) { return g.latDeg[size_t(y) * g.nx]; }, g.ny);
-}
-
 // Every point's position from ecCodes' geoiterator, which knows every grid type ecCodes
 // does (regular and rotated lat/lon, Lambert conformal, polar stereographic, Gaussian,
 // reduced grids...).
@@ -389,7 +361,7 @@ GridGeometry readGeometry(const Message& m) {
   if (g.latDeg.size() != size_t(n))
     m.fail("the grid gives " + std::to_string(g.latDeg.size()) + " points, numberOfPoints " +
            std::to_string(n));
-  g.regularLatLon = gridType == "regular_ll" && isRegular(g);
+  g.regularLatLon = gridType == "regular_ll" && isRegularGrid(g);
   return g;
 }
 
@@ -455,10 +427,20 @@ uint64_t readBits(const unsigned char* data, uint64_t& pos, long bits) {
 void checkDataSection(const Message& m) {
   if (!m.present("dataRepresentationTemplateNumber") || m.getLong("edition") != 2) return;
   const long tmpl = m.getLong("dataRepresentationTemplateNumber");
-  if (tmpl != 0 && tmpl != 2 && tmpl != 3) return;
   const void* msg = nullptr;
   size_t msgSize = 0;
   if (int err = codes_get_message(m.handle(), &msg, &msgSize)) m.failKey("message", err);
+  // Every packing starts section 5 with the reference value R, an IEEE single (octets
+  // 12-15), and every value is R + X 2^E / 10^D. ecCodes reads a NaN R as 0, so each value
+  // came out as finite garbage: heights near 0 m, tops below bases (issue 31, 9).
+  const long section5 = m.getLong("offsetSection5");
+  if (section5 < 0 || uint64_t(section5) + 15 > msgSize) m.fail("section 5 outside the message");
+  const unsigned char* r = static_cast<const unsigned char*>(msg) + section5 + 11;
+  const uint32_t ieee = uint32_t(r[0]) << 24 | uint32_t(r[1]) << 16 | uint32_t(r[2]) << 8 | r[3];
+  if ((ieee & 0x7f800000u) == 0x7f800000u)
+    m.fail(m.tryString("shortName").value_or("field") + ": the reference value of its data is " +
+           ((ieee & 0x007fffffu) ? "NaN" : "infinite") + ": the field is unusable");
+  if (tmpl != 0 && tmpl != 2 && tmpl != 3) return;
   const long at = m.getLong("offsetSection7"), length = m.getLong("section7Length");
   if (at < 0 || length < 5 || uint64_t(at) + uint64_t(length) > msgSize)
     m.fail("section 7 outside the message");
@@ -521,7 +503,7 @@ void checkDataSection(const Message& m) {
   if (need > haveBits) tooShort(need);
 }
 
-std::vector<float> readValues(const Message& m, size_t n) {
+std::vector<float> readValues(const Message& m, size_t n, size_t& nonFinite) {
   size_t count = 0;
   if (int err = codes_get_size(m.handle(), "values", &count)) m.failKey("values", err);
   if (count != n)
@@ -538,35 +520,19 @@ std::vector<float> readValues(const Message& m, size_t n) {
       (m.present("missingValueManagementUsed") && m.getLong("missingValueManagementUsed") != 0);
   double missing = mayMiss ? m.getDouble("missingValue") : std::numeric_limits<double>::quiet_NaN();
   std::vector<float> out(n);
-  for (size_t i = 0; i < n; ++i)
-    out[i] =
-        (mayMiss && raw[i] == missing) ? std::numeric_limits<float>::quiet_NaN() : float(raw[i]);
-  return out;
-}
-
-// Values of fraction fields found outside [0, 1] by more than kRangeSlack, for one warning.
-struct RangeReport {
-  size_t count = 0;
-  double lo = 0.0, hi = 1.0;
-  std::string names;
-};
-
-void toFraction(std::vector<float>& values, double scale, const std::string& name,
-                RangeReport& report) {
-  bool counted = false;
-  for (float& v : values) {
-    if (std::isnan(v)) continue;
-    double f = double(v) * scale;
-    if (f < -kRangeSlack || f > 1.0 + kRangeSlack) {
-      ++report.count;
-      report.lo = std::min(report.lo, f);
-      report.hi = std::max(report.hi, f);
-      if (!counted && report.names.find(name) == std::string::npos)
-        report.names += (report.names.empty() ? "" : ", ") + name;
-      counted = true;
-    }
-    v = float(std::clamp(f, 0.0, 1.0));
+  nonFinite = 0;
+  for (size_t i = 0; i < n; ++i) {
+    const bool declared = mayMiss && raw[i] == missing;
+    // A value the bitmap does not mark missing but that decodes to NaN or beyond float (a
+    // NaN reference value or scale in the data section): missing too, but counted.
+    const bool usable = std::isfinite(raw[i]) && std::fabs(raw[i]) <= double(FLT_MAX);
+    if (!declared && !usable) ++nonFinite;
+    out[i] = declared || !usable ? std::numeric_limits<float>::quiet_NaN() : float(raw[i]);
   }
+  if (nonFinite == n)
+    m.fail("every value decodes to NaN or infinity (a NaN reference value or scale?): the "
+           "field is unusable");
+  return out;
 }
 
 }  // namespace
@@ -592,7 +558,7 @@ WeatherFields readGrib2(const std::filesystem::path& file) {
   out.file = file;
   std::optional<GridKey> firstKey;
   std::map<double, WeatherStep> steps;
-  RangeReport range;
+  FieldChecks checks(fileName);
   bool haveCloudInput = false;
   int number = 0;  // of the message being read; fields of a multi-field message share it
   std::string where = fileName + ": message 1";
@@ -626,8 +592,11 @@ WeatherFields readGrib2(const std::filesystem::path& file) {
                std::to_string(firstKey->points) + "); split the file with grib_copy");
       }
 
-      LevelField field{wanted->name, wanted->pressureHpa, readValues(m, out.grid.size())};
-      if (wanted->fraction) toFraction(field.values, fractionScale(m), wanted->name, range);
+      size_t nonFinite = 0;
+      LevelField field{wanted->name, wanted->pressureHpa,
+                       readValues(m, out.grid.size(), nonFinite)};
+      checks.noteNonFinite(field.name, nonFinite, field.values.size());
+      if (wanted->fraction) checks.toFraction(field.values, fractionScale(m), wanted->name);
       haveCloudInput = haveCloudInput || wanted->name == "r" || wanted->name.starts_with("tcc_");
 
       const double valid = validTimeUnix(m);
@@ -649,11 +618,8 @@ WeatherFields readGrib2(const std::filesystem::path& file) {
                ": no relative humidity or cloud cover (r on isobaric levels, tcc on the low, "
                "middle or high cloud layer) in " +
                std::to_string(spans.size()) + " messages");
-  if (range.count > 0)
-    std::cerr << "warning: " << fileName << ": " << range.count << " values of " << range.names
-              << " outside 0..100 % (" << range.lo * 100.0 << " to " << range.hi * 100.0
-              << " %), clamped\n";
   for (auto& [time, step] : steps) out.steps.push_back(std::move(step));
+  checks.finish(out);
   return out;
 }
 

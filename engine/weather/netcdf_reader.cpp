@@ -11,12 +11,12 @@
 #include <cmath>
 #include <cstdint>
 #include <fstream>
-#include <iostream>
 #include <limits>
 #include <optional>
 #include <sstream>
 
 #include "engine/core/error.h"
+#include "engine/weather/field_checks.h"
 #include "engine/weather/detail/text.h"
 #include "engine/weather/detail/cf_time.h"
 #include "engine/weather/detail/netcdf_classic_header.h"
@@ -216,6 +216,12 @@ public:
     const std::vector<double> offset = numberAttribute(v, "add_offset");
     const double s = scale.empty() ? 1.0 : scale[0];
     const double o = offset.empty() ? 0.0 : offset[0];
+    // A NaN scale made every value NaN and the cover zero everywhere without a word (issue
+    // 31, 9): the whole variable is unusable.
+    if (!std::isfinite(s) || !std::isfinite(o))
+      fail(v.name, std::string(!std::isfinite(s) ? "scale_factor" : "add_offset") + " is " +
+                       std::to_string(!std::isfinite(s) ? s : o) +
+                       ", not a finite number: the variable is unusable");
     for (double& x : out) {
       const bool missing = std::isnan(x) || std::any_of(fills.begin(), fills.end(),
                                                         [&](double f) { return x == f; });
@@ -299,11 +305,6 @@ bool isLongitudeVar(const Var& v) {
          v.standardName == "longitude" ||
          oneOf(unitKey(v.units),
                {"degrees_east", "degree_east", "degrees_e", "degree_e", "degreese", "degreee"});
-}
-
-double normaliseLon(double lon) {
-  if (lon >= -180.0 && lon < 360.0) return lon;
-  return lon - 360.0 * std::floor((lon + 180.0) / 360.0);  // into [-180, 180)
 }
 
 struct FieldVar {
@@ -503,29 +504,8 @@ public:
         g.latDeg[k] = std::clamp(separable ? lat[j] : lat[k], -90.0, 90.0);
         g.lonDeg[k] = separable ? lon[i] : lon[k];
       }
-    g.regularLatLon = isRegular(g);
+    g.regularLatLon = isRegularGrid(g);
     return g;
-  }
-
-  static bool isRegular(const GridGeometry& g) {
-    if (g.ny < 2 && g.nx < 2) return false;
-    auto monotonic = [](auto at, size_t n) {
-      int sign = 0;
-      for (size_t i = 1; i < n; ++i) {
-        const double d = at(i) - at(i - 1);
-        const int s = d > 0 ? 1 : d < 0 ? -1 : 0;
-        if (s == 0 || (sign != 0 && s != sign)) return false;
-        sign = s;
-      }
-      return true;
-    };
-    for (size_t j = 0; j < g.ny; ++j)
-      for (size_t i = 0; i < g.nx; ++i) {
-        const size_t k = j * g.nx + i;
-        if (g.latDeg[k] != g.latDeg[j * g.nx] || g.lonDeg[k] != g.lonDeg[i]) return false;
-      }
-    return monotonic([&](size_t j) { return g.latDeg[j * g.nx]; }, g.ny) &&
-           monotonic([&](size_t i) { return g.lonDeg[i]; }, g.nx);
   }
 
   // Valid times of time dimension d (Unix seconds): the CF coordinate, WRF's XTIME or
@@ -706,6 +686,8 @@ WeatherFields readNetcdf(const std::filesystem::path& file) {
 
   const FieldVar& first = vars.front();
   r.checkSize(*first.var);  // before the grid is allocated from its dimensions
+  FieldChecks checks(file.string());
+  size_t nonFinite = 0;  // of the level being read
   WeatherFields out;
   out.file = file;
   out.grid = layout.grid(first);
@@ -749,8 +731,13 @@ WeatherFields readNetcdf(const std::filesystem::path& file) {
           const double x = raw[p] * conv.scale + conv.offset;
           const bool usable = std::isfinite(x) && std::fabs(x) <= double(FLT_MAX);
           if (usable) maxValue = std::max(maxValue, x);
+          // NaN in raw is a fill (read() maps them); a stored value that converts to NaN
+          // or beyond float is counted (FieldChecks).
+          nonFinite += !usable && !std::isnan(raw[p]);
           field.values[p] = usable ? float(x) : kNaN;
         }
+        checks.noteNonFinite(v.name, nonFinite, points);
+        nonFinite = 0;
         out.steps[s].fields.push_back(std::move(field));
       }
     // A field without a time dimension holds at every time.
@@ -764,33 +751,15 @@ WeatherFields readNetcdf(const std::filesystem::path& file) {
     // Fractions: percent by units or, whatever the units say, by a maximum above 1.5 (no
     // fraction reaches that; a percent field that does not is all but cloudless and dry).
     const bool percent = conv.percentByUnits || maxValue > 1.5;
-    size_t outside = 0;
-    float lo = std::numeric_limits<float>::infinity(), hi = -lo;
     for (WeatherStep& step : out.steps)
-      for (LevelField& field : step.fields) {
-        if (field.name != f.kind->field) continue;
-        for (float& x : field.values) {
-          if (std::isnan(x)) continue;
-          if (percent) x *= 0.01f;
-          if (x < -0.01f || x > 1.01f) {
-            ++outside;
-            lo = std::min(lo, x);
-            hi = std::max(hi, x);
-          }
-          x = std::clamp(x, 0.0f, 1.0f);
-        }
-      }
-    if (outside > 0) {
-      std::ostringstream msg;
-      msg << "warning: " << file.string() << ": " << v.name << ": " << outside
-          << " values outside [0, 1] by more than 1 % (" << lo << " .. " << hi << "), clamped";
-      std::cerr << printable(msg.str()) << "\n";
-    }
+      for (LevelField& field : step.fields)
+        if (field.name == f.kind->field) checks.toFraction(field.values, percent ? 0.01 : 1.0, v.name);
   }
 
   std::stable_sort(
       out.steps.begin(), out.steps.end(),
       [](const WeatherStep& a, const WeatherStep& b) { return a.validTimeUnix < b.validTimeUnix; });
+  checks.finish(out);
   return out;
 }
 

@@ -2,12 +2,15 @@
 // too large to parse, an argument that would fail only after the render, and a signal while
 // the device starts. The commands that could block run under `timeout`, so a regression fails
 // instead of hanging the suite.
+#include <eccodes.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -303,6 +306,68 @@ TEST_F(SkyrenderCli, AFullCacheDiskIsReportedButDoesNotFailTheRender) {
   const std::string report = readTextFile(mDir / "out" / "sky.json");
   EXPECT_THAT(report, HasSubstr("\"writable\": false"));
   EXPECT_THAT(report, HasSubstr("\"not_written_because\": \"" + cache.string()));
+}
+
+
+// A copy of the GRIB file `from` in which every message of `shortName` has a NaN reference
+// value (section 5, octets 12-15, in every packing template): each of its values decodes
+// to NaN though no bitmap marks it missing.
+void writeWithNanReference(const fs::path& from, const fs::path& to, const std::string& shortName) {
+  std::unique_ptr<FILE, int (*)(FILE*)> in(std::fopen(from.c_str(), "rb"), std::fclose);
+  ASSERT_TRUE(in);
+  std::string outBytes;
+  int err = 0;
+  while (codes_handle* h = codes_handle_new_from_file(nullptr, in.get(), PRODUCT_GRIB, &err)) {
+    const void* data = nullptr;
+    size_t size = 0;
+    ASSERT_EQ(codes_get_message(h, &data, &size), 0);
+    std::string message(static_cast<const char*>(data), size);
+    char name[64] = {};
+    size_t len = sizeof name;
+    long section5 = 0;
+    if (codes_get_string(h, "shortName", name, &len) == 0 && shortName == name &&
+        codes_get_long(h, "offsetSection5", &section5) == 0) {
+      const unsigned char nan[4] = {0x7f, 0xc0, 0x00, 0x00};  // IEEE single, big-endian
+      message.replace(size_t(section5) + 11, 4, reinterpret_cast<const char*>(nan), 4);
+    }
+    outBytes += message;
+    codes_handle_delete(h);
+  }
+  std::ofstream(to, std::ios::binary) << outBytes;
+}
+
+// Issue 31, 9: NaN in a forecast passed without a word: NaN reference values in every gh
+// gave layer tops below their bases, in every r changed the cover, and a NetCDF
+// scale_factor of NaN gave zero cover everywhere. A field that is wholly unusable is now an
+// error naming the file and the message or variable.
+TEST_F(SkyrenderCli, NonFiniteForecastValuesAreRefusedNotRendered) {
+  const fs::path data = fs::path(std::getenv("SKY_DATA_DIR")) / "tests/data/weather";
+  for (const char* field : {"gh", "r"}) {
+    const fs::path grib = mDir / (std::string(field) + "_nan.grib2");
+    writeWithNanReference(data / "gfs_2p5deg_r_gh_t_tcc_uv500.grib2", grib, field);
+    CliRun r = run("weather " + grib.string() + " --out " + out());
+    EXPECT_EQ(r.rc, 2) << field << ": " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "one line: " << r.err;
+    EXPECT_THAT(r.err, HasSubstr(grib.filename().string() + ": message "));
+    EXPECT_THAT(r.err, HasSubstr(std::string(field) +
+                                 ": the reference value of its data is NaN: the field is unusable"));
+    EXPECT_TRUE(outEmpty());
+  }
+  // The NetCDF fixture's first scale_factor (a double) set to NaN.
+  std::string nc = readTextFile(data / "gfs_trop_r_t_gh_era5style.nc");
+  const size_t at = nc.find("scale_factor");
+  ASSERT_NE(at, std::string::npos);
+  const size_t value = at + 12 + 8;  // name padded to 12 bytes, then type and count
+  ASSERT_EQ(nc.substr(at + 12, 8), std::string("\0\0\0\x06\0\0\0\x01", 8)) << "one NC_DOUBLE";
+  nc.replace(value, 8, std::string("\x7f\xf8\0\0\0\0\0\0", 8));
+  const fs::path patched = write("scale_nan.nc", nc);
+  CliRun r = run("weather " + patched.string() + " --out " + out());
+  EXPECT_EQ(r.rc, 2) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "one line: " << r.err;
+  EXPECT_THAT(r.err, HasSubstr("scale_nan.nc: "));
+  EXPECT_THAT(r.err, HasSubstr(": scale_factor is "));
+  EXPECT_THAT(r.err, HasSubstr("not a finite number: the variable is unusable"));
+  EXPECT_TRUE(outEmpty());
 }
 
 }  // namespace
