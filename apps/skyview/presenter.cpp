@@ -72,7 +72,7 @@ void UploadImage::set(const uint8_t* rgba, uint32_t width, uint32_t height) {
     alloc.allocationSize = req.size;
     alloc.memoryTypeIndex =
         mCtx.memoryType(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-    SKY_VK(vkAllocateMemory(mCtx.device(), &alloc, nullptr, &mMemory));
+    mMemory = mCtx.allocate(alloc, "the window image " + mName);
     SKY_VK(vkBindImageMemory(mCtx.device(), mImage, mMemory, 0));
     mCtx.setName(VK_OBJECT_TYPE_IMAGE, reinterpret_cast<uint64_t>(mImage), mName);
     mWidth = width;
@@ -140,7 +140,7 @@ Presenter::~Presenter() {
 }
 
 void Presenter::waitForLastFrame() {
-  SKY_VK(vkWaitForFences(mCtx.device(), 1, &mFence, VK_TRUE, UINT64_MAX));
+  mCtx.wait(mFence);
 }
 
 void Presenter::setFrame(const uint8_t* rgba, uint32_t width, uint32_t height) {
@@ -239,7 +239,7 @@ PresentStatus Presenter::present(const DebugPlacement& placement,
   submit.signalSemaphoreInfoCount = 1;
   submit.pSignalSemaphoreInfos = &signal;
   SKY_VK(vkResetFences(device, 1, &mFence));
-  SKY_VK(vkQueueSubmit2(mCtx.queue(), 1, &submit, mFence));
+  mCtx.submit(submit, mFence);
 
   VkSemaphore finished = mSwapchain.renderFinished(index);
   VkSwapchainKHR swapchain = mSwapchain.handle();

@@ -45,13 +45,11 @@ Buffer::Buffer(const Context& ctx, const BufferDesc& desc, bool allocate)
   } else {
     alloc.memoryTypeIndex = ctx.memoryType(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
   }
-  VkResult r = vkAllocateMemory(ctx.device(), &alloc, nullptr, &mMemory);
-  if (r != VK_SUCCESS) {
+  try {
+    mMemory = ctx.allocate(alloc, "buffer '" + desc.name + "'");
+  } catch (...) {
     reset();
-    if (r == VK_ERROR_OUT_OF_DEVICE_MEMORY || r == VK_ERROR_OUT_OF_HOST_MEMORY)
-      inputError("buffer '" + desc.name + "' (" + std::to_string(req.size >> 20) +
-                 " MiB) does not fit in memory on " + ctx.deviceName());
-    SKY_VK(r);
+    throw;
   }
   SKY_VK(vkBindBufferMemory(ctx.device(), mBuffer, mMemory, 0));
   if (desc.memory == BufferMemory::HostVisible)

@@ -6,6 +6,8 @@
 #include <cstring>
 #include <iostream>
 
+#include "engine/core/error.h"
+#include "engine/core/fault_injection.h"
 #include "engine/gpu/vk_check.h"
 
 namespace sky {
@@ -395,8 +397,8 @@ void Context::submitAndWait(const std::function<void(VkCommandBuffer)>& record) 
     VkSubmitInfo2 submit{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
     submit.commandBufferInfoCount = 1;
     submit.pCommandBufferInfos = &cb;
-    SKY_VK(vkQueueSubmit2(mQueue, 1, &submit, fence));
-    SKY_VK(vkWaitForFences(mDevice, 1, &fence, VK_TRUE, UINT64_MAX));
+    this->submit(submit, fence);
+    wait(fence);
   } catch (...) {
     if (fence) vkDestroyFence(mDevice, fence, nullptr);
     vkFreeCommandBuffers(mDevice, mUploadPool, 1, &cmd);
@@ -413,6 +415,41 @@ void Context::setName(VkObjectType type, uint64_t handle, const std::string& nam
   info.objectHandle = handle;
   info.pObjectName = name.c_str();
   mSetObjectName(mDevice, &info);
+}
+
+namespace {
+// One line for a device that stopped working: the cause is the driver's or the GPU's, and
+// the run ends with exit 1 after its temporary files are removed (docs/outputs.md).
+[[noreturn]] void deviceFailed(VkResult r, const char* during, const std::string& device) {
+  if (r == VK_ERROR_DEVICE_LOST)
+    internalError("the Vulkan device " + device + " was lost (VK_ERROR_DEVICE_LOST) " + during +
+                  ": the driver or the GPU failed; the frame was not written");
+  internalError(std::string("Vulkan ") + during + " on " + device + " failed: " + vkResultName(r));
+}
+}  // namespace
+
+void Context::submit(const VkSubmitInfo2& info, VkFence fence) const {
+  VkResult r = faultAt(FaultPoint::DeviceLostAtSubmit) ? VK_ERROR_DEVICE_LOST
+                                                       : vkQueueSubmit2(mQueue, 1, &info, fence);
+  if (r != VK_SUCCESS) deviceFailed(r, "at a queue submit", deviceName());
+}
+
+void Context::wait(VkFence fence) const {
+  VkResult r = vkWaitForFences(mDevice, 1, &fence, VK_TRUE, UINT64_MAX);
+  if (r != VK_SUCCESS) deviceFailed(r, "while waiting for the GPU", deviceName());
+}
+
+VkDeviceMemory Context::allocate(const VkMemoryAllocateInfo& info, const std::string& what) const {
+  VkDeviceMemory memory = VK_NULL_HANDLE;
+  VkResult r = faultAt(FaultPoint::OutOfDeviceMemory)
+                   ? VK_ERROR_OUT_OF_DEVICE_MEMORY
+                   : vkAllocateMemory(mDevice, &info, nullptr, &memory);
+  if (r == VK_ERROR_OUT_OF_DEVICE_MEMORY || r == VK_ERROR_OUT_OF_HOST_MEMORY)
+    internalError("out of memory on " + deviceName() + " (" + vkResultName(r) + ") for " + what +
+                  ", " + std::to_string(info.allocationSize >> 20) +
+                  " MiB (lower output.width and output.height, or free the GPU)");
+  if (r != VK_SUCCESS) deviceFailed(r, "allocating memory", deviceName());
+  return memory;
 }
 
 }  // namespace sky

@@ -67,6 +67,14 @@ public:
 
   // A memory type index with all of `flags` among `typeBits`; Internal error if none.
   uint32_t memoryType(uint32_t typeBits, VkMemoryPropertyFlags flags) const;
+  // vkQueueSubmit2 on the compute queue. A lost device is an Internal error that says so
+  // (exit 1), as is any other failure; SKY_FAULT=device_lost_submit injects the loss.
+  void submit(const VkSubmitInfo2& info, VkFence fence) const;
+  // Waits for `fence`; a device lost while waiting is the same Internal error.
+  void wait(VkFence fence) const;
+  // vkAllocateMemory. Out of device or host memory is an Internal error naming `what`, its
+  // size and the device, with what to lower; SKY_FAULT=out_of_device_memory injects it.
+  VkDeviceMemory allocate(const VkMemoryAllocateInfo& info, const std::string& what) const;
   // Records with `record`, submits on the compute queue and waits. For uploads and tests.
   void submitAndWait(const std::function<void(VkCommandBuffer)>& record) const;
   // Gives a Vulkan object a debug name (shown in validation messages) when debug utils exist.

@@ -112,13 +112,11 @@ Image::Image(const Context& ctx, const ImageDesc& desc, bool allocate) : mCtx(&c
   VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
   alloc.allocationSize = req.size;
   alloc.memoryTypeIndex = ctx.memoryType(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-  VkResult r = vkAllocateMemory(ctx.device(), &alloc, nullptr, &mOwnedMemory);
-  if (r != VK_SUCCESS) {
+  try {
+    mOwnedMemory = ctx.allocate(alloc, "image '" + desc.name + "'");
+  } catch (...) {
     reset();
-    if (r == VK_ERROR_OUT_OF_DEVICE_MEMORY || r == VK_ERROR_OUT_OF_HOST_MEMORY)
-      inputError("image '" + desc.name + "' (" + std::to_string(req.size >> 20) +
-                 " MiB) does not fit in memory on " + ctx.deviceName());
-    SKY_VK(r);
+    throw;
   }
   SKY_VK(vkBindImageMemory(ctx.device(), mImage, mOwnedMemory, 0));
   createView();

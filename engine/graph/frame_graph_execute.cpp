@@ -128,14 +128,7 @@ FrameResult FrameGraph::execute() {
       VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
       alloc.allocationSize = slot.size;
       alloc.memoryTypeIndex = ctx.memoryType(slot.typeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-      VkDeviceMemory memory;
-      VkResult r = vkAllocateMemory(ctx.device(), &alloc, nullptr, &memory);
-      if (r == VK_ERROR_OUT_OF_DEVICE_MEMORY || r == VK_ERROR_OUT_OF_HOST_MEMORY)
-        inputError("frame graph: " + std::to_string(slot.size >> 20) +
-                   " MiB of transient memory do not fit on " + ctx.deviceName() +
-                   " (lower output.width/height)");
-      SKY_VK(r);
-      t.memory.push_back(memory);
+      t.memory.push_back(ctx.allocate(alloc, "the frame graph's transient images"));
       t.bytes += slot.size;
     }
     t.images.resize(mDesc.resources.size());

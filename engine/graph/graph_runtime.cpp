@@ -66,8 +66,8 @@ void GraphRuntime::submitAndWait() {
   submit.commandBufferInfoCount = 1;
   submit.pCommandBufferInfos = &cb;
   SKY_VK(vkResetFences(mCtx.device(), 1, &mFence));
-  SKY_VK(vkQueueSubmit2(mCtx.queue(), 1, &submit, mFence));
-  SKY_VK(vkWaitForFences(mCtx.device(), 1, &mFence, VK_TRUE, UINT64_MAX));
+  mCtx.submit(submit, mFence);
+  mCtx.wait(mFence);
 }
 
 // The arena's ranges bind as uniform or as storage buffers, so its chunks carry both usages

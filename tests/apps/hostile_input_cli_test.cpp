@@ -370,5 +370,42 @@ TEST_F(SkyrenderCli, NonFiniteForecastValuesAreRefusedNotRendered) {
   EXPECT_TRUE(outEmpty());
 }
 
+
+// Device faults (issue 31): a device lost at a queue submit, and out of device memory at an
+// allocation, injected with SKY_FAULT. One line, exit 1, no temporary left, and in a
+// time-lapse the frames finished before the fault kept whole (each report beside its images).
+TEST_F(SkyrenderCli, DeviceFaultsEndTheRunWithOneLineAndKeepWholeFrames) {
+  const std::string cold = " SKY_CACHE_DIR=" + (mDir / "cache").string();  // same submits each run
+  CliRun r = run("render --width 16 --height 9 --out " + out(), "SKY_FAULT=out_of_device_memory" + cold);
+  EXPECT_EQ(r.rc, 1) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "one line: " << r.err;
+  EXPECT_THAT(r.err, HasSubstr("error: out of memory on "));
+  EXPECT_THAT(r.err, HasSubstr("(VK_ERROR_OUT_OF_DEVICE_MEMORY) for "));
+  EXPECT_TRUE(outEmpty());
+  r = run("render --width 16 --height 9 --out " + out(), "SKY_FAULT=device_lost_submit" + cold);
+  EXPECT_EQ(r.rc, 1) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "one line: " << r.err;
+  EXPECT_THAT(r.err, HasSubstr("was lost (VK_ERROR_DEVICE_LOST) at a queue submit"));
+  EXPECT_TRUE(outEmpty());
+  // With a cold cache the first frame takes about 25 submits (the bakes), each later one one:
+  // the 30th comes in the eighth frame or so, well before the 24th.
+  const fs::path dir = mDir / "lapse";
+  r = run("render --width 16 --height 9 --time 2024-06-21T00:00Z/2024-06-21T23:00Z/1h --out " +
+              dir.string(),
+          "SKY_FAULT=device_lost_submit@30" + cold);
+  EXPECT_EQ(r.rc, 1) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("VK_ERROR_DEVICE_LOST"));
+  ASSERT_TRUE(fs::exists(dir / "sky_0001.json")) << "the frames before the fault are kept";
+  EXPECT_FALSE(fs::exists(dir / "sky_0024.json"));
+  for (const auto& e : fs::directory_iterator(dir)) {
+    const fs::path p = e.path();
+    EXPECT_NE(p.filename().string().rfind(".tmp-", 0), 0u) << p;
+    if (p.extension() == ".json") {
+      EXPECT_TRUE(fs::exists(fs::path(p).replace_extension(".exr"))) << p;
+      EXPECT_TRUE(fs::exists(fs::path(p).replace_extension(".png"))) << p;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace sky
