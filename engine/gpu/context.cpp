@@ -133,6 +133,8 @@ ContextOptions ContextOptions::fromEnvironment() {
   ContextOptions o;
   const char* v = std::getenv("SKY_VALIDATION");
   o.validation = v && std::strcmp(v, "0") != 0 && *v;
+  // SKY_VALIDATION=core: the core checks alone (synchronisation validation slows a frame).
+  o.syncValidation = o.validation && std::strcmp(v, "core") != 0;
   return o;
 }
 
@@ -216,6 +218,18 @@ void Context::createInstance(const ContextOptions& options) {
   info.ppEnabledExtensionNames = extensions.data();
   // Chained so messages from vkCreateInstance/vkDestroyInstance are caught too.
   if (mValidation) info.pNext = &messenger;
+  // Synchronisation validation with the core checks (issue 31): a missing or wrong barrier
+  // between two passes is a hazard message, which fails a test like any other. The frame
+  // graph places every barrier, so this checks the graph's ordering, not a pass's code.
+  const VkValidationFeatureEnableEXT syncValidation =
+      VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT;
+  VkValidationFeaturesEXT features{VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT};
+  features.enabledValidationFeatureCount = 1;
+  features.pEnabledValidationFeatures = &syncValidation;
+  if (mValidation && options.syncValidation) {
+    features.pNext = info.pNext;
+    info.pNext = &features;
+  }
 
   VkResult r = vkCreateInstance(&info, nullptr, &mInstance);
   if (r == VK_ERROR_INCOMPATIBLE_DRIVER) internalError(kNoDevice);

@@ -18,6 +18,9 @@ struct ContextOptions {
   std::string gpu;
   // Khronos validation layers; defaults to $SKY_VALIDATION=1.
   bool validation = false;
+  // With validation, synchronisation validation too (hazards between passes); on unless
+  // $SKY_VALIDATION=core.
+  bool syncValidation = true;
   // Receives every validation message (warnings and errors). Default: print to stderr with the
   // prefix "Vulkan validation: ".
   std::function<void(std::string_view)> onValidationMessage;

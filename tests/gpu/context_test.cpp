@@ -43,6 +43,37 @@ TEST(GpuValidation, AMisuseReachesTheHandler) {
   EXPECT_EQ(ctx.validationMessageCount(), messages.size());
 }
 
+// Synchronisation validation is on with the layers (issue 31): two writes to one buffer
+// with no barrier between them are a hazard, and it reaches the handler like any message.
+TEST(GpuValidation, AHazardBetweenTwoWritesReachesTheHandler) {
+  ContextOptions options;
+  options.validation = true;
+  std::vector<std::string> messages;
+  options.onValidationMessage = [&](std::string_view m) { messages.emplace_back(m); };
+  Context ctx(options);
+  VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+  info.size = 256;
+  info.usage = VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+  VkBuffer buffer = VK_NULL_HANDLE;
+  ASSERT_EQ(vkCreateBuffer(ctx.device(), &info, nullptr, &buffer), VK_SUCCESS);
+  VkMemoryRequirements req;
+  vkGetBufferMemoryRequirements(ctx.device(), buffer, &req);
+  VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+  alloc.allocationSize = req.size;
+  alloc.memoryTypeIndex = ctx.memoryType(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+  VkDeviceMemory memory = ctx.allocate(alloc, "the hazard test's buffer");
+  ASSERT_EQ(vkBindBufferMemory(ctx.device(), buffer, memory, 0), VK_SUCCESS);
+  ASSERT_TRUE(messages.empty()) << messages.front();
+  ctx.submitAndWait([&](VkCommandBuffer cmd) {
+    vkCmdFillBuffer(cmd, buffer, 0, 256, 1u);
+    vkCmdFillBuffer(cmd, buffer, 0, 256, 2u);  // no barrier: write after write
+  });
+  vkDestroyBuffer(ctx.device(), buffer, nullptr);
+  vkFreeMemory(ctx.device(), memory, nullptr);
+  ASSERT_FALSE(messages.empty()) << "synchronisation validation is off";
+  EXPECT_THAT(messages.front(), HasSubstr("WRITE_AFTER_WRITE"));
+}
+
 TEST(GpuContext, GpuByIndexAndUnknownNameListsDevices) {
   ContextOptions byIndex;
   byIndex.gpu = "0";
