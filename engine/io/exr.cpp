@@ -143,21 +143,46 @@ void writeExr(const fs::path& path, const LayeredImage& image) {
   });
 }
 
+namespace {
+// The largest EXR read: a side of 32768 and 2^28 values (1 GiB of floats), far past any
+// render, map or texture skylayers makes or reads (output sizes stop at 16384).
+constexpr int64_t kMaxExrSide = 32768;
+constexpr int64_t kMaxExrValues = int64_t(1) << 28;
+}  // namespace
+
 LayeredImage readExr(const fs::path& path) {
   std::error_code ec;
   if (!fs::exists(path, ec)) inputError(path.string() + ": cannot read EXR: file not found");
   if (fs::is_directory(path, ec)) inputError(path.string() + ": cannot read EXR: is a directory");
   refuseSpecialFile(path);
 
+  // A header can claim any data window: OpenEXR allocates its line-offset table from it in
+  // the constructor, and we the pixels, so a 100-byte file took all memory (tests/fuzz
+  // image_fuzz, issue 31). OpenEXR refuses a window past these sides before allocating; the
+  // values are capped below.
+  static const bool limited = [] {
+    Imf::Header::setMaxImageSize(kMaxExrSide, kMaxExrSide);
+    Imf::Header::setMaxTileSize(kMaxExrSide, kMaxExrSide);
+    return true;
+  }();
+  (void)limited;
+
   LayeredImage image;
   try {
     Imf::InputFile file(path.c_str());
     const Imf::Header& header = file.header();
     const Imath::Box2i dw = header.dataWindow();
-    image.width = dw.max.x - dw.min.x + 1;
-    image.height = dw.max.y - dw.min.y + 1;
-    if (image.width <= 0 || image.height <= 0)
-      inputError(path.string() + ": EXR has an empty data window");
+    const int64_t width = int64_t(dw.max.x) - dw.min.x + 1, height = int64_t(dw.max.y) - dw.min.y + 1;
+    if (width <= 0 || height <= 0) inputError(path.string() + ": EXR has an empty data window");
+    int64_t channels = 0;
+    for (auto it = header.channels().begin(); it != header.channels().end(); ++it) ++channels;
+    if (width > kMaxExrSide || height > kMaxExrSide || width * height * channels > kMaxExrValues)
+      inputError(path.string() + ": EXR data window " + std::to_string(width) + "x" +
+                 std::to_string(height) + " with " + std::to_string(channels) +
+                 " channels is larger than skylayers reads (" + std::to_string(kMaxExrSide) +
+                 " a side, " + std::to_string(kMaxExrValues) + " values)");
+    image.width = int(width);
+    image.height = int(height);
 
     // Group channels into layers by the text before the last '.' ("sky.R" -> "sky", "R").
     for (auto it = header.channels().begin(); it != header.channels().end(); ++it) {

@@ -173,6 +173,32 @@ TEST_F(ExrTest, ReadsRgbaFileFromOtherToolsWithOffsetDataWindow) {
   EXPECT_EQ(p[(2 * 4 + 3) * 4 + 3], 1.0f);
 }
 
+// A header may claim any data window (tests/fuzz image_fuzz took all memory with a 100-byte
+// file): past 32768 a side, or 2^28 values, the file is refused before anything is allocated
+// for its pixels.
+TEST_F(ExrTest, AHugeDataWindowIsRefusedBeforeItsPixels) {
+  LayeredImage image;
+  image.width = 4;
+  image.height = 4;
+  image.layers.push_back({"", {"R"}, std::vector<float>(16, 0.5f)});
+  const fs::path good = dir() / "small.exr";
+  writeExr(good, image);
+  std::string bytes = readTextFile(good);
+  const std::string key("dataWindow\0box2i\0", 17);
+  const size_t at = bytes.find(key);
+  ASSERT_NE(at, std::string::npos);
+  std::string patched = bytes;
+  const int32_t box[4] = {0, 0, 99999, 3};  // little-endian, as EXR stores it
+  patched.replace(at + key.size() + 4, 16, reinterpret_cast<const char*>(box), 16);
+  const fs::path big = dir() / "big.exr";
+  writeFileAtomic(big, patched);
+  Error e = catchError([&] { readExr(big); });
+  EXPECT_EQ(e.kind(), ErrorKind::BadInput) << e.what();
+  EXPECT_TRUE(mentions(e, big)) << e.what();
+  EXPECT_NE(std::string(e.what()).find("exceeds the maximum width of 32768"), std::string::npos)
+      << e.what();
+}
+
 TEST_F(ExrTest, TruncatedFileIsBadInputNamingIt) {
   LayeredImage image;
   image.width = 64;

@@ -1,0 +1,143 @@
+// The CI counterpart of tests/fuzz/image_fuzz.cpp: deterministic mutations (bit flips,
+// truncations, zeroed and overwritten ranges, half of them in the header) of one small EXR
+// and one small PNG from tests/data through readExr and readPng. Each must give an image
+// whose pixel count matches its size, or a BadInput sky::Error with a one-line message that
+// names the file; a crash or any other exception fails the test.
+#include <cstdlib>
+#include <filesystem>
+#include <random>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "engine/core/error.h"
+#include "engine/core/files.h"
+#include "engine/io/exr.h"
+#include "engine/io/png.h"
+#include "io_test_util.h"
+
+namespace sky {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path testData() {
+  const char* v = std::getenv("SKY_TEST_DATA");  // set by tests/support's main()
+  return v && *v ? fs::path(v) : fs::path("tests/data");
+}
+
+std::string mutate(const std::string& base, std::mt19937& rng, int kind, size_t header) {
+  std::string m = base;
+  // Half the edits land in the header, where the sizes, counts and offsets are.
+  auto offset = [&](size_t limit) {
+    const size_t span = (rng() % 2) ? std::min(limit, header) : limit;
+    return size_t(rng() % span);
+  };
+  switch (kind) {
+    case 0:  // one to three flipped bits
+      for (int i = 0, n = 1 + int(rng() % 3); i < n; ++i)
+        m[offset(m.size())] ^= char(1 << (rng() % 8));
+      break;
+    case 1:  // cut short
+      m.resize(offset(m.size()));
+      break;
+    case 2: {  // a zeroed range
+      const size_t at = offset(m.size()), len = 1 + rng() % 16;
+      for (size_t i = at; i < std::min(m.size(), at + len); ++i) m[i] = 0;
+      break;
+    }
+    default: {  // a range of 0xff or random bytes (huge sizes, counts and offsets)
+      const size_t at = offset(m.size()), len = 1 + rng() % 8;
+      const bool ones = rng() % 2;
+      for (size_t i = at; i < std::min(m.size(), at + len); ++i) m[i] = char(ones ? 0xff : rng());
+      break;
+    }
+  }
+  return m;
+}
+
+class ImageFuzz : public test::ScratchDirTest {
+protected:
+  void expectBadInput(const Error& e, const fs::path& file, int i) {
+    ++errors;
+    EXPECT_EQ(e.kind(), ErrorKind::BadInput) << i << ": " << e.what();
+    EXPECT_TRUE(test::mentions(e, file)) << i << ": " << e.what();
+    EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << i << ": " << e.what();
+  }
+  int errors = 0, reads = 0;
+};
+
+TEST_F(ImageFuzz, MutatedExrEndsInAnImageOrABadInputError) {
+  const std::string base = readTextFile(testData() / "high_clouds" / "coefficients_32.exr");
+  ASSERT_GT(base.size(), 100u);
+  ASSERT_EQ(base.substr(0, 4), std::string("\x76\x2f\x31\x01", 4));
+  // The header and the chunk offset table take this file's first 352 bytes.
+  const size_t header = 352;
+  const fs::path file = dir() / "fuzz.exr";
+  writeFileAtomic(file, base);
+  ASSERT_NO_THROW(readExr(file));
+
+  std::mt19937 rng(20240621);
+  for (int i = 0; i < 300; ++i) {
+    writeFileAtomic(file, mutate(base, rng, (i / 3) % 4, header));
+    try {
+      const LayeredImage image = readExr(file);
+      ++reads;
+      ASSERT_GT(image.width, 0) << i;
+      ASSERT_GT(image.height, 0) << i;
+      ASSERT_FALSE(image.layers.empty()) << i;
+      for (const ImageLayer& layer : image.layers) {
+        ASSERT_FALSE(layer.channels.empty()) << i;
+        ASSERT_EQ(layer.pixels.size(),
+                  size_t(image.width) * size_t(image.height) * layer.channels.size())
+            << i;
+      }
+    } catch (const Error& e) {
+      expectBadInput(e, file, i);
+    } catch (const std::exception& e) {
+      ADD_FAILURE() << "mutation " << i << ": not a sky::Error: " << e.what();
+    }
+  }
+  // Both outcomes occur: the mutations neither all break the file nor all miss.
+  EXPECT_GT(errors, 30);
+  EXPECT_GT(reads, 30);
+  RecordProperty("reads", reads);
+}
+
+TEST_F(ImageFuzz, MutatedPngEndsInAnImageOrABadInputError) {
+  const std::string base = readTextFile(testData() / "high_clouds" / "rgb_64.png");
+  ASSERT_GT(base.size(), 100u);
+  ASSERT_EQ(base.substr(1, 3), "PNG");
+  const fs::path file = dir() / "fuzz.png";
+  writeFileAtomic(file, base);
+  ASSERT_NO_THROW(readPng(file));
+
+  std::mt19937 rng(20240621);
+  for (int i = 0; i < 300; ++i) {
+    // The signature, IHDR (size, depth, colour type) and the start of the first IDAT.
+    writeFileAtomic(file, mutate(base, rng, (i / 3) % 4, 64));
+    try {
+      const Image8 image = readPng(file);
+      ++reads;
+      ASSERT_GT(image.width, 0) << i;
+      ASSERT_GT(image.height, 0) << i;
+      ASSERT_GE(image.channels, 1) << i;
+      ASSERT_LE(image.channels, 4) << i;
+      ASSERT_EQ(image.pixels.size(),
+                size_t(image.width) * size_t(image.height) * size_t(image.channels))
+          << i;
+    } catch (const Error& e) {
+      expectBadInput(e, file, i);
+    } catch (const std::exception& e) {
+      ADD_FAILURE() << "mutation " << i << ": not a sky::Error: " << e.what();
+    }
+  }
+  // Most edits break the zlib stream or a chunk length; a few (in pixels, in ignored CRCs
+  // and ancillary chunks) still read.
+  EXPECT_GT(errors, 100);
+  EXPECT_GT(reads, 5);
+  RecordProperty("reads", reads);
+}
+
+}  // namespace
+}  // namespace sky
