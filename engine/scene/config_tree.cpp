@@ -319,7 +319,9 @@ ConfigNode parseOneDocument(std::string_view text, const YamlTreeBuilder::At& at
     if (!first.hasRoot()) return ConfigNode::makeNull(at(YAML::Mark()));
     return first.takeRoot();
   } catch (const YAML::Exception& e) {
-    inputError(at(e.mark).str() + ": YAML syntax error: " + e.msg);
+    // yaml-cpp quotes the offending character raw ("unknown escape character: " and a NUL,
+    // a CR): escaped, so the error stays one line (found by tests/fuzz/scene_fuzz).
+    inputError(at(e.mark).str() + ": YAML syntax error: " + messageText(e.msg, 200));
   }
 }
 
