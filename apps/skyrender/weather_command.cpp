@@ -53,7 +53,9 @@ std::vector<float> channel(const WeatherMap& map, int c) {
 
 bool hasTcc(const WeatherFields& fields) {
   for (const WeatherStep& step : fields.steps)
-    if (step.find("tcc_low") && step.find("tcc_mid") && step.find("tcc_high")) return true;
+    if (step.find(FieldKind::CloudCoverLow) && step.find(FieldKind::CloudCoverMid) &&
+        step.find(FieldKind::CloudCoverHigh))
+      return true;
   return false;
 }
 
@@ -84,9 +86,10 @@ int weatherCommand(const std::vector<std::string>& argv) {
   // Without weather.region the map shows the file's whole grid.
   WeatherSource source;
   source.setWholeDataRegion(true);
-  const WeatherMap map = source.map(scene, scene.time.start);
+  const WeatherInputs inputs = weatherInputs(scene);
+  const WeatherMap map = source.map(inputs, scene.time.start);
   const WeatherFields& fields = *source.fields();
-  const double time = weatherTimeUnix(scene, scene.time.start);
+  const double time = weatherTimeUnix(inputs, scene.time.start);
   const std::array<std::vector<float>, 6> altitudes =
       layerAltitudeMaps(fields, time, scene.weather, map.region);
   const int w = int(map.width), h = int(map.height);
@@ -149,7 +152,7 @@ int weatherCommand(const std::vector<std::string>& argv) {
   if (scene.weather.cover == WeatherCover::Rh && hasTcc(fields)) {
     WeatherSettings settings = scene.weather;
     settings.cover = WeatherCover::Tcc;
-    tcc = weatherMapFromFields(fields, time, settings, map.region, sceneWindMs(scene.clouds));
+    tcc = weatherMapFromFields(fields, time, settings, map.region, inputs.windMs);
   }
   for (int l = 0; l < 3; ++l) {
     const LayerFigures f = figures(layers[l]);

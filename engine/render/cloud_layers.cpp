@@ -27,7 +27,7 @@ CloudLayers::CloudLayers(const Context& ctx, ShaderCompiler& compiler, GraphRunt
 
 const WeatherMap& CloudLayers::weatherMap(const Scene& scene, const IsoTime& time) {
   const uint64_t before = mSource.revision();
-  const WeatherMap& map = mSource.map(scene, time);
+  const WeatherMap& map = mSource.map(weatherInputs(scene), time);
   if (mSource.revision() != before) ++mMapRevision;
   return map;
 }

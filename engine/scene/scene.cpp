@@ -91,4 +91,21 @@ std::vector<SceneInputFile> sceneInputFiles(const Scene& scene) {
   return files;
 }
 
+glm::dvec2 windEastNorthMs(const CloudSettings& clouds) {
+  constexpr double kDeg = 3.14159265358979323846 / 180.0;
+  const double toward = (clouds.windFrom + 180.0) * kDeg;
+  return clouds.windSpeedMs * glm::dvec2(std::sin(toward), std::cos(toward));
+}
+
+WeatherInputs weatherInputs(const Scene& scene) {
+  WeatherInputs in;
+  in.settings = scene.weather;
+  if (!scene.weather.image.empty()) in.image = scene.resolvePath(scene.weather.image);
+  if (!scene.weather.file.empty()) in.file = scene.resolvePath(scene.weather.file);
+  in.cameraLatLonDeg = {scene.camera.latitude, scene.camera.longitude};
+  in.windMs = windEastNorthMs(scene.clouds);
+  in.start = scene.time.start;
+  return in;
+}
+
 }  // namespace sky

@@ -434,9 +434,10 @@ struct WeatherSettings {
   // clouds.wind_*; None holds it.
   WeatherAdvection advection = WeatherAdvection::None;
   double steeringHpa = 500.0;  // 1..1100
-  // The instant the map shows at the scene's first frame (ISO 8601); later frames of a
-  // time-lapse move it on by the same time. Empty: the scene's time.
-  std::string time;
+  // The instant the map shows at the scene's first frame (ISO 8601, parsed once as the scene
+  // is read); later frames of a time-lapse move it on by the same time. Absent: the scene's
+  // time.
+  std::optional<IsoTime> time;
   // Kozlov section 5's local weather: the cover around the camera filtered over this radius.
   double localRadiusKm = 5.0;  // 0.1..200
   // Cellular-automaton growth and decay between forecast steps (Liu et al. 2015, Dobashi).
@@ -513,5 +514,21 @@ struct SceneInputFile {
 // weather.file by weather.source. A weather.file with '*' or '?' is left out (it names
 // files by a pattern). `skyrender validate` checks each.
 std::vector<SceneInputFile> sceneInputFiles(const Scene& scene);
+
+// clouds.wind_speed_ms from clouds.wind_from as (east, north) m/s.
+glm::dvec2 windEastNorthMs(const CloudSettings& clouds);
+
+// What the weather map (engine/weather) is made from: weather.* and the few other facts of
+// the scene it reads, each parsed and resolved here once, so no weather function reads a
+// whole Scene or resolves a path again.
+struct WeatherInputs {
+  WeatherSettings settings;          // weather.*, paths as the scene gives them (messages)
+  std::filesystem::path image;       // weather.image resolved against the scene's folder
+  std::filesystem::path file;        // weather.file resolved (its name may be a pattern)
+  glm::dvec2 cameraLatLonDeg{0.0};   // where the default region (no weather.region) centres
+  glm::dvec2 windMs{0.0};            // clouds.wind (east, north) m/s: advection "wind"
+  IsoTime start;                     // the scene's first frame: the instant weather.time is at
+};
+WeatherInputs weatherInputs(const Scene& scene);
 
 }  // namespace sky

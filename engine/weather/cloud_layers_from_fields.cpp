@@ -390,7 +390,7 @@ Bracket bracketTime(const std::vector<WeatherStep>& steps, double timeUnix) {
 
 struct LayerSpec {
   const char* key;      // weather.<key>
-  const char* tccName;  // the model's own cover of the layer
+  FieldKind tcc;        // the model's own cover of the layer
   const WeatherLevelSettings* levels;
 };
 
@@ -408,13 +408,13 @@ std::vector<float> stepLayerCover(const WeatherFields& fields, const WeatherStep
   const size_t n = fields.grid.size();
   const auto checkSize = [&](const LevelField& f) {
     if (f.values.size() != n)
-      internalError(fileName(fields) + ": field " + f.name + " has " +
+      internalError(fileName(fields) + ": field " + fieldName(f.kind) + " has " +
                     std::to_string(f.values.size()) + " values on a grid of " + std::to_string(n));
   };
   if (weather.cover == WeatherCover::Tcc) {
-    const LevelField* f = step.find(layer.tccName, 0.0);
+    const LevelField* f = step.find(layer.tcc, 0.0);
     if (!f)
-      inputError(std::string("weather.cover: tcc needs ") + layer.tccName +
+      inputError(std::string("weather.cover: tcc needs ") + fieldName(layer.tcc) +
                  " (the model's cloud cover of its " + layer.key + " layer), which " +
                  fileName(fields) + " does not have; use cover rh");
     checkSize(*f);
@@ -430,7 +430,7 @@ std::vector<float> stepLayerCover(const WeatherFields& fields, const WeatherStep
   const WeatherLevelSettings& s = *layer.levels;
   if (!(s.topHpa < s.bottomHpa))
     inputError(std::string("weather.") + layer.key + ".top_hpa: must be below bottom_hpa");
-  const std::vector<double> all = step.levels("r");
+  const std::vector<double> all = step.levels(FieldKind::RelativeHumidity);
   std::vector<double> used;
   for (double p : all)
     if (p >= s.topHpa - 0.01 && p <= s.bottomHpa + 0.01) used.push_back(p);
@@ -444,7 +444,7 @@ std::vector<float> stepLayerCover(const WeatherFields& fields, const WeatherStep
   std::vector<float> cover(n, 0.0f);
   const auto rhCritical = float(s.rhCritical);
   for (double p : used) {
-    const LevelField& f = *step.find("r", p);
+    const LevelField& f = *step.find(FieldKind::RelativeHumidity, p);
     checkSize(f);
     for (size_t k = 0; k < n; ++k)
       cover[k] = std::max(cover[k], humidityCover(f.values[k], rhCritical));
@@ -457,8 +457,8 @@ class HeightMeans {
 public:
   HeightMeans(const WeatherFields& fields, const WeatherStep& step, const WeatherRegion& region)
       : mFields(fields), mStep(step), mRegion(region) {
-    for (double p : step.levels("gh")) {
-      const LevelField& f = *step.find("gh", p);
+    for (double p : step.levels(FieldKind::GeopotentialHeight)) {
+      const LevelField& f = *step.find(FieldKind::GeopotentialHeight, p);
       if (f.values.size() == fields.grid.size() &&
           std::any_of(f.values.begin(), f.values.end(), [](float v) { return std::isfinite(v); }))
         mLevels.push_back(p);  // descending: surface first
@@ -491,7 +491,7 @@ private:
       const glm::uvec2 size = meanMapSize();
       mResampler.emplace(mFields.grid, mRegion, size.x, size.y);
     }
-    const LevelField& f = *mStep.find("gh", p);
+    const LevelField& f = *mStep.find(FieldKind::GeopotentialHeight, p);
     // Missing heights take the level's own mean: a hole must not pull the layer to 0 m.
     double finiteSum = 0.0;
     size_t finite = 0;
@@ -521,9 +521,9 @@ private:
 
 LayerCover stepLayers(const WeatherFields& fields, const WeatherStep& step,
                       const WeatherSettings& weather, const WeatherRegion& region) {
-  const LayerSpec specs[3] = {{"low", "tcc_low", &weather.low},
-                              {"mid", "tcc_mid", &weather.mid},
-                              {"high", "tcc_high", &weather.high}};
+  const LayerSpec specs[3] = {{"low", FieldKind::CloudCoverLow, &weather.low},
+                              {"mid", FieldKind::CloudCoverMid, &weather.mid},
+                              {"high", FieldKind::CloudCoverHigh, &weather.high}};
   LayerCover out;
   out.low = stepLayerCover(fields, step, weather, specs[0]);
   out.mid = stepLayerCover(fields, step, weather, specs[1]);
@@ -546,8 +546,8 @@ std::vector<float> altitudeAtPressure(const WeatherFields& fields, const Weather
   const size_t n = fields.grid.size();
   std::vector<double> levels;
   std::vector<std::vector<float>> heights;
-  for (double level : step.levels("gh")) {
-    const LevelField& f = *step.find("gh", level);
+  for (double level : step.levels(FieldKind::GeopotentialHeight)) {
+    const LevelField& f = *step.find(FieldKind::GeopotentialHeight, level);
     if (f.values.size() != n) continue;
     double sum = 0.0;
     size_t finite = 0;
@@ -654,10 +654,10 @@ WeatherMap weatherMapFromFields(const WeatherFields& fields, double timeUnix,
     advectMap(map, sceneWindMs, dt);
     return map;
   }
-  const LevelField* u = step.find("u", weather.steeringHpa);
-  const LevelField* v = step.find("v", weather.steeringHpa);
+  const LevelField* u = step.find(FieldKind::WindU, weather.steeringHpa);
+  const LevelField* v = step.find(FieldKind::WindV, weather.steeringHpa);
   if (!u || !v) {
-    const std::vector<double> levels = step.levels(u ? "v" : "u");
+    const std::vector<double> levels = step.levels(u ? FieldKind::WindV : FieldKind::WindU);
     inputError("weather.advection: data needs the wind (u and v) at steering_hpa " +
                formatNumber(weather.steeringHpa) + " hPa; " + fileName(fields) +
                (levels.empty() ? std::string(" has no ") + (u ? "v" : "u") + " wind at any level"

@@ -72,17 +72,17 @@ void FieldChecks::noteNonFinite(const std::string& name, size_t count, size_t to
 void FieldChecks::finish(const WeatherFields& fields) const {
   // A field with no usable value anywhere: the layers it feeds would be garbage (tops below
   // bases from a NaN gh, no cover from a NaN scale_factor).
-  std::map<std::string, std::pair<size_t, bool>> seen;  // name -> (fields, any finite)
+  std::map<FieldKind, std::pair<size_t, bool>> seen;  // kind -> (fields, any finite)
   for (const WeatherStep& step : fields.steps)
     for (const LevelField& f : step.fields) {
-      auto& [count, finite] = seen[f.name];
+      auto& [count, finite] = seen[f.kind];
       ++count;
       finite = finite || std::any_of(f.values.begin(), f.values.end(),
                                      [](float v) { return std::isfinite(v); });
     }
-  for (const auto& [name, info] : seen)
+  for (const auto& [kind, info] : seen)
     if (!info.second)
-      inputError(mFile + ": " + name + ": no finite value in any of its " +
+      inputError(mFile + ": " + fieldName(kind) + ": no finite value in any of its " +
                  std::to_string(info.first) + (info.first == 1 ? " field" : " fields") +
                  " (every value missing, NaN or infinite): the field is unusable");
   for (const auto& [name, n] : mNonFinite)

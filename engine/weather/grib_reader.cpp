@@ -256,7 +256,7 @@ private:
 
 // A field this reader keeps, in WeatherFields' naming.
 struct Wanted {
-  std::string name;
+  FieldKind kind;
   double pressureHpa = 0.0;
   bool fraction = false;  // r and tcc: 0..1 after conversion, clamped
 };
@@ -272,16 +272,20 @@ std::optional<Wanted> classify(const Message& m) {
   std::optional<std::string> levelType = m.tryString("typeOfLevel");
   if (!shortName || !levelType) return std::nullopt;
   if (*shortName == "tcc") {
-    static const std::pair<const char*, const char*> kLayers[] = {{"lowCloudLayer", "tcc_low"},
-                                                                  {"middleCloudLayer", "tcc_mid"},
-                                                                  {"highCloudLayer", "tcc_high"}};
-    for (const auto& [type, name] : kLayers)
-      if (*levelType == type) return Wanted{name, 0.0, true};
+    static const std::pair<const char*, FieldKind> kLayers[] = {
+        {"lowCloudLayer", FieldKind::CloudCoverLow},
+        {"middleCloudLayer", FieldKind::CloudCoverMid},
+        {"highCloudLayer", FieldKind::CloudCoverHigh}};
+    for (const auto& [type, kind] : kLayers)
+      if (*levelType == type) return Wanted{kind, 0.0, true};
     return std::nullopt;
   }
-  if (*shortName != "r" && *shortName != "gh" && *shortName != "t" && *shortName != "u" &&
-      *shortName != "v")
-    return std::nullopt;
+  // The fields on pressure levels, by the shortName fieldName() gives them.
+  static const FieldKind kOnLevels[] = {FieldKind::RelativeHumidity, FieldKind::GeopotentialHeight,
+                                        FieldKind::Temperature, FieldKind::WindU, FieldKind::WindV};
+  const FieldKind* kind = std::find_if(std::begin(kOnLevels), std::end(kOnLevels),
+                                       [&](FieldKind k) { return *shortName == fieldName(k); });
+  if (kind == std::end(kOnLevels)) return std::nullopt;
   double hPa = 0.0;
   if (*levelType == "isobaricInhPa")
     hPa = m.getDouble("level");
@@ -290,7 +294,7 @@ std::optional<Wanted> classify(const Message& m) {
   else
     return std::nullopt;
   if (!(hPa > 0.0 && hPa < 2000.0)) m.fail(*shortName + " on isobaric level " + hPaText(hPa));
-  return Wanted{*shortName, hPa, *shortName == "r"};
+  return Wanted{*kind, hPa, *kind == FieldKind::RelativeHumidity};
 }
 
 // Percent unless the parameter table says the field is already a fraction (ECMWF-style
@@ -593,17 +597,18 @@ WeatherFields readGrib2(const std::filesystem::path& file) {
       }
 
       size_t nonFinite = 0;
-      LevelField field{wanted->name, wanted->pressureHpa,
+      LevelField field{wanted->kind, wanted->pressureHpa,
                        readValues(m, out.grid.size(), nonFinite)};
-      checks.noteNonFinite(field.name, nonFinite, field.values.size());
-      if (wanted->fraction) checks.toFraction(field.values, fractionScale(m), wanted->name);
-      haveCloudInput = haveCloudInput || wanted->name == "r" || wanted->name.starts_with("tcc_");
+      const std::string name = fieldName(field.kind);
+      checks.noteNonFinite(name, nonFinite, field.values.size());
+      if (wanted->fraction) checks.toFraction(field.values, fractionScale(m), name);
+      haveCloudInput = haveCloudInput || wanted->fraction;
 
       const double valid = validTimeUnix(m);
       WeatherStep& step = steps[valid];
       step.validTimeUnix = valid;
-      if (step.find(field.name, field.pressureHpa))
-        m.fail("a second " + field.name +
+      if (step.find(field.kind, field.pressureHpa))
+        m.fail("a second " + name +
                (field.pressureHpa > 0.0 ? " at " + hPaText(field.pressureHpa) : "") +
                " for the same valid time (ensemble members or duplicates: select one with "
                "grib_copy -w)");

@@ -263,7 +263,7 @@ private:
 enum class Quantity { Fraction, Temperature, Height, Geopotential, Wind };
 
 struct Kind {
-  const char* field;  // weather_fields.h name
+  FieldKind field;
   Quantity quantity;
   bool onLevels;
   std::array<const char*, 6> names;  // ERA5/CF first, then WRF (p_interp, auxhist *_PL), CMIP
@@ -272,15 +272,15 @@ struct Kind {
 
 // clang-format off
 constexpr Kind kKinds[] = {
-    {"r",  Quantity::Fraction,     true, {"r", "rh", "RH", "RH_PL", "hur", "relhum"},   "relative_humidity"},
-    {"t",  Quantity::Temperature,  true, {"t", "TT", "T_PL", "TK", "ta", "temp"},        "air_temperature"},
-    {"gh", Quantity::Height,       true, {"gh", "GHT", "GHT_PL", "Z_PL", "zg", "hgt"},   "geopotential_height"},
-    {"gh", Quantity::Geopotential, true, {"z", "Z", "geopotential", "", "", ""},         "geopotential"},
-    {"u",  Quantity::Wind,         true, {"u", "U_PL", "ua", "", "", ""},                "eastward_wind"},
-    {"v",  Quantity::Wind,         true, {"v", "V_PL", "va", "", "", ""},                "northward_wind"},
-    {"tcc_low",  Quantity::Fraction, false, {"lcc", "LCC", "tcc_low", "", "", ""},  "low_type_cloud_area_fraction"},
-    {"tcc_mid",  Quantity::Fraction, false, {"mcc", "MCC", "tcc_mid", "", "", ""},  "medium_type_cloud_area_fraction"},
-    {"tcc_high", Quantity::Fraction, false, {"hcc", "HCC", "tcc_high", "", "", ""}, "high_type_cloud_area_fraction"},
+    {FieldKind::RelativeHumidity,   Quantity::Fraction,     true, {"r", "rh", "RH", "RH_PL", "hur", "relhum"},   "relative_humidity"},
+    {FieldKind::Temperature,        Quantity::Temperature,  true, {"t", "TT", "T_PL", "TK", "ta", "temp"},        "air_temperature"},
+    {FieldKind::GeopotentialHeight, Quantity::Height,       true, {"gh", "GHT", "GHT_PL", "Z_PL", "zg", "hgt"},   "geopotential_height"},
+    {FieldKind::GeopotentialHeight, Quantity::Geopotential, true, {"z", "Z", "geopotential", "", "", ""},         "geopotential"},
+    {FieldKind::WindU,              Quantity::Wind,         true, {"u", "U_PL", "ua", "", "", ""},                "eastward_wind"},
+    {FieldKind::WindV,              Quantity::Wind,         true, {"v", "V_PL", "va", "", "", ""},                "northward_wind"},
+    {FieldKind::CloudCoverLow,      Quantity::Fraction, false, {"lcc", "LCC", "tcc_low", "", "", ""},  "low_type_cloud_area_fraction"},
+    {FieldKind::CloudCoverMid,      Quantity::Fraction, false, {"mcc", "MCC", "tcc_mid", "", "", ""},  "medium_type_cloud_area_fraction"},
+    {FieldKind::CloudCoverHigh,     Quantity::Fraction, false, {"hcc", "HCC", "tcc_high", "", "", ""}, "high_type_cloud_area_fraction"},
 };
 // clang-format on
 
@@ -753,7 +753,7 @@ WeatherFields readNetcdf(const std::filesystem::path& file) {
     const bool percent = conv.percentByUnits || maxValue > 1.5;
     for (WeatherStep& step : out.steps)
       for (LevelField& field : step.fields)
-        if (field.name == f.kind->field) checks.toFraction(field.values, percent ? 0.01 : 1.0, v.name);
+        if (field.kind == f.kind->field) checks.toFraction(field.values, percent ? 0.01 : 1.0, v.name);
   }
 
   std::stable_sort(

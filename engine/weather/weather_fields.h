@@ -23,14 +23,24 @@ struct GridGeometry {
   size_t size() const { return latDeg.size(); }
 };
 
+// What a field holds, in the units every reader converts to.
+enum class FieldKind : uint8_t {
+  RelativeHumidity,    // a fraction 0..1 (readers convert percent and clamp, with a warning)
+  GeopotentialHeight,  // metres
+  Temperature,         // K
+  CloudCoverLow,       // the model's own cloud cover of its low layer, fraction 0..1
+  CloudCoverMid,       //   ... middle layer (these three on no pressure level: pressureHpa 0)
+  CloudCoverHigh,      //   ... high layer
+  WindU,               // eastward wind, m/s
+  WindV,               // northward wind, m/s
+};
+// The kind's short name in messages: GRIB's shortName ("r", "gh", "t", "u", "v"), and
+// "tcc_low", "tcc_mid", "tcc_high" for the layer cloud covers.
+const char* fieldName(FieldKind kind);
+
 // One 2D field on the grid.
-//  name "r": relative humidity as a fraction 0..1 (readers convert percent and clamp, with a
-//            warning when outside); "gh": geopotential height, metres; "t": temperature, K;
-//  name "tcc_low" / "tcc_mid" / "tcc_high": the model's own cloud cover of its low, middle
-//            and high cloud layers, fraction 0..1 (pressureHpa 0);
-//  name "u" / "v": wind components, m/s.
 struct LevelField {
-  std::string name;
+  FieldKind kind = FieldKind::RelativeHumidity;
   double pressureHpa = 0.0;   // isobaric level; 0 for a field on a layer or the surface
   std::vector<float> values;  // grid.size() values; NaN where missing
 };
@@ -39,10 +49,10 @@ struct LevelField {
 struct WeatherStep {
   double validTimeUnix = 0.0;  // seconds since 1970-01-01T00:00Z
   std::vector<LevelField> fields;
-  // The field `name` at `pressureHpa` (within 0.01 hPa), or nullptr.
-  const LevelField* find(const std::string& name, double pressureHpa = 0.0) const;
-  // The isobaric levels (hPa, descending: surface first) at which `name` exists.
-  std::vector<double> levels(const std::string& name) const;
+  // The field of `kind` at `pressureHpa` (within 0.01 hPa), or nullptr.
+  const LevelField* find(FieldKind kind, double pressureHpa = 0.0) const;
+  // The isobaric levels (hPa, descending: surface first) at which `kind` exists.
+  std::vector<double> levels(FieldKind kind) const;
 };
 
 struct WeatherFields {

@@ -47,10 +47,10 @@ std::string lowerExtension(const fs::path& path) {
   return ext;
 }
 
-WeatherMap readImageMap(const Scene& scene, const WeatherRegion& region) {
-  const std::string& written = scene.weather.image;
+WeatherMap readImageMap(const WeatherInputs& in, const WeatherRegion& region) {
+  const std::string& written = in.settings.image;
   if (written.empty()) inputError("weather.image: is required when source is image");
-  const fs::path path = scene.resolvePath(written);
+  const fs::path& path = in.image;
   if (const std::string why = notARegularFile(path); !why.empty())
     imageError(written, why + " (" + path.string() + ")");
   const std::string ext = lowerExtension(path);
@@ -125,8 +125,7 @@ void forEachRow(uint32_t rows, F body) {
   for (std::thread& t : threads) t.join();
 }
 
-WeatherMap proceduralMap(const Scene& scene, const WeatherRegion& region) {
-  const WeatherSettings& w = scene.weather;
+WeatherMap proceduralMap(const WeatherSettings& w, const WeatherRegion& region) {
   if (!(w.scaleKm > 0.0)) inputError("weather.scale_km: must be above 0");
   const glm::uvec2 size = proceduralMapSize(w, region);
   WeatherMap map;
@@ -218,12 +217,12 @@ bool matches(std::string_view pattern, std::string_view name) {
 
 }  // namespace
 
-std::vector<fs::path> weatherFiles(const Scene& scene) {
-  const fs::path path = scene.resolvePath(scene.weather.file);
+std::vector<fs::path> weatherFiles(const WeatherInputs& in) {
+  const fs::path& path = in.file;
   const std::string name = path.filename().string();
   if (!isPattern(name)) return {path};
   if (isPattern(path.parent_path().string()))
-    inputError("weather.file: " + scene.weather.file +
+    inputError("weather.file: " + in.settings.file +
                ": only the file name may hold '*' or '?', not its folder");
   std::vector<fs::path> found;
   std::error_code ec;
@@ -234,13 +233,12 @@ std::vector<fs::path> weatherFiles(const Scene& scene) {
   return found;
 }
 
-WeatherFields readWeatherFile(const Scene& scene) {
-  const std::string& written = scene.weather.file;
+WeatherFields readWeatherFile(const WeatherInputs& in) {
+  const std::string& written = in.settings.file;
   if (written.empty()) inputError("weather.file: is required when source is file");
-  const std::vector<fs::path> files = weatherFiles(scene);
+  const std::vector<fs::path> files = weatherFiles(in);
   if (files.empty())
-    inputError("weather.file: " + written + ": no file matches (" +
-               scene.resolvePath(written).string() + ")");
+    inputError("weather.file: " + written + ": no file matches (" + in.file.string() + ")");
   if (files.size() == 1)
     return readOneWeatherFile(files[0], isPattern(written) ? files[0].string() : written);
 
@@ -313,32 +311,31 @@ glm::uvec2 proceduralMapSize(const WeatherSettings& weather, const WeatherRegion
   return km.x >= km.y ? glm::uvec2(n, other) : glm::uvec2(other, n);
 }
 
-WeatherMap makeWeatherMap(const Scene& scene, const WeatherRegion& r) {
-  const WeatherSettings& w = scene.weather;
+WeatherMap makeWeatherMap(const WeatherInputs& in, const WeatherRegion& r) {
+  const WeatherSettings& w = in.settings;
   if (!(r.lat[0] < r.lat[1]) || r.lat[0] < -90.0 || r.lat[1] > 90.0)
     inputError("weather.region.lat: [south, north] must rise within [-90, 90]");
   if (!(r.lon[0] < r.lon[1]) || r.lon[1] - r.lon[0] > 360.0)
     inputError("weather.region.lon: [west, east] must rise and span at most 360 degrees");
   switch (w.source) {
     case WeatherMapSource::Image:
-      return readImageMap(scene, r);
+      return readImageMap(in, r);
     case WeatherMapSource::Procedural:
-      return proceduralMap(scene, r);
+      return proceduralMap(w, r);
     case WeatherMapSource::File:
       break;
   }
-  const WeatherFields fields = readWeatherFile(scene);
+  const WeatherFields fields = readWeatherFile(in);
   // The forecast valid at the scene's time (its start for a time-lapse).
-  return weatherMapFromFields(fields, double(scene.time.start.unixSeconds), w, r);
+  return weatherMapFromFields(fields, double(in.start.unixSeconds), w, r);
 }
 
-WeatherMap makeWeatherMap(const Scene& scene) {
-  if (scene.weather.source != WeatherMapSource::File)
-    return makeWeatherMap(scene, mapRegion(scene));
-  const WeatherFields fields = readWeatherFile(scene);
+WeatherMap makeWeatherMap(const WeatherInputs& in) {
+  if (in.settings.source != WeatherMapSource::File) return makeWeatherMap(in, mapRegion(in));
+  const WeatherFields fields = readWeatherFile(in);
   const WeatherRegion data = dataRegion(fields.grid);
-  return weatherMapFromFields(fields, double(scene.time.start.unixSeconds), scene.weather,
-                              mapRegion(scene, &data));
+  return weatherMapFromFields(fields, double(in.start.unixSeconds), in.settings,
+                              mapRegion(in, &data));
 }
 
 }  // namespace sky

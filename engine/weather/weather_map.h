@@ -44,27 +44,27 @@ struct WeatherMap {
 // stratocumulus and altocumulus 0.5 (cellular), cumulus 1 (convective).
 float cloudTypeValue(CloudType type);
 
-// The map of `scene.weather` over `region` (mapRegion(scene) for the scene's own):
-// "procedural" (fbm cover, see weather_map.cpp and docs/weather.md), "image" (an RGBA
-// PNG/EXR over the region, resolved with scene.resolvePath) or "file" (a GRIB2/NetCDF
-// forecast at the scene's start time, through engine/weather/cloud_layers_from_fields.h).
+// The map of `in.settings` over `region` (mapRegion(in) for the scene's own):
+// "procedural" (fbm cover, see weather_map.cpp and docs/weather.md), "image" (the RGBA
+// PNG/EXR `in.image` over the region) or "file" (a GRIB2/NetCDF forecast at the scene's
+// start, through engine/weather/cloud_layers_from_fields.h).
 // Bad settings or files are BadInput errors naming weather.<key> and the file.
-WeatherMap makeWeatherMap(const Scene& scene, const WeatherRegion& region);
+WeatherMap makeWeatherMap(const WeatherInputs& in, const WeatherRegion& region);
 // The same over the scene's region (weather_region.h mapRegion, clipped to a forecast's data).
-WeatherMap makeWeatherMap(const Scene& scene);
+WeatherMap makeWeatherMap(const WeatherInputs& in);
 
-// The forecast file(s) of source "file" (scene.weather.file, resolved against the scene's
-// folder), read whole: callers that render several times keep it and build each frame's map
+// The forecast file(s) of source "file" (`in.file`: weather.file resolved against the
+// scene's folder), read whole: callers that render several times keep it and build each frame's map
 // with weatherMapFromFields (engine/weather/cloud_layers_from_fields.h). A file name with
 // '*' or '?' (e.g. "gfs.t00z.f0*.grib2") reads every matching file in that folder, sorted by
 // name, and merges their steps by valid time; they must share one grid. BadInput naming
 // weather.file for a missing, unknown or broken file, a pattern that matches nothing, grids
 // that differ or two files with the same valid time.
-WeatherFields readWeatherFile(const Scene& scene);
+WeatherFields readWeatherFile(const WeatherInputs& in);
 
 // The files weather.file names (one, or a pattern's matches sorted by name); none when a
 // pattern matches nothing.
-std::vector<std::filesystem::path> weatherFiles(const Scene& scene);
+std::vector<std::filesystem::path> weatherFiles(const WeatherInputs& in);
 
 // The map's size: `weather.resolution` texels along the region's longer side in km, the
 // other side in proportion (at least 2).

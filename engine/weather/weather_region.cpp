@@ -110,10 +110,11 @@ WeatherRegion dataRegion(const GridGeometry& grid) {
   return box;
 }
 
-WeatherRegion mapRegion(const Scene& scene, const WeatherRegion* dataExtent) {
-  const WeatherSettings& w = scene.weather;
+WeatherRegion mapRegion(const WeatherInputs& in, const WeatherRegion* dataExtent) {
+  const WeatherSettings& w = in.settings;
   if (w.region) return *w.region;
-  const WeatherRegion square = cameraRegion(scene.camera.latitude, scene.camera.longitude, w);
+  const glm::dvec2 camera = in.cameraLatLonDeg;
+  const WeatherRegion square = cameraRegion(camera.x, camera.y, w);
   if (!dataExtent) return square;
   const WeatherRegion& data = *dataExtent;
   WeatherRegion out;
@@ -132,8 +133,8 @@ WeatherRegion mapRegion(const Scene& scene, const WeatherRegion* dataExtent) {
     inputError("weather.region: not given, and the data (grid covers lat " + number(data.lat[0]) +
                ".." + number(data.lat[1]) + ", lon " + number(data.lon[0]) + ".." +
                number(data.lon[1]) + ") do not reach the " + number(w.cameraRegionKm) +
-               " km around the camera at " + number(scene.camera.latitude) + ", " +
-               number(scene.camera.longitude) + "; set weather.region or move the camera");
+               " km around the camera at " + number(camera.x) + ", " + number(camera.y) +
+               "; set weather.region or move the camera");
   return out;
 }
 

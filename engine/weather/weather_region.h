@@ -22,10 +22,10 @@ WeatherRegion cameraRegion(double latDeg, double lonDeg, const WeatherSettings& 
 // range of its points.
 WeatherRegion dataRegion(const GridGeometry& grid);
 
-// The region of the weather map for `scene`: weather.region when given; else cameraRegion()
+// The region of the weather map for `in`: weather.region when given; else cameraRegion()
 // around the camera, clipped to `data` (a forecast's dataRegion, found once per file) when
 // given. BadInput naming weather.region when the data do not reach the camera's square.
-WeatherRegion mapRegion(const Scene& scene, const WeatherRegion* data = nullptr);
+WeatherRegion mapRegion(const WeatherInputs& in, const WeatherRegion* data = nullptr);
 
 // The region of a scene whose map has been made (the renderer sets it from the map):
 // weather.region, which must be set by then.

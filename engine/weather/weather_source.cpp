@@ -24,16 +24,16 @@ std::string fileStamp(const std::filesystem::path& file) {
 
 // The stamps of every file weather.file names (a pattern's matches included), so a new,
 // removed or edited step file is noticed.
-std::string filesStamp(const Scene& scene) {
+std::string filesStamp(const WeatherInputs& in) {
   std::string stamp;
-  for (const std::filesystem::path& f : weatherFiles(scene)) stamp += fileStamp(f) + ';';
+  for (const std::filesystem::path& f : weatherFiles(in)) stamp += fileStamp(f) + ';';
   return stamp;
 }
 
 // What the map depends on besides the time and the forecast file: every weather setting and
 // the region it covers.
-std::string settingsSignature(const Scene& scene, const WeatherRegion& region) {
-  const WeatherSettings& w = scene.weather;
+std::string settingsSignature(const WeatherInputs& in, const WeatherRegion& region) {
+  const WeatherSettings& w = in.settings;
   std::ostringstream s;
   s.precision(17);
   s << enumName(w.source) << '|' << region.lat[0] << ',' << region.lat[1] << ',' << region.lon[0]
@@ -44,11 +44,11 @@ std::string settingsSignature(const Scene& scene, const WeatherRegion& region) {
     s << '|' << l->bottomHpa << ',' << l->topHpa << ',' << l->rhCritical;
   s << '|' << enumName(w.advection) << '|' << w.steeringHpa << '|' << enumName(w.evolution);
   if (w.advection == WeatherAdvection::Wind)
-    s << '|' << scene.clouds.windSpeedMs << ',' << scene.clouds.windFrom;
+    s << '|' << in.windMs.x << ',' << in.windMs.y;
   if (w.evolution == WeatherEvolution::Ca)
     s << '|' << w.automaton.stepS << ',' << w.automaton.windowH << ',' << w.automaton.lifetimeMin
       << ',' << w.automaton.strength;
-  if (w.source == WeatherMapSource::Image) s << '|' << fileStamp(scene.resolvePath(w.image));
+  if (w.source == WeatherMapSource::Image) s << '|' << fileStamp(in.image);
   return s.str();
 }
 
@@ -58,40 +58,29 @@ double unixTime(const IsoTime& t) {
 
 }  // namespace
 
-double weatherTimeUnix(const Scene& scene, const IsoTime& frame) {
-  if (scene.weather.time.empty()) return unixTime(frame);
-  const std::optional<IsoTime> shown = IsoTime::parse(scene.weather.time);
-  if (!shown)
-    inputError("weather.time: '" + scene.weather.time +
-               "' is not an ISO 8601 instant with a zone, e.g. 2024-06-21T12:00:00Z");
-  return unixTime(*shown) + frame.secondsSince(scene.time.start);
+double weatherTimeUnix(const WeatherInputs& in, const IsoTime& frame) {
+  if (!in.settings.time) return unixTime(frame);
+  return unixTime(*in.settings.time) + frame.secondsSince(in.start);
 }
 
-glm::dvec2 sceneWindMs(const CloudSettings& clouds) {
-  constexpr double kDeg = 3.14159265358979323846 / 180.0;
-  const double toward = (clouds.windFrom + 180.0) * kDeg;
-  return clouds.windSpeedMs * glm::dvec2(std::sin(toward), std::cos(toward));
-}
-
-WeatherMap WeatherSource::moved(const Scene& scene, double timeUnix) {
-  const WeatherSettings& w = scene.weather;
+WeatherMap WeatherSource::moved(const WeatherInputs& in, double timeUnix) {
+  const WeatherSettings& w = in.settings;
   if (w.source == WeatherMapSource::File)
-    return weatherMapFromFields(*mFields, timeUnix, w, mRegion, sceneWindMs(scene.clouds));
+    return weatherMapFromFields(*mFields, timeUnix, w, mRegion, in.windMs);
   WeatherMap map = *mStill;
   // A painted or procedural map shows the scene's first frame; the wind carries it from there.
-  const double seconds = timeUnix - weatherTimeUnix(scene, scene.time.start);
-  if (w.advection == WeatherAdvection::Wind && seconds != 0.0)
-    advectMap(map, sceneWindMs(scene.clouds), seconds);
+  const double seconds = timeUnix - weatherTimeUnix(in, in.start);
+  if (w.advection == WeatherAdvection::Wind && seconds != 0.0) advectMap(map, in.windMs, seconds);
   return map;
 }
 
-void WeatherSource::evolve(const Scene& scene, const std::string& signature, double timeUnix,
-                           WeatherMap& map) {
+void WeatherSource::evolve(const WeatherInputs& in, const std::string& signature,
+                           double timeUnix, WeatherMap& map) {
   // Between two forecast steps the automaton runs from one to the next, so the data hold
   // exactly at the steps; elsewhere (a single step, a painted or procedural map) in fixed
   // windows of automaton.window_h.
-  std::pair<double, double> window = automatonWindow(timeUnix, scene.weather.automaton);
-  if (mFields && scene.weather.source == WeatherMapSource::File) {
+  std::pair<double, double> window = automatonWindow(timeUnix, in.settings.automaton);
+  if (mFields && in.settings.source == WeatherMapSource::File) {
     const std::vector<WeatherStep>& steps = mFields->steps;
     for (size_t i = 0; i + 1 < steps.size(); ++i)
       if (timeUnix >= steps[i].validTimeUnix && timeUnix < steps[i + 1].validTimeUnix)
@@ -103,42 +92,42 @@ void WeatherSource::evolve(const Scene& scene, const std::string& signature, dou
   if (!mEnds[0] || !mEnds[1] || key.str() != mEndsSignature) {
     mEnds[0].reset();
     mEnds[1].reset();
-    mEnds[0] = moved(scene, window.first);
-    mEnds[1] = moved(scene, window.second);
+    mEnds[0] = moved(in, window.first);
+    mEnds[1] = moved(in, window.second);
     mEndsSignature = key.str();
   }
-  mAutomaton.apply(map, *mEnds[0], *mEnds[1], window.first, window.second, timeUnix, scene.weather);
+  mAutomaton.apply(map, *mEnds[0], *mEnds[1], window.first, window.second, timeUnix, in.settings);
 }
 
-const WeatherMap& WeatherSource::map(const Scene& scene, const IsoTime& frame) {
-  const WeatherSettings& w = scene.weather;
+const WeatherMap& WeatherSource::map(const WeatherInputs& in, const IsoTime& frame) {
+  const WeatherSettings& w = in.settings;
   if (w.advection == WeatherAdvection::Data && w.source != WeatherMapSource::File)
     inputError(
         "weather.advection: data needs source file (the wind comes from the forecast); "
         "use wind for the scene's wind");
   std::string signature;
   if (w.source == WeatherMapSource::File) {
-    const std::string stamp = filesStamp(scene);
+    const std::string stamp = filesStamp(in);
     if (!mFields || stamp != mFieldsStamp) {
       mFields.reset();  // a failed read leaves nothing stale behind
       mMap.reset();
-      mFields = readWeatherFile(scene);
+      mFields = readWeatherFile(in);
       mDataRegion = dataRegion(mFields->grid);  // a pass over every grid point: once per file
       mFieldsStamp = stamp;
     }
-    mRegion = w.region || !mWholeData ? mapRegion(scene, &mDataRegion) : mDataRegion;
-    signature = settingsSignature(scene, mRegion) + '|' + stamp;
+    mRegion = w.region || !mWholeData ? mapRegion(in, &mDataRegion) : mDataRegion;
+    signature = settingsSignature(in, mRegion) + '|' + stamp;
   } else {
-    mRegion = mapRegion(scene);
-    signature = settingsSignature(scene, mRegion);
+    mRegion = mapRegion(in);
+    signature = settingsSignature(in, mRegion);
     if (!mStill || signature != mStillSignature) {
       mStill.reset();
       mMap.reset();
-      mStill = makeWeatherMap(scene, mRegion);
+      mStill = makeWeatherMap(in, mRegion);
       mStillSignature = signature;
     }
   }
-  const double t = weatherTimeUnix(scene, frame);
+  const double t = weatherTimeUnix(in, frame);
   // Whether the map changes with time: between a file's steps the cover is interpolated,
   // advection carries it, the automaton evolves it.
   const bool timeDependent = (w.source == WeatherMapSource::File && mFields->steps.size() > 1) ||
@@ -154,8 +143,8 @@ const WeatherMap& WeatherSource::map(const Scene& scene, const IsoTime& frame) {
   if (!mMap || signature != mMapSignature) {
     mMap.reset();
     mMapSignature = signature;
-    WeatherMap map = moved(scene, t);
-    if (w.evolution == WeatherEvolution::Ca) evolve(scene, base, t, map);
+    WeatherMap map = moved(in, t);
+    if (w.evolution == WeatherEvolution::Ca) evolve(in, base, t, map);
     mMap = std::move(map);
     ++mRevision;
   }

@@ -19,22 +19,19 @@ namespace sky {
 
 // The instant (Unix seconds) the weather map shows in a frame at `frame`: weather.time moved
 // on by the frame's time since the scene's start when weather.time is set, else the frame's.
-double weatherTimeUnix(const Scene& scene, const IsoTime& frame);
-
-// clouds.wind_speed_ms from clouds.wind_from as (east, north) m/s: advection "wind" carries
-// the map with the same wind that moves the cloud noise, so cells and their detail move as one.
-glm::dvec2 sceneWindMs(const CloudSettings& clouds);
+double weatherTimeUnix(const WeatherInputs& in, const IsoTime& frame);
 
 class WeatherSource {
 public:
-  // The map for `scene` in the frame at `frame`. Rebuilt only when something it depends on
-  // changed: the weather settings (and clouds.wind with advection "wind"), the input files
+  // The map for `in` in the frame at `frame`. Rebuilt only when something it depends on
+  // changed: the weather settings (and the scene's wind with advection "wind": the same wind
+  // that moves the cloud noise, so cells and their detail move as one), the input files
   // (size, modification time), and the time when the map moves with it. Forecast files are
   // read once. BadInput naming weather.<key> for bad settings or files.
   // The map's region is weather.region, or else (weather_region.h mapRegion) the square around
   // the camera, clipped to the forecast's data; with setWholeDataRegion(true) a forecast
   // without weather.region shows its whole grid (skyrender weather).
-  const WeatherMap& map(const Scene& scene, const IsoTime& frame);
+  const WeatherMap& map(const WeatherInputs& in, const IsoTime& frame);
   void setWholeDataRegion(bool whole) { mWholeData = whole; }
 
   // The forecast of source "file" as read by the last map() (nullptr for other sources).
@@ -47,10 +44,11 @@ public:
 private:
   // The map at `timeUnix` before evolution: the forecast interpolated or carried, or the
   // procedural/image map carried by the scene's wind.
-  WeatherMap moved(const Scene& scene, double timeUnix);
+  WeatherMap moved(const WeatherInputs& in, double timeUnix);
   // evolution "ca": the automaton's window around `timeUnix` (the forecast steps that bracket
   // it, else automatonWindow) and its work on `map`. `signature`: the map's, without the time.
-  void evolve(const Scene& scene, const std::string& signature, double timeUnix, WeatherMap& map);
+  void evolve(const WeatherInputs& in, const std::string& signature, double timeUnix,
+              WeatherMap& map);
 
   bool mWholeData = false;
   WeatherRegion mRegion;      // of the last map()

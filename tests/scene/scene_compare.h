@@ -287,7 +287,7 @@ inline Scene unusualScene() {
   s.weather.cover = WeatherCover::Tcc;
   s.weather.advection = WeatherAdvection::Wind;  // "data" needs source file
   s.weather.steeringHpa = 700.0 + 1.0 / 3.0;
-  s.weather.time = "2011-01-15T12:00:00.25-03:30";
+  s.weather.time = IsoTime::parse("2011-01-15T12:00:00.25-03:30");
   s.weather.localRadiusKm = 0.1;
   s.weather.evolution = WeatherEvolution::Ca;
   s.weather.automaton = {3600.0, 1.0 / 3.0 + 0.1, 1440.0, 0.0};

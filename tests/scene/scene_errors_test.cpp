@@ -554,8 +554,11 @@ TEST(SceneErrors, CloudAndWeatherRules) {
             "x.yaml:2:14: weather.advection: data needs source file (the wind comes from the "
             "forecast); wind uses the scene's");
   EXPECT_EQ(yamlError("weather:\n  time: noon\n"),
-            "x.yaml:2:9: weather.time: must be an ISO 8601 instant with a zone, e.g. "
-            "2024-06-21T12:00:00Z");
+            "x.yaml:2:9: weather.time: 'noon' is not a valid time: expected "
+            "YYYY-MM-DDTHH:MM[:SS[.fff]] followed by Z or +HH:MM");
+  EXPECT_EQ(yamlError("weather:\n  time: 2024-06-21T12:00\n"),
+            "x.yaml:2:9: weather.time: '2024-06-21T12:00' is not a valid time: missing time "
+            "zone: add Z (UTC) or an offset such as +02:00");
   EXPECT_EQ(yamlError("weather:\n  evolution: dobashi\n"),
             "x.yaml:2:14: weather.evolution: 'dobashi' is not allowed: use none or ca");
   EXPECT_EQ(yamlError("weather:\n  automaton:\n    step_s: 5\n"),

@@ -347,7 +347,7 @@ TEST_F(CloudViewTest, WeatherMapOutputIsTheMapsTexels) {
   options.debugOutputs = {"weather_map"};
   const RenderedFrame frame = render(scene, options);
   const LayeredImage& img = debugImage(frame, "weather_map").image;
-  const WeatherMap map = makeWeatherMap(scene);
+  const WeatherMap map = makeWeatherMap(weatherInputs(scene));
   ASSERT_EQ(img.width, static_cast<int>(map.width));
   ASSERT_EQ(img.height, static_cast<int>(map.height));
   const std::vector<float>& px = img.layers.at(0).pixels;

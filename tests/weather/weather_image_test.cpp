@@ -51,7 +51,7 @@ protected:
   }
   // The error makeWeatherMap throws for `image`: BadInput, one line, naming the key and file.
   std::string errorFor(const std::string& image) const {
-    const Error e = catchError([&] { makeWeatherMap(scene(image)); });
+    const Error e = catchError([&] { makeWeatherMap(weatherInputs(scene(image))); });
     EXPECT_EQ(e.kind(), ErrorKind::BadInput);
     const std::string what = e.what();
     EXPECT_EQ(what.find('\n'), std::string::npos) << what;
@@ -71,7 +71,7 @@ TEST_F(WeatherImage, PngCodesMapOverTheRegionRowZeroNorth) {
       rgba.insert(rgba.end(), {v, 1.0f - v, float(y), 1.0f});
     }
   writePng8(mDir / "map.png", 4, 2, rgba, PngQuantize::Nearest);
-  const WeatherMap map = makeWeatherMap(scene("map.png"));
+  const WeatherMap map = makeWeatherMap(weatherInputs(scene("map.png")));
   ASSERT_EQ(map.width, 4u);
   ASSERT_EQ(map.height, 2u);
   EXPECT_EQ(map.region, scene("map.png").weather.region);
@@ -94,7 +94,7 @@ TEST_F(WeatherImage, ExrValuesAsTheyAreWithDensityAboveOne) {
   writeExrLayer("map.exr", 2, 1, {"R", "G", "B", "A"},
                 {0.25f, 0.5f, 0.5f, 2.0f,  //
                  0.0f, 1.0f, 1.0f, 0.5f});
-  const WeatherMap map = makeWeatherMap(scene("map.exr"));
+  const WeatherMap map = makeWeatherMap(weatherInputs(scene("map.exr")));
   ASSERT_EQ(map.width, 2u);
   ASSERT_EQ(map.height, 1u);
   EXPECT_EQ(map.at(0, 0), glm::vec4(0.25f, 0.5f, 0.5f, 2.0f));
@@ -104,7 +104,7 @@ TEST_F(WeatherImage, ExrValuesAsTheyAreWithDensityAboveOne) {
 TEST_F(WeatherImage, MissingFileIsBadInput) {
   EXPECT_THAT(errorFor("nothing.png"), HasSubstr("file not found"));
   Scene s = scene("");
-  const Error e = catchError([&] { makeWeatherMap(s); });
+  const Error e = catchError([&] { makeWeatherMap(weatherInputs(s)); });
   EXPECT_THAT(std::string(e.what()), HasSubstr("weather.image: is required"));
 }
 

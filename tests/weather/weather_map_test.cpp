@@ -60,7 +60,7 @@ double correlation(const std::vector<float>& a, const std::vector<float>& b) {
 TEST(WeatherMapProcedural, MeanCoverFollowsTheSettings) {
   for (double target : {0.1, 0.25, 0.5, 0.75, 0.9}) {
     SCOPED_TRACE("mean " + std::to_string(target));
-    const WeatherMap map = makeWeatherMap(proceduralScene(target, 1.0 - target, 0.5));
+    const WeatherMap map = makeWeatherMap(weatherInputs(proceduralScene(target, 1.0 - target, 0.5)));
     EXPECT_NEAR(mean(channel(map, 0)), target, 0.03);
     EXPECT_NEAR(mean(channel(map, 1)), 1.0 - target, 0.03);
     // Not a constant: the pattern varies around the mean.
@@ -71,7 +71,7 @@ TEST(WeatherMapProcedural, MeanCoverFollowsTheSettings) {
 }
 
 TEST(WeatherMapProcedural, SpreadOneCoversTheWholeRange) {
-  const WeatherMap map = makeWeatherMap(proceduralScene(0.5, 0.3, 1.0, 128));
+  const WeatherMap map = makeWeatherMap(weatherInputs(proceduralScene(0.5, 0.3, 1.0, 128)));
   for (int c = 0; c < 2; ++c) {
     SCOPED_TRACE("layer " + std::to_string(c));
     const std::vector<float> v = channel(map, c);
@@ -89,7 +89,7 @@ TEST(WeatherMapProcedural, SpreadOneCoversTheWholeRange) {
     EXPECT_GT(between, int(v.size()) * 3 / 10);
   }
   // Spread 0: a uniform map at the mean.
-  const WeatherMap flat = makeWeatherMap(proceduralScene(0.4, 0.2, 0.0, 16));
+  const WeatherMap flat = makeWeatherMap(weatherInputs(proceduralScene(0.4, 0.2, 0.0, 16)));
   for (const glm::vec4& t : flat.texels) {
     ASSERT_FLOAT_EQ(t.x, 0.4f);
     ASSERT_FLOAT_EQ(t.y, 0.2f);
@@ -97,20 +97,20 @@ TEST(WeatherMapProcedural, SpreadOneCoversTheWholeRange) {
 }
 
 TEST(WeatherMapProcedural, CoverZeroIsExactlyZeroAndOneExactlyOne) {
-  const WeatherMap map = makeWeatherMap(proceduralScene(0.0, 1.0, 1.0, 32));
+  const WeatherMap map = makeWeatherMap(weatherInputs(proceduralScene(0.0, 1.0, 1.0, 32)));
   for (const glm::vec4& t : map.texels) {
     ASSERT_EQ(t.x, 0.0f);
     ASSERT_EQ(t.y, 1.0f);
   }
   EXPECT_EQ(map.maxCover(), glm::vec2(0.0f, 1.0f));
-  const WeatherMap none = makeWeatherMap(proceduralScene(0.0, 0.0, 0.5, 32));
+  const WeatherMap none = makeWeatherMap(weatherInputs(proceduralScene(0.0, 0.0, 0.5, 32)));
   EXPECT_EQ(none.maxCover(), glm::vec2(0.0f));
 }
 
 TEST(WeatherMapProcedural, LayersAreDecorrelatedAndTypeAndDensityFilled) {
   Scene scene = proceduralScene(0.5, 0.5, 0.5, 128);
   scene.weather.cloudType = CloudType::Stratocumulus;
-  const WeatherMap map = makeWeatherMap(scene);
+  const WeatherMap map = makeWeatherMap(weatherInputs(scene));
   EXPECT_LT(std::abs(correlation(channel(map, 0), channel(map, 1))), 0.25);
   for (const glm::vec4& t : map.texels) {
     ASSERT_EQ(t.z, 0.5f);
@@ -122,17 +122,17 @@ TEST(WeatherMapProcedural, LayersAreDecorrelatedAndTypeAndDensityFilled) {
 }
 
 TEST(WeatherMapProcedural, SeedDecidesThePattern) {
-  const WeatherMap a = makeWeatherMap(proceduralScene(0.4, 0.3, 0.5, 64, 7));
-  const WeatherMap b = makeWeatherMap(proceduralScene(0.4, 0.3, 0.5, 64, 7));
+  const WeatherMap a = makeWeatherMap(weatherInputs(proceduralScene(0.4, 0.3, 0.5, 64, 7)));
+  const WeatherMap b = makeWeatherMap(weatherInputs(proceduralScene(0.4, 0.3, 0.5, 64, 7)));
   ASSERT_EQ(a.texels.size(), b.texels.size());
   EXPECT_TRUE(std::equal(a.texels.begin(), a.texels.end(), b.texels.begin()));
-  const WeatherMap c = makeWeatherMap(proceduralScene(0.4, 0.3, 0.5, 64, 8));
+  const WeatherMap c = makeWeatherMap(weatherInputs(proceduralScene(0.4, 0.3, 0.5, 64, 8)));
   double diff = 0;
   for (size_t i = 0; i < a.texels.size(); ++i) diff += std::abs(a.texels[i].x - c.texels[i].x);
   EXPECT_GT(diff / double(a.texels.size()), 0.05);
   EXPECT_LT(std::abs(correlation(channel(a, 0), channel(c, 0))), 0.3);
   // More cover with the same seed grows the same clouds: cover never drops anywhere.
-  const WeatherMap more = makeWeatherMap(proceduralScene(0.6, 0.3, 0.5, 64, 7));
+  const WeatherMap more = makeWeatherMap(weatherInputs(proceduralScene(0.6, 0.3, 0.5, 64, 7)));
   for (size_t i = 0; i < a.texels.size(); ++i) ASSERT_GE(more.texels[i].x, a.texels[i].x);
 }
 
@@ -152,7 +152,7 @@ TEST(WeatherMapProcedural, FeatureSizeIsInKilometresAtEveryLatitude) {
   equator.weather.scaleKm = 60.0;
   Scene north = equator;
   north.weather.region = WeatherRegion{{55.0, 65.0}, {0.0, 20.0}};
-  const WeatherMap a = makeWeatherMap(equator), b = makeWeatherMap(north);
+  const WeatherMap a = makeWeatherMap(weatherInputs(equator)), b = makeWeatherMap(weatherInputs(north));
   EXPECT_EQ(a.width, b.width);
   const double ratio = crossingsPerKm(b, 1112.0) / crossingsPerKm(a, 1112.0);
   // Measured in degrees the northern map would change twice as often per km.
@@ -161,14 +161,14 @@ TEST(WeatherMapProcedural, FeatureSizeIsInKilometresAtEveryLatitude) {
   // A larger scale_km makes larger features.
   Scene coarse = equator;
   coarse.weather.scaleKm = 240.0;
-  EXPECT_LT(crossingsPerKm(makeWeatherMap(coarse), 1112.0), 0.6 * crossingsPerKm(a, 1112.0));
+  EXPECT_LT(crossingsPerKm(makeWeatherMap(weatherInputs(coarse)), 1112.0), 0.6 * crossingsPerKm(a, 1112.0));
 }
 
 TEST(WeatherMapProcedural, SizeFollowsTheRegionInKilometres) {
   Scene wide = proceduralScene(0.3, 0.0, 0.5, 100);
   wide.weather.region =
       WeatherRegion{{0.0, 10.0}, {0.0, 20.0}};  // 2 : 1 in km at 5N (cos 5 = 0.996)
-  WeatherMap map = makeWeatherMap(wide);
+  WeatherMap map = makeWeatherMap(weatherInputs(wide));
   EXPECT_EQ(map.width, 100u);
   EXPECT_EQ(map.height, 50u);
   EXPECT_EQ(map.texels.size(), 5000u);
@@ -177,7 +177,7 @@ TEST(WeatherMapProcedural, SizeFollowsTheRegionInKilometres) {
   Scene tall = wide;
   // 2224 km north-south, 10 degrees at 60N: 556 km east-west.
   tall.weather.region = WeatherRegion{{50.0, 70.0}, {0.0, 10.0}};
-  map = makeWeatherMap(tall);
+  map = makeWeatherMap(weatherInputs(tall));
   EXPECT_EQ(map.height, 100u);
   EXPECT_EQ(map.width, 25u);
 
@@ -210,7 +210,7 @@ TEST(WeatherMapProcedural, TheFbmIsStandardised) {
 TEST(WeatherMapProcedural, BadSettingsNameTheKey) {
   Scene scene = proceduralScene(0.3, 0.0, 0.5);
   scene.weather.region = WeatherRegion{{50.0, 40.0}, {5.0, 12.0}};
-  Error e = catchError([&] { makeWeatherMap(scene); });
+  Error e = catchError([&] { makeWeatherMap(weatherInputs(scene)); });
   EXPECT_EQ(e.kind(), ErrorKind::BadInput);
   EXPECT_NE(std::string(e.what()).find("weather.region.lat"), std::string::npos);
 }

@@ -132,18 +132,18 @@ TEST(MapRegion, TheScenesRegionWinsThenTheCameraClippedToTheData) {
   const WeatherRegion europe =
       dataRegion(regularGrid(21, 11, 30.0, -20.0, 3.0, 2.0));  // 30-60N, 20W-20E
   scene.weather.region = WeatherRegion{{40.0, 45.0}, {0.0, 5.0}};
-  EXPECT_EQ(mapRegion(scene, &europe), *scene.weather.region);
+  EXPECT_EQ(mapRegion(weatherInputs(scene), &europe), *scene.weather.region);
   scene.weather.region.reset();
   const WeatherRegion square = cameraRegion(58.0, 0.0, scene.weather);
-  EXPECT_EQ(mapRegion(scene), square);
-  const WeatherRegion clipped = mapRegion(scene, &europe);
+  EXPECT_EQ(mapRegion(weatherInputs(scene)), square);
+  const WeatherRegion clipped = mapRegion(weatherInputs(scene), &europe);
   EXPECT_EQ(clipped.lat, glm::dvec2(square.lat[0], 60.0));
   EXPECT_EQ(clipped.lon, square.lon);
   // A grid in 0-360 longitudes seen from west of 0E: the square is moved by a turn to meet it.
   const WeatherRegion east = dataRegion(regularGrid(21, 11, 30.0, 340.0, 3.0, 2.0));  // 340-380E
   scene.camera.latitude = 45.0;
   scene.camera.longitude = -10.0;
-  const WeatherRegion turned = mapRegion(scene, &east);
+  const WeatherRegion turned = mapRegion(weatherInputs(scene), &east);
   EXPECT_GE(turned.lon[0], 340.0);
   EXPECT_NEAR(0.5 * (turned.lon[0] + turned.lon[1]), 350.0, 0.5);
 }
@@ -153,7 +153,7 @@ TEST(MapRegion, DataThatDoNotReachTheCameraAreOneLineSayingWhatToDo) {
   scene.camera.latitude = -30.0;
   scene.camera.longitude = 20.0;
   const WeatherRegion europe = dataRegion(regularGrid(21, 11, 30.0, -20.0, 3.0, 2.0));
-  const Error e = test::catchError([&] { mapRegion(scene, &europe); });
+  const Error e = test::catchError([&] { mapRegion(weatherInputs(scene), &europe); });
   EXPECT_EQ(e.kind(), ErrorKind::BadInput);
   EXPECT_EQ(std::string(e.what()),
             "weather.region: not given, and the data (grid covers lat 30..60, lon -20..20) do "

@@ -58,7 +58,7 @@ TEST(FieldChecks, WarningsGoToTheSinkAndAnUnusableFieldIsAnError) {
   EXPECT_TRUE(std::isnan(r[4]));
   checks.noteNonFinite("gh", 3, 10);
   WeatherFields fields;
-  fields.steps.push_back({0.0, {{"r", 850.0, r}, {"gh", 850.0, {1500.0f, nan}}}});
+  fields.steps.push_back({0.0, {{FieldKind::RelativeHumidity, 850.0, r}, {FieldKind::GeopotentialHeight, 850.0, {1500.0f, nan}}}});
   checks.finish(fields);
   EXPECT_THAT(lines, ElementsAre("f.grib2: 3 of 10 values of gh decoded to NaN or infinity; "
                                  "taken as missing",

@@ -88,40 +88,40 @@ TEST(GribReader, ReadsTheGfsSubset) {
   ASSERT_EQ(w.steps.size(), 1u);
   const WeatherStep& s = w.steps[0];
   EXPECT_EQ(s.validTimeUnix, 1295092800.0);  // 2011-01-15T12:00Z: run 2011-01-10 12Z + 120 h
-  EXPECT_EQ(s.levels("r").size(), 25u);
-  EXPECT_EQ(s.levels("t").size(), 26u);
-  EXPECT_EQ(s.levels("gh").size(), 26u);
-  EXPECT_EQ(s.levels("r").front(), 1000.0);
-  EXPECT_EQ(s.levels("r").back(), 10.0);
+  EXPECT_EQ(s.levels(FieldKind::RelativeHumidity).size(), 25u);
+  EXPECT_EQ(s.levels(FieldKind::Temperature).size(), 26u);
+  EXPECT_EQ(s.levels(FieldKind::GeopotentialHeight).size(), 26u);
+  EXPECT_EQ(s.levels(FieldKind::RelativeHumidity).front(), 1000.0);
+  EXPECT_EQ(s.levels(FieldKind::RelativeHumidity).back(), 10.0);
 
   // Values as `grib_ls -p min,max,average` prints them (percent there, fractions here).
-  const LevelField* r850 = s.find("r", 850.0);
+  const LevelField* r850 = s.find(FieldKind::RelativeHumidity, 850.0);
   ASSERT_TRUE(r850);
   Stats r = stats(r850->values);
   EXPECT_EQ(r.nan, 0u);
   EXPECT_NEAR(r.min, 0.02, 1e-4);
   EXPECT_NEAR(r.max, 1.0, 1e-6);
   EXPECT_NEAR(r.mean, 0.685449, 1e-4);
-  EXPECT_NEAR(stats(s.find("r", 500.0)->values).mean, 0.511277, 1e-4);
+  EXPECT_NEAR(stats(s.find(FieldKind::RelativeHumidity, 500.0)->values).mean, 0.511277, 1e-4);
 
-  const LevelField* gh500 = s.find("gh", 500.0);
+  const LevelField* gh500 = s.find(FieldKind::GeopotentialHeight, 500.0);
   ASSERT_TRUE(gh500);
   Stats gh = stats(gh500->values);
   EXPECT_NEAR(gh.min, 4893.2, 0.05);
   EXPECT_NEAR(gh.max, 5901.73, 0.05);
   EXPECT_NEAR(gh.mean, 5509.44, 0.05);
 
-  ASSERT_TRUE(s.find("tcc_low") && s.find("tcc_mid") && s.find("tcc_high"));
-  EXPECT_NEAR(stats(s.find("tcc_low")->values).mean, 0.309517, 1e-4);
-  EXPECT_NEAR(stats(s.find("tcc_mid")->values).mean, 0.195937, 1e-4);
-  EXPECT_NEAR(stats(s.find("tcc_high")->values).mean, 0.290483, 1e-4);
-  EXPECT_EQ(stats(s.find("tcc_high")->values).max, 1.0);
+  ASSERT_TRUE(s.find(FieldKind::CloudCoverLow) && s.find(FieldKind::CloudCoverMid) && s.find(FieldKind::CloudCoverHigh));
+  EXPECT_NEAR(stats(s.find(FieldKind::CloudCoverLow)->values).mean, 0.309517, 1e-4);
+  EXPECT_NEAR(stats(s.find(FieldKind::CloudCoverMid)->values).mean, 0.195937, 1e-4);
+  EXPECT_NEAR(stats(s.find(FieldKind::CloudCoverHigh)->values).mean, 0.290483, 1e-4);
+  EXPECT_EQ(stats(s.find(FieldKind::CloudCoverHigh)->values).max, 1.0);
 
   // u and v share one message in the GFS file: both come out only with multi-field support.
-  ASSERT_TRUE(s.find("u", 500.0) && s.find("v", 500.0));
-  EXPECT_NEAR(stats(s.find("u", 500.0)->values).mean, 6.85428, 1e-3);
-  EXPECT_NEAR(stats(s.find("v", 500.0)->values).mean, 0.0450989, 1e-3);
-  EXPECT_NEAR(stats(s.find("t", 500.0)->values).mean, 253.0, 10.0);  // K, not Celsius
+  ASSERT_TRUE(s.find(FieldKind::WindU, 500.0) && s.find(FieldKind::WindV, 500.0));
+  EXPECT_NEAR(stats(s.find(FieldKind::WindU, 500.0)->values).mean, 6.85428, 1e-3);
+  EXPECT_NEAR(stats(s.find(FieldKind::WindV, 500.0)->values).mean, 0.0450989, 1e-3);
+  EXPECT_NEAR(stats(s.find(FieldKind::Temperature, 500.0)->values).mean, 253.0, 10.0);  // K, not Celsius
   EXPECT_EQ(s.fields.size(), 25u + 26u + 26u + 3u + 2u);
 }
 
@@ -201,7 +201,7 @@ TEST(GribReader, LambertConformalPositionsPerPoint) {
   EXPECT_GT(g.latDeg[kNx], g.latDeg[0]);
   EXPECT_NE(g.latDeg[0], g.latDeg[kNx - 1]);
 
-  const LevelField* r = f.steps.at(0).find("r", 700.0);
+  const LevelField* r = f.steps.at(0).find(FieldKind::RelativeHumidity, 700.0);
   ASSERT_TRUE(r);
   for (size_t k = 0; k < r->values.size(); ++k) EXPECT_NEAR(r->values[k], 0.03 * double(k), 1e-4);
 }
@@ -240,9 +240,9 @@ TEST(GribReader, StepsComeOutInValidTimeOrder) {
   ASSERT_EQ(f.steps.size(), 2u);
   EXPECT_EQ(f.steps[0].validTimeUnix, 1717200000.0);  // 2024-06-01T00:00Z
   EXPECT_EQ(f.steps[1].validTimeUnix, 1717200000.0 + 6 * 3600.0);
-  ASSERT_TRUE(f.steps[0].find("tcc_low") && f.steps[1].find("tcc_low"));
-  EXPECT_NEAR(f.steps[0].find("tcc_low")->values[5], 0.2, 1e-4);
-  EXPECT_NEAR(f.steps[1].find("tcc_low")->values[5], 0.8, 1e-4);
+  ASSERT_TRUE(f.steps[0].find(FieldKind::CloudCoverLow) && f.steps[1].find(FieldKind::CloudCoverLow));
+  EXPECT_NEAR(f.steps[0].find(FieldKind::CloudCoverLow)->values[5], 0.2, 1e-4);
+  EXPECT_NEAR(f.steps[1].find(FieldKind::CloudCoverLow)->values[5], 0.8, 1e-4);
   EXPECT_EQ(f.grid.nx, 4u);
   EXPECT_EQ(f.grid.ny, 3u);
   EXPECT_TRUE(f.grid.regularLatLon);
@@ -266,7 +266,7 @@ TEST(GribReader, BitmapMissingValuesBecomeNaN) {
   GribWriter w = latLonField("r", "isobaricInhPa", 850, 4, 3, {});
   w.set("missingValue", 9999.0).set("bitmapPresent", 1L).values(v).appendTo(file);
   WeatherFields f = readGrib2(file);
-  const LevelField* r = f.steps.at(0).find("r", 850.0);
+  const LevelField* r = f.steps.at(0).find(FieldKind::RelativeHumidity, 850.0);
   ASSERT_TRUE(r);
   EXPECT_TRUE(std::isnan(r->values[3]));
   EXPECT_TRUE(std::isnan(r->values[7]));
@@ -288,7 +288,7 @@ TEST(GribReader, HumidityOutsidePercentRangeIsClampedWithOneWarning) {
   EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
   EXPECT_NE(err.find("range.grib2"), std::string::npos) << err;
   EXPECT_NE(err.find("4 values of r"), std::string::npos) << err;
-  const LevelField* r = f.steps.at(0).find("r", 850.0);
+  const LevelField* r = f.steps.at(0).find(FieldKind::RelativeHumidity, 850.0);
   ASSERT_TRUE(r);
   EXPECT_EQ(r->values[0], 1.0f);
   EXPECT_EQ(r->values[1], 0.0f);

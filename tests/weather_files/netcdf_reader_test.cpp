@@ -191,24 +191,25 @@ TEST(NetcdfReader, Era5StyleFixture) {
   ASSERT_EQ(f.steps.size(), 1u);
   EXPECT_DOUBLE_EQ(f.steps[0].validTimeUnix, 1295092800.0);  // 2011-01-15T12:00Z
   const WeatherStep& s = f.steps[0];
-  for (const char* name : {"r", "t", "gh"}) {
-    const std::vector<double> levels = s.levels(name);
-    ASSERT_EQ(levels.size(), 21u) << name;
+  for (FieldKind kind :
+       {FieldKind::RelativeHumidity, FieldKind::Temperature, FieldKind::GeopotentialHeight}) {
+    const std::vector<double> levels = s.levels(kind);
+    ASSERT_EQ(levels.size(), 21u) << fieldName(kind);
     EXPECT_DOUBLE_EQ(levels.front(), 1000.0);
     EXPECT_DOUBLE_EQ(levels.back(), 100.0);
   }
   EXPECT_EQ(s.fields.size(), 63u);
-  const LevelField* r850 = s.find("r", 850);
+  const LevelField* r850 = s.find(FieldKind::RelativeHumidity, 850);
   ASSERT_NE(r850, nullptr);
   ASSERT_EQ(r850->values.size(), 144u * 73u);
   EXPECT_NEAR(meanOf(r850->values), 0.685, 0.0015);  // ecCodes: mean 68.5 %
   for (float x : r850->values) ASSERT_TRUE(x >= 0.0f && x <= 1.0f) << x;
-  const LevelField* gh500 = s.find("gh", 500);
+  const LevelField* gh500 = s.find(FieldKind::GeopotentialHeight, 500);
   ASSERT_NE(gh500, nullptr);
   const auto [lo, hi] = std::minmax_element(gh500->values.begin(), gh500->values.end());
   EXPECT_NEAR(*lo, 4893.0, 1.0);  // ecCodes: 4893..5902 gpm
   EXPECT_NEAR(*hi, 5902.0, 1.0);
-  const LevelField* t1000 = s.find("t", 1000);
+  const LevelField* t1000 = s.find(FieldKind::Temperature, 1000);
   ASSERT_NE(t1000, nullptr);
   const auto [tlo, thi] = std::minmax_element(t1000->values.begin(), t1000->values.end());
   EXPECT_GT(*tlo, 200.0f);
@@ -235,20 +236,20 @@ TEST_F(NetcdfTest, Era5StyleGeopotentialCoverAndLongitudes) {
   EXPECT_EQ(f.grid.latDeg[11], 45.0);
   ASSERT_EQ(f.steps.size(), 1u);
   const WeatherStep& s = f.steps[0];
-  const LevelField* r500 = s.find("r", 500);
-  const LevelField* r850 = s.find("r", 850);
+  const LevelField* r500 = s.find(FieldKind::RelativeHumidity, 500);
+  const LevelField* r850 = s.find(FieldKind::RelativeHumidity, 850);
   ASSERT_TRUE(r500 && r850);
   EXPECT_NEAR(r500->values[0], 0.10, 1e-6);  // 10 % packed as short
   EXPECT_NEAR(r500->values[4], 0.22, 1e-6);
   EXPECT_TRUE(std::isnan(r500->values[5]));  // the _FillValue hole
   EXPECT_NEAR(r850->values[0], 0.46, 1e-6);
-  const LevelField* gh = s.find("gh", 850);  // z / 9.80665
+  const LevelField* gh = s.find(FieldKind::GeopotentialHeight, 850);  // z / 9.80665
   ASSERT_NE(gh, nullptr);
   EXPECT_NEAR(gh->values[1], 5000.0 + 10.0 * 13.0, 1e-3);
-  const LevelField* t = s.find("t", 500);
+  const LevelField* t = s.find(FieldKind::Temperature, 500);
   ASSERT_NE(t, nullptr);
   EXPECT_EQ(t->values[2], 252.0f);
-  const LevelField* low = s.find("tcc_low");
+  const LevelField* low = s.find(FieldKind::CloudCoverLow);
   ASSERT_NE(low, nullptr);
   EXPECT_NEAR(low->values[3], 0.15, 1e-6);  // a fraction by units and by its maximum
   EXPECT_EQ(low->values[11], 1.0f);         // 1.2 clamped
@@ -317,15 +318,15 @@ TEST_F(NetcdfTest, WrfLikeFile) {
   EXPECT_DOUBLE_EQ(f.steps[1].validTimeUnix, 1718982000.0);  // 15Z
   // Steps were sorted: file time 1 (12Z) is step 0.
   const WeatherStep& s0 = f.steps[0];
-  EXPECT_EQ(s0.levels("r"), (std::vector<double>{1000.0, 850.0, 500.0}));
-  const LevelField* r500 = s0.find("r", 500);
+  EXPECT_EQ(s0.levels(FieldKind::RelativeHumidity), (std::vector<double>{1000.0, 850.0, 500.0}));
+  const LevelField* r500 = s0.find(FieldKind::RelativeHumidity, 500);
   ASSERT_NE(r500, nullptr);
   EXPECT_TRUE(std::isnan(r500->values[4]));
   EXPECT_NEAR(r500->values[3], 0.1 + 0.4 + 0.03, 1e-6);  // a fraction stays a fraction
-  const LevelField* t850 = f.steps[1].find("t", 850);
+  const LevelField* t850 = f.steps[1].find(FieldKind::Temperature, 850);
   ASSERT_NE(t850, nullptr);
   EXPECT_EQ(t850->values[0], 260.0f);  // file time 0
-  const LevelField* gh1000 = s0.find("gh", 1000);
+  const LevelField* gh1000 = s0.find(FieldKind::GeopotentialHeight, 1000);
   ASSERT_NE(gh1000, nullptr);
   EXPECT_EQ(gh1000->values[5], 105.0f);
 }
@@ -350,7 +351,7 @@ TEST_F(NetcdfTest, PercentByMaximumWhateverTheUnitsSay) {
   testing::internal::CaptureStderr();  // lcc's warning, checked above
   const WeatherFields f = readNetcdf(file);
   testing::internal::GetCapturedStderr();
-  EXPECT_NEAR(f.steps[0].find("r", 500)->values[4], 0.22, 1e-6);
+  EXPECT_NEAR(f.steps[0].find(FieldKind::RelativeHumidity, 500)->values[4], 0.22, 1e-6);
 }
 
 TEST_F(NetcdfTest, MissingOrNotNetcdf) {
@@ -441,19 +442,19 @@ TEST(NetcdfReader, GribAndNetcdfAgree) {
   ASSERT_EQ(grib.steps.size(), 1u);
   EXPECT_DOUBLE_EQ(grib.steps[0].validTimeUnix, nc.steps[0].validTimeUnix);
   struct Tolerance {
-    const char* name;
+    FieldKind kind;
     double tol;
   };
   int compared = 0;
-  for (const Tolerance& t : {Tolerance{"r", 8e-6}, Tolerance{"gh", 0.14}, Tolerance{"t", 1e-3}})
-    for (double level : nc.steps[0].levels(t.name)) {
-      const LevelField* a = nc.steps[0].find(t.name, level);
-      const LevelField* b = grib.steps[0].find(t.name, level);
-      ASSERT_TRUE(a && b) << t.name << " " << level;
+  for (const Tolerance& t : {Tolerance{FieldKind::RelativeHumidity, 8e-6}, Tolerance{FieldKind::GeopotentialHeight, 0.14}, Tolerance{FieldKind::Temperature, 1e-3}})
+    for (double level : nc.steps[0].levels(t.kind)) {
+      const LevelField* a = nc.steps[0].find(t.kind, level);
+      const LevelField* b = grib.steps[0].find(t.kind, level);
+      ASSERT_TRUE(a && b) << fieldName(t.kind) << " " << level;
       double worst = 0.0;
       for (size_t p = 0; p < a->values.size(); ++p)
         worst = std::max(worst, std::fabs(double(a->values[p]) - double(b->values[p])));
-      EXPECT_LE(worst, t.tol + 1e-7 * std::fabs(b->values[0])) << t.name << " at " << level;
+      EXPECT_LE(worst, t.tol + 1e-7 * std::fabs(b->values[0])) << fieldName(t.kind) << " at " << level;
       ++compared;
     }
   EXPECT_EQ(compared, 63);

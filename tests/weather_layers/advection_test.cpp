@@ -63,7 +63,7 @@ TEST(Advection, AnEastWindMovesTheCloudsEastBySpeedTimesTime) {
 
 TEST(Advection, TheForecastDriftsWithItsWindOnlyOutsideItsSteps) {
   Scene scene = test::gfsScene(test::kLuRegion, WeatherCover::Rh);
-  const WeatherFields fields = readWeatherFile(scene);
+  const WeatherFields fields = readWeatherFile(weatherInputs(scene));
   ASSERT_EQ(fields.steps.size(), 1u);
   const double valid = fields.steps[0].validTimeUnix;
   const WeatherMap still =
@@ -105,7 +105,9 @@ TEST(Advection, TheForecastDriftsWithItsWindOnlyOutsideItsSteps) {
   // A file with no wind at all says so, not "has u at  hPa" with an empty list.
   WeatherFields calm = fields;
   for (WeatherStep& step : calm.steps)
-    std::erase_if(step.fields, [](const LevelField& f) { return f.name == "u" || f.name == "v"; });
+    std::erase_if(step.fields, [](const LevelField& f) {
+      return f.kind == FieldKind::WindU || f.kind == FieldKind::WindV;
+    });
   const std::string none = test::catchError([&] {
                              weatherMapFromFields(calm, valid + 3600.0, scene.weather, region);
                            }).what();

@@ -42,15 +42,15 @@ GridGeometry globalGrid() {
 
 // A field of `grid` from a function of (lat, lon).
 template <class F>
-LevelField field(const GridGeometry& grid, const std::string& name, double hpa, F f) {
-  LevelField out{name, hpa, {}};
+LevelField field(const GridGeometry& grid, FieldKind kind, double hpa, F f) {
+  LevelField out{kind, hpa, {}};
   for (size_t k = 0; k < grid.size(); ++k)
     out.values.push_back(float(f(grid.latDeg[k], grid.lonDeg[k])));
   return out;
 }
 
-LevelField constant(const GridGeometry& grid, const std::string& name, double hpa, float v) {
-  return field(grid, name, hpa, [&](double, double) { return v; });
+LevelField constant(const GridGeometry& grid, FieldKind kind, double hpa, float v) {
+  return field(grid, kind, hpa, [&](double, double) { return v; });
 }
 
 WeatherFields oneStep(const GridGeometry& grid, std::vector<LevelField> f, double time = 0.0) {
@@ -66,7 +66,7 @@ std::vector<LevelField> allLevels(const GridGeometry& grid, float rh) {
   std::vector<LevelField> out;
   for (double p : {1000, 975, 950, 925, 900, 850, 800, 750, 700, 650,
                    600,  550, 500, 450, 400, 350, 300, 250, 200, 150})
-    out.push_back(constant(grid, "r", p, rh));
+    out.push_back(constant(grid, FieldKind::RelativeHumidity, p, rh));
   return out;
 }
 
@@ -152,9 +152,9 @@ TEST(LayerCover, BoundaryLevelsBelongToBothLayersAndBoundsAreSettable) {
 TEST(LayerCover, TccIsTheModelsOwnCover) {
   const GridGeometry g = globalGrid();
   std::vector<LevelField> f = allLevels(g, 1.0f);  // ignored with cover tcc
-  f.push_back(field(g, "tcc_low", 0.0, [](double lat, double) { return lat > 0 ? 0.3 : 0.7; }));
-  f.push_back(constant(g, "tcc_mid", 0.0, 0.2f));
-  f.push_back(constant(g, "tcc_high", 0.0, kNaN));
+  f.push_back(field(g, FieldKind::CloudCoverLow, 0.0, [](double lat, double) { return lat > 0 ? 0.3 : 0.7; }));
+  f.push_back(constant(g, FieldKind::CloudCoverMid, 0.0, 0.2f));
+  f.push_back(constant(g, FieldKind::CloudCoverHigh, 0.0, kNaN));
   WeatherSettings w;
   w.cover = WeatherCover::Tcc;
   const LayerCover c = layerCover(oneStep(g, f), 0.0, w, kTestRegion);
@@ -169,7 +169,7 @@ TEST(LayerCover, Errors) {
   WeatherSettings w;
   // No r level within the mid layer: the error names the key and the levels there are.
   std::vector<LevelField> f;
-  for (double p : {1000.0, 850.0, 300.0}) f.push_back(constant(g, "r", p, 0.5f));
+  for (double p : {1000.0, 850.0, 300.0}) f.push_back(constant(g, FieldKind::RelativeHumidity, p, 0.5f));
   Error e = catchError([&] { layerCover(oneStep(g, f), 0.0, w, kTestRegion); });
   EXPECT_EQ(e.kind(), ErrorKind::BadInput);
   EXPECT_EQ(std::string(e.what()),
@@ -177,7 +177,7 @@ TEST(LayerCover, Errors) {
             "(r levels: 1000, 850, 300 hPa)");
   // No r at all.
   e = catchError(
-      [&] { layerCover(oneStep(g, {constant(g, "gh", 500, 5500.0f)}), 0.0, w, kTestRegion); });
+      [&] { layerCover(oneStep(g, {constant(g, FieldKind::GeopotentialHeight, 500, 5500.0f)}), 0.0, w, kTestRegion); });
   EXPECT_EQ(std::string(e.what()),
             "weather.low: synthetic.grib2 has no relative humidity (r) between 800 and 1000 hPa "
             "(it has no r at all)");
@@ -200,12 +200,12 @@ TEST(LayerCover, TimeBetweenStepsInterpolatesCover) {
   const GridGeometry g = globalGrid();
   WeatherFields f = oneStep(g, allLevels(g, 0.8f), 1000.0);  // cover 0
   std::vector<LevelField> wet = allLevels(g, 1.0f);          // cover 1
-  wet.push_back(constant(g, "gh", 1000.0, 100.0f));
+  wet.push_back(constant(g, FieldKind::GeopotentialHeight, 1000.0, 100.0f));
   f.steps.push_back({4600.0, wet});
   std::vector<LevelField> dry = allLevels(g, 0.9f);  // cover 0.25
-  dry.push_back(constant(g, "gh", 1000.0, 300.0f));
+  dry.push_back(constant(g, FieldKind::GeopotentialHeight, 1000.0, 300.0f));
   f.steps.push_back({8200.0, dry});
-  f.steps[0].fields.push_back(constant(g, "gh", 1000.0, 200.0f));
+  f.steps[0].fields.push_back(constant(g, FieldKind::GeopotentialHeight, 1000.0, 200.0f));
   const WeatherSettings w;
   const auto lowAt = [&](double t) { return layerCover(f, t, w, kTestRegion).low[100]; };
   EXPECT_EQ(lowAt(1000.0), 0.0f);
@@ -234,9 +234,9 @@ TEST(LayerCover, AltitudesFromGeopotentialOrTheStandardAtmosphere) {
   // gh rising northward at 850 and 700 hPa: the region's mean (the map's average over its
   // latitudes, 0..55), and 800 hPa between them in log pressure.
   std::vector<LevelField> f = allLevels(g, 0.5f);
-  f.push_back(field(g, "gh", 850, [](double lat, double) { return 1500.0 + 2.0 * lat; }));
-  f.push_back(field(g, "gh", 700, [](double lat, double) { return 3000.0 + 4.0 * lat; }));
-  f.push_back(field(g, "gh", 400, [](double, double) { return kNaN; }));  // no data: unused
+  f.push_back(field(g, FieldKind::GeopotentialHeight, 850, [](double lat, double) { return 1500.0 + 2.0 * lat; }));
+  f.push_back(field(g, FieldKind::GeopotentialHeight, 700, [](double lat, double) { return 3000.0 + 4.0 * lat; }));
+  f.push_back(field(g, FieldKind::GeopotentialHeight, 400, [](double, double) { return kNaN; }));  // no data: unused
   c = layerCover(oneStep(g, f), 0.0, w, *w.region);
   const double gh850 = 1500.0 + 2.0 * 27.5, gh700 = 3000.0 + 4.0 * 27.5;
   const double t = std::log(850.0 / 800.0) / std::log(850.0 / 700.0);
@@ -248,7 +248,7 @@ TEST(LayerCover, AltitudesFromGeopotentialOrTheStandardAtmosphere) {
   EXPECT_NEAR(c.midAltM.y,
               gh700 + standardAtmosphereAltitudeM(450.0) - standardAtmosphereAltitudeM(700.0), 0.5);
   // Never below sea level.
-  f.push_back(constant(g, "gh", 1000, -80.0f));
+  f.push_back(constant(g, FieldKind::GeopotentialHeight, 1000, -80.0f));
   c = layerCover(oneStep(g, f), 0.0, w, *w.region);
   EXPECT_EQ(c.lowAltM.x, 0.0);
 }
@@ -260,7 +260,7 @@ double smooth(double lat, double lon) {
 
 TEST(Resample, ExactAtGridPointsAndSmoothBetween) {
   const GridGeometry g = globalGrid();
-  const LevelField f = field(g, "x", 0, smooth);
+  const LevelField f = field(g, FieldKind::RelativeHumidity, 0, smooth);
   // 27 x 23 texels over [38.75, 106.25] x [-1.25, 56.25]: every texel centre is a grid point.
   WeatherRegion r{{-1.25, 56.25}, {38.75, 106.25}};
   std::vector<float> m = resampleToRegion(g, f.values, r, 27, 23, false);
@@ -289,7 +289,7 @@ TEST(Resample, ExactAtGridPointsAndSmoothBetween) {
 TEST(Resample, CoverStaysWithinZeroAndOne) {
   const GridGeometry g = globalGrid();
   // A hard edge overshoots with Catmull-Rom; cover is clamped.
-  const LevelField f = field(g, "x", 0, [](double, double lon) { return lon < 50.0 ? 0.0 : 1.0; });
+  const LevelField f = field(g, FieldKind::RelativeHumidity, 0, [](double, double lon) { return lon < 50.0 ? 0.0 : 1.0; });
   const WeatherRegion r{{0.0, 10.0}, {40.0, 60.0}};
   const std::vector<float> clamped = resampleToRegion(g, f.values, r, 64, 32, true);
   const std::vector<float> raw = resampleToRegion(g, f.values, r, 64, 32, false);
@@ -300,7 +300,7 @@ TEST(Resample, CoverStaysWithinZeroAndOne) {
 
 TEST(Resample, LongitudeWrapsOnAGlobalGrid) {
   const GridGeometry g = globalGrid();
-  const LevelField f = field(g, "x", 0, smooth);
+  const LevelField f = field(g, FieldKind::RelativeHumidity, 0, smooth);
   // Across 0E at 30N: [-11.25, 11.25] with 9 texels puts centres on -10, -7.5, ..., 10
   // (350 .. 10).
   const WeatherRegion west{{28.75, 31.25}, {-11.25, 11.25}};

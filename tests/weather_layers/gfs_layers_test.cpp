@@ -49,8 +49,8 @@ std::vector<float> channel(const WeatherMap& map, int c) {
 TEST(GfsLayers, LuRegionFromHumidityAndFromTcc) {
   const Scene rh = test::gfsScene(test::kLuRegion, WeatherCover::Rh);
   const Scene tcc = test::gfsScene(test::kLuRegion, WeatherCover::Tcc);
-  const WeatherMap a = makeWeatherMap(rh);
-  const WeatherMap b = makeWeatherMap(tcc);
+  const WeatherMap a = makeWeatherMap(weatherInputs(rh));
+  const WeatherMap b = makeWeatherMap(weatherInputs(tcc));
   ASSERT_EQ(a.width, 256u);
   ASSERT_EQ(a.height, 241u);
   ASSERT_EQ(a.texels.size(), b.texels.size());
@@ -93,7 +93,7 @@ TEST(GfsLayers, LuRegionFromHumidityAndFromTcc) {
 
 TEST(GfsLayers, TheSecondRegionCrossesZeroEast) {
   // Europe and the North Atlantic, 35-70N, 30W-30E: across the grid's seam at 0E.
-  const WeatherMap map = makeWeatherMap(test::gfsScene(test::kAtlanticRegion, WeatherCover::Rh));
+  const WeatherMap map = makeWeatherMap(weatherInputs(test::gfsScene(test::kAtlanticRegion, WeatherCover::Rh)));
   const LayerFigures low = figures(channel(map, 0)), mid = figures(channel(map, 1));
   std::printf("[ gfs ] atlantic: low mean %.3f covered %.3f, mid mean %.3f covered %.3f\n",
               low.mean, low.covered, mid.mean, mid.covered);
@@ -115,7 +115,7 @@ TEST(GfsLayers, NetcdfOfTheSameFieldsGivesTheSameMap) {
   const Scene grib = test::gfsScene(test::kLuRegion, WeatherCover::Rh);
   Scene nc = grib;
   nc.weather.file = "gfs_trop_r_t_gh_era5style.nc";
-  const WeatherMap a = makeWeatherMap(grib), b = makeWeatherMap(nc);
+  const WeatherMap a = makeWeatherMap(weatherInputs(grib)), b = makeWeatherMap(weatherInputs(nc));
   ASSERT_EQ(a.texels.size(), b.texels.size());
   double worst = 0.0;
   for (size_t i = 0; i < a.texels.size(); ++i) {
@@ -132,14 +132,14 @@ TEST(GfsLayers, NetcdfOfTheSameFieldsGivesTheSameMap) {
 TEST(GfsLayers, FileErrors) {
   Scene scene = test::gfsScene(test::kLuRegion, WeatherCover::Rh);
   scene.weather.file = "no_such_forecast.grib2";
-  Error e = catchError([&] { makeWeatherMap(scene); });
+  Error e = catchError([&] { makeWeatherMap(weatherInputs(scene)); });
   EXPECT_EQ(e.kind(), ErrorKind::BadInput);
   EXPECT_EQ(std::string(e.what()).rfind("weather.file: no_such_forecast.grib2: file not found", 0),
             0u)
       << e.what();
   // A file that is neither GRIB nor NetCDF (the fixture's licence text).
   scene.weather.file = "python-grib-doc.copyright";
-  e = catchError([&] { makeWeatherMap(scene); });
+  e = catchError([&] { makeWeatherMap(weatherInputs(scene)); });
   EXPECT_EQ(e.kind(), ErrorKind::BadInput);
   EXPECT_NE(std::string(e.what()).find("weather.file: python-grib-doc.copyright: not a GRIB or "
                                        "NetCDF file"),
@@ -147,7 +147,7 @@ TEST(GfsLayers, FileErrors) {
       << e.what();
   // An empty file key.
   scene.weather.file = "";
-  e = catchError([&] { makeWeatherMap(scene); });
+  e = catchError([&] { makeWeatherMap(weatherInputs(scene)); });
   EXPECT_EQ(std::string(e.what()), "weather.file: is required when source is file");
 }
 

@@ -120,7 +120,7 @@ TEST_F(GfsHighClouds, SitWhereTheMapsHighCoverSaysAndTheLightKnowsIt) {
   scene.output.width = 32;
   scene.output.height = 18;
   scene.time.start = *IsoTime::parse("2011-01-15T05:00:00Z");  // about noon at 105E
-  const WeatherMap map = WeatherSource().map(scene, scene.time.start);
+  const WeatherMap map = WeatherSource().map(weatherInputs(scene), scene.time.start);
   ASSERT_FALSE(map.coverHigh.empty());
   // The texels whose 5 x 5 neighbourhood (about 60 x 60 km) is most and least covered.
   float most = -1.0f, least = 2.0f;

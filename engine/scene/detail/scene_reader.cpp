@@ -202,6 +202,16 @@ IsoTime readInstant(const ConfigNode& node, const std::string& path, std::string
 
 }  // namespace
 
+void SceneReader::field(std::string_view key, std::optional<IsoTime>& value, std::string_view) {
+  const ConfigNode* node = mMap.find(key);
+  if (!node) return;
+  const std::string path = childPath(key);
+  if (!isTextLike(*node)) fail(*node, path, "expected a string, got " + node->describeKind());
+  // Empty text means the same as no key (older scenes write `time: ""`).
+  value = node->text.empty() ? std::nullopt
+                             : std::optional<IsoTime>(readInstant(*node, path, node->text, ""));
+}
+
 void SceneReader::field(std::string_view key, TimeSettings& value, std::string_view) {
   const ConfigNode* node = mMap.find(key);
   if (!node) return;

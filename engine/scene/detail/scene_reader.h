@@ -94,6 +94,7 @@ public:
   void field(std::string_view key, bool& value, std::string_view);
   void field(std::string_view key, std::string& value, const TextRule& rule, std::string_view);
   void field(std::string_view key, TimeSettings& value, std::string_view);
+  void field(std::string_view key, std::optional<IsoTime>& value, std::string_view);
   // A choice: one of the names in E's table (field_rules.h).
   template <SceneEnum E>
   void field(std::string_view key, E& value, std::string_view) {

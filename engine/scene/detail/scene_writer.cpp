@@ -154,6 +154,14 @@ void SceneWriter::choice(std::string_view key, const char* name) {
   mMap.add(std::string(key), {}, ConfigNode::makeScalar(name, ConfigNode::Style::String, {}));
 }
 
+void SceneWriter::field(std::string_view key, const std::optional<IsoTime>& value,
+                        std::string_view) {
+  // Absent stays absent, as for optional numbers.
+  if (value)
+    mMap.add(std::string(key), {},
+             ConfigNode::makeScalar(value->format(), ConfigNode::Style::String, {}));
+}
+
 void SceneWriter::field(std::string_view key, const TimeSettings& value, std::string_view) {
   auto text = [](std::string t) {
     return ConfigNode::makeScalar(std::move(t), ConfigNode::Style::String, {});

@@ -49,6 +49,7 @@ public:
   void field(std::string_view key, const bool& value, std::string_view);
   void field(std::string_view key, const std::string& value, const TextRule&, std::string_view);
   void field(std::string_view key, const TimeSettings& value, std::string_view);
+  void field(std::string_view key, const std::optional<IsoTime>& value, std::string_view);
   template <SceneEnum E>
   void field(std::string_view key, const E& value, std::string_view) {
     choice(key, enumName(value));

@@ -165,6 +165,17 @@ void SchemaBuilder::field(std::string_view key, const TimeSettings& value,
   mSchema["properties"][std::string(key)] = std::move(s);
 }
 
+void SchemaBuilder::field(std::string_view key, const std::optional<IsoTime>& value,
+                          std::string_view description) {
+  // An instant, or empty text for none (the reader takes "" as no key).
+  Json s = Json::object();
+  s["description"] = std::string(description);
+  s["type"] = "string";
+  s["anyOf"] = Json::array({Json{{"maxLength", 0}}, Json{{"pattern", kIsoTimePattern}}});
+  if (value) s["default"] = value->format();
+  mSchema["properties"][std::string(key)] = std::move(s);
+}
+
 void SchemaBuilder::bothOrNeither(std::string_view a, std::string_view b) {
   mSchema["dependentRequired"][std::string(a)] = Json::array({std::string(b)});
   mSchema["dependentRequired"][std::string(b)] = Json::array({std::string(a)});

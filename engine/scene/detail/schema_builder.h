@@ -67,6 +67,7 @@ public:
   void field(std::string_view key, const std::string& value, const TextRule& rule,
              std::string_view description);
   void field(std::string_view key, const TimeSettings& value, std::string_view description);
+  void field(std::string_view key, const std::optional<IsoTime>& value, std::string_view);
   template <SceneEnum E>
   void field(std::string_view key, const E& value, std::string_view description) {
     std::vector<std::string_view> names;
