@@ -1,9 +1,13 @@
 #include "engine/graph/frame_graph.h"
 
 #include <algorithm>
+#include <cstring>
+#include <memory>
 
 #include "engine/core/error.h"
+#include "engine/gpu/texel_convert.h"
 #include "engine/graph/graph_runtime.h"
+#include "engine/graph/pass_context.h"
 
 namespace sky {
 namespace {
@@ -77,6 +81,52 @@ BufferId FrameGraph::importBuffer(PersistentBuffer& buffer) {
                     .buffer = d,
                     .initial = buffer.state};
   return {addResource(std::move(node), {nullptr, &buffer, -1}), 0};
+}
+
+ImageId FrameGraph::upload(ImageId image, std::span<const float> pixels, std::string name) {
+  if (image.id >= mDesc.resources.size() || mDesc.resources[image.id].kind != ResourceKind::Image)
+    internalError("frame graph: upload '" + name + "' to an invalid image handle");
+  const ImageDesc& d = mDesc.resources[image.id].image;
+  const uint32_t depth = d.dim == ImageDim::Tex3D ? d.depth : 1;
+  const size_t texels = size_t(d.width) * d.height * depth;
+  if (pixels.size() != texels * formatChannelCount(d.format))
+    internalError("upload to image '" + d.name + "': " + std::to_string(pixels.size()) +
+                  " values for " + std::to_string(texels) + " texels of " + formatName(d.format));
+  const std::vector<uint8_t> bytes = floatsToTexels(d.format, pixels);
+  Buffer* staging = nullptr;
+  if (mRuntime) {  // a graph without a GPU records the pass and never runs it
+    mStaging.push_back(std::make_unique<Buffer>(
+        mRuntime->gpu(), BufferDesc{"upload " + d.name, bytes.size(),
+                                    VK_BUFFER_USAGE_TRANSFER_SRC_BIT, BufferMemory::HostVisible}));
+    staging = mStaging.back().get();
+    // Host-coherent memory: the writes are visible to the device at submit without a flush.
+    std::memcpy(staging->mapped(), bytes.data(), bytes.size());
+  }
+  const VkExtent3D extent{d.width, d.height, depth};
+  // The graph's barriers put the image in TRANSFER_DST_OPTIMAL before the copy and make it
+  // visible to whatever reads it next, in this frame or a later one (its ResourceState).
+  GraphBuilder b = addPass(std::move(name), [staging, extent, image](PassContext& ctx) {
+    VkBufferImageCopy region{};
+    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    region.imageExtent = extent;
+    vkCmdCopyBufferToImage(ctx.cmd(), staging->buffer(), ctx.image(image).image(),
+                           VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+  });
+  const ImageId written = b.write(image, Access::TransferDst);
+  b.sideEffect();
+  return written;
+}
+
+FrameResult uploadNow(GraphRuntime& runtime, std::initializer_list<ImageFill> fills) {
+  FrameGraph graph(runtime, GraphUse::Bake);
+  for (const ImageFill& f : fills)
+    (void)graph.upload(graph.importImage(*f.image), f.pixels,
+                       "upload " + f.image->image.desc().name);
+  return graph.execute();
+}
+
+void FrameGraph::afterExecute(std::function<void()> done) {
+  mAfterExecute.push_back(std::move(done));
 }
 
 GraphBuilder FrameGraph::addPass(std::string name, std::function<void(PassContext&)> execute) {

@@ -4,8 +4,10 @@
 // barrier, records, submits, times each pass and reads requested outputs back.
 // A FrameGraph is built for one frame and executed once; GraphRuntime persists.
 #include <functional>
+#include <initializer_list>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -154,6 +156,17 @@ public:
   // Imports both images of `history` (see HistoryImage); ensure() it first.
   HistoryIds importHistory(HistoryImage& history);
   BufferId importBuffer(PersistentBuffer& buffer);
+  // A transfer pass `name` that fills the whole of `image` with `pixels`: interleaved floats,
+  // formatChannelCount per texel, row 0 the top, converted to the image's format (rgba16f,
+  // rgba32f, r16f, r32f, r8, rgba8 unorm). The texels are staged at once in a host-visible
+  // buffer that the graph frees after execute(). The pass is kept though nothing in this frame
+  // reads the image (later frames do). Returns the image's new version. Internal error for a
+  // count of values that is not the image's, or an image without TRANSFER_DST usage.
+  [[nodiscard]] ImageId upload(ImageId image, std::span<const float> pixels, std::string name);
+  // Calls `done` once execute() has run this frame to its end. An owner of a persistent image
+  // learns that what the frame wrote there (an upload) landed: a frame that fails, or a graph
+  // never executed, calls nothing, and the owner tries again next frame.
+  void afterExecute(std::function<void()> done);
   // Adds a pass; declare its resources through the returned builder before adding the next.
   GraphBuilder addPass(std::string name, std::function<void(PassContext&)> execute);
   // Adds a pass object (see STYLE.md): P::kName, P::Inputs, P::Outputs, setup(), execute().
@@ -208,8 +221,19 @@ private:
   };
   std::vector<Output> mOutputs;
   std::vector<HistoryImage*> mHistories;  // flipped after execute
+  std::vector<std::unique_ptr<Buffer>> mStaging;  // upload()'s texels, until execute ends
+  std::vector<std::function<void()>> mAfterExecute;
   std::optional<CompiledGraph> mCompiled;
   bool mExecuted = false;
 };
+
+// One persistent image and the texels to fill it with (FrameGraph::upload's layout).
+struct ImageFill {
+  PersistentImage* image;
+  std::span<const float> pixels;
+};
+// Fills persistent images outside a frame (textures loaded from files or a cache): one graph
+// (GraphUse::Bake) of passes "upload NAME", executed before this returns.
+FrameResult uploadNow(GraphRuntime& runtime, std::initializer_list<ImageFill> fills);
 
 }  // namespace sky

@@ -275,6 +275,9 @@ FrameResult FrameGraph::execute() {
     h->mWrite = 1 - h->mWrite;
     h->mValid = true;
   }
+  // Uploads landed: free their staging memory and tell the images' owners.
+  mStaging.clear();
+  for (const std::function<void()>& done : mAfterExecute) done();
   result.wallMs =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return result;

@@ -97,7 +97,7 @@ CloudLayers::Frame CloudLayers::addTo(FrameGraph& graph, const Scene& scene, con
   const WeatherMap& map = weatherMap(scene, time);
   Frame f;
   const CloudNoise::Outputs noise = mNoise.addTo(graph, scene.clouds.model);
-  const WeatherTexture::Outputs weather = mWeather.addTo(graph, map, mMapRevision);
+  const WeatherTextures::Clouds weather = mWeather.addClouds(graph, map, mMapRevision);
   f.textures = {noise.shape, noise.detail,   noise.curl,         &mNoise.sampler(),
                 weather.map, weather.coarse, &mWeather.sampler()};
   f.coverage = coverageTables(scene, map);

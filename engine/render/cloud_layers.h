@@ -1,16 +1,17 @@
 #pragma once
 // What the volumetric clouds need besides their pass, kept across frames: the baked noise
-// (passes/cloud_noise), the weather map built from the scene and uploaded (engine/weather),
-// and the calibrated coverage tables (engine/clouds), each remade only when its inputs change.
+// (passes/cloud_noise), the weather map built from the scene (engine/weather) and put on the
+// GPU (WeatherTextures), and the calibrated coverage tables (engine/clouds), each remade only
+// when its inputs change.
 #include <cstdint>
 #include <map>
 #include <optional>
 #include <string>
 
 #include "engine/clouds/coverage_calibration.h"
+#include "engine/render/weather_textures.h"
 #include "engine/weather/weather_map.h"
 #include "engine/weather/weather_source.h"
-#include "engine/weather/weather_texture.h"
 #include "passes/cloud_noise/cloud_noise.h"
 #include "passes/volumetric_clouds/volumetric_clouds.h"
 
@@ -45,6 +46,13 @@ public:
   // use of a model) and returns them with the coverage tables for `scene`. Call only when
   // weatherMap(scene) has cover.
   Frame addTo(FrameGraph& graph, const Scene& scene, const IsoTime& time);
+  // The high layer's cover of the last weatherMap() `map` on the GPU (WeatherTextures), for
+  // the high clouds' regional cover. Internal error when the map has no high layer.
+  ImageId addHighCover(FrameGraph& graph, const WeatherMap& map) {
+    return mWeather.addHighCover(graph, map, mMapRevision);
+  }
+  // The sampler of the weather textures (linear, clamp to edge).
+  const Sampler& weatherSampler() const { return mWeather.sampler(); }
 
   const CloudNoise::Activity& noiseActivity() const { return mNoise.lastActivity(); }
   // How many coverage tables were calibrated in the last addTo (0 when cached).
@@ -54,7 +62,7 @@ private:
   CoverageTables coverageTables(const Scene& scene, const WeatherMap& map);
 
   CloudNoise mNoise;
-  WeatherTexture mWeather;
+  WeatherTextures mWeather;
   WeatherSource mSource;
   uint64_t mMapRevision = 0;
   std::map<std::string, clouds::CoverageLut> mLuts;  // by model, layer, type and column

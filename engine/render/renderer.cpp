@@ -67,7 +67,6 @@ Renderer::Renderer(const Context& ctx, ShaderCompiler& compiler)
     : mRuntime(ctx),
       mStars(ctx, compiler, loadStarCatalog(configDir() / "stars" / "bright_star_catalogue.txt")),
       mHighCloudTextures(ctx, compiler, mRuntime),
-      mRegionalCover(ctx),
       mAtmosphere(ctx, compiler),
       mSky(ctx, compiler),
       mClouds(ctx, compiler, mRuntime),
@@ -245,8 +244,8 @@ Renderer::SkyImages Renderer::addSky(FrameGraph& graph, const FrameInputs& f, Re
                                    coarse.width, textures.mean, s.highAltitudeM);
   if (highFromWeather) {
     setRegionalCover(sky.params, scene, weather.region, textures);
-    sky.regional = {mRegionalCover.addTo(graph, weather, mClouds.mapRevision()),
-                    &mRegionalCover.sampler(), textures.rankShape, textures.coverCoarse};
+    sky.regional = {mClouds.addHighCover(graph, weather), &mClouds.weatherSampler(),
+                    textures.rankShape, textures.coverCoarse};
   }
   sky.lighting = out.lighting.gpu;
   sky.textures = {textures.coefficients, textures.normals, textures.coarse,

@@ -29,7 +29,6 @@
 #include "passes/display_transform/display_transform.h"
 #include "passes/cloud_volume_export/cloud_volume_export.h"
 #include "passes/high_cloud_textures/high_cloud_textures.h"
-#include "passes/high_cloud_textures/regional_cover_texture.h"
 #include "passes/sky_high_clouds/sky_high_clouds.h"
 #include "passes/star_field/star_field.h"
 #include "passes/volumetric_clouds/volumetric_clouds.h"
@@ -201,7 +200,6 @@ private:
   GraphRuntime mRuntime;
   StarFieldPass mStars;
   HighCloudTextures mHighCloudTextures;
-  RegionalCoverTexture mRegionalCover;  // the weather map's high cover, for the high clouds
   AtmosphereLuts mAtmosphere;
   SkyHighCloudsPass mSky;
   CloudLayers mClouds;

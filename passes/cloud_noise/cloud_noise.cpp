@@ -8,7 +8,6 @@
 #include "engine/core/error.h"
 #include "engine/core/files.h"
 #include "engine/core/paths.h"
-#include "engine/gpu/image_upload.h"
 #include "engine/graph/graph_runtime.h"
 #include "passes/cloud_noise/cloud_noise_cache.h"
 
@@ -127,9 +126,9 @@ void CloudNoise::load(CloudModel model) {
   allocate(detailSize);
   if (std::optional<cloud_noise::CacheEntry> entry = cloud_noise::readCacheEntry(
           file, key, CLOUD_NOISE_SHAPE_SIZE, detailSize, CLOUD_NOISE_CURL_SIZE)) {
-    uploadImage(mCtx, mShape.image, mShape.state, toFloats(entry->shape.rgba));
-    uploadImage(mCtx, mDetail.image, mDetail.state, toFloats(entry->detail.rgba));
-    uploadImage(mCtx, mCurl.image, mCurl.state, toFloats(entry->curl));
+    uploadNow(mRuntime, {{&mShape, toFloats(entry->shape.rgba)},
+                         {&mDetail, toFloats(entry->detail.rgba)},
+                         {&mCurl, toFloats(entry->curl)}});
     setVolumes(std::move(entry->shape), std::move(entry->detail));
     mActivity.loadedCache = true;
     return;

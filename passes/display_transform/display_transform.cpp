@@ -4,7 +4,6 @@
 
 #include "engine/color/display_lut.h"
 #include "engine/core/error.h"
-#include "engine/gpu/image_upload.h"
 
 namespace sky {
 
@@ -30,10 +29,13 @@ DisplayTransformPass::Outputs DisplayTransformPass::addTo(FrameGraph& graph, con
                 VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
       mLut.image = Image(mCtx, d);
     }
-    uploadImage(mCtx, mLut.image, mLut.state, lut.rgba);
-    mLutKey = key;
+    // Uploaded in this frame's graph; the key is kept once the frame has run, so a frame that
+    // fails uploads it again.
+    mLutId = graph.upload(graph.importImage(mLut), lut.rgba, "upload display_lut");
+    graph.afterExecute([this, key] { mLutKey = key; });
+  } else {
+    mLutId = graph.importImage(mLut);
   }
-  mLutId = graph.importImage(mLut);
   GraphBuilder b = graph.addPass(kName, [this](PassContext& ctx) { execute(ctx); });
   return setup(b, in);
 }

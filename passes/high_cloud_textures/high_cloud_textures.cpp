@@ -7,7 +7,6 @@
 #include "engine/core/error.h"
 #include "engine/core/files.h"
 #include "engine/core/paths.h"
-#include "engine/gpu/image_upload.h"
 #include "engine/graph/graph_runtime.h"
 #include "engine/scene/scene.h"
 #include "passes/high_cloud_textures/high_cloud_images.h"
@@ -257,13 +256,13 @@ void HighCloudTextures::allocate(uint32_t size, bool rankShape, bool coverCoarse
 void HighCloudTextures::makeClear() {
   allocate(kClearSize, false, false);
   const glm::vec4 clear(0, 0, 1, 0);
-  uploadImage(mCtx, mCoefficients.image, mCoefficients.state, constantTexture(kClearSize, clear));
-  uploadImage(mCtx, mNormals.image, mNormals.state, constantTexture(kClearSize, {0, 0, 1, 0}));
-  // The box filter of a constant is the constant: no reduce pass needed.
-  uploadImage(mCtx, mCoarse.image, mCoarse.state, constantTexture(coarseSizeOf(kClearSize), clear));
-  // 16 - 2 * 4 = 8 columns of 16 / 2 rows: level 1 alone, square.
+  // The box filter of a constant is the constant: no reduce pass needed for the coarse
+  // texture. The levels: 16 - 2 * 4 = 8 columns of 16 / 2 rows, level 1 alone, square.
   static_assert(kClearSize - 2 * HIGH_CLOUD_COARSE_MIN == kClearSize / 2);
-  uploadImage(mCtx, mLevels.image, mLevels.state, constantTexture(kClearSize / 2, clear));
+  uploadNow(mRuntime, {{&mCoefficients, constantTexture(kClearSize, clear)},
+                       {&mNormals, constantTexture(kClearSize, {0, 0, 1, 0})},
+                       {&mCoarse, constantTexture(coarseSizeOf(kClearSize), clear)},
+                       {&mLevels, constantTexture(kClearSize / 2, clear)}});
   mMean = clear;
 }
 
@@ -279,8 +278,8 @@ void HighCloudTextures::loadImages(const Scene& scene) {
     normals = high_clouds::readNormals(scene.resolvePath(h.normals), "high_clouds.normals",
                                        h.normals, coefficients.width);
   allocate(coefficients.width, false, false);
-  uploadImage(mCtx, mCoefficients.image, mCoefficients.state, coefficients.pixels);
-  if (!normals.pixels.empty()) uploadImage(mCtx, mNormals.image, mNormals.state, normals.pixels);
+  uploadNow(mRuntime, {{&mCoefficients, coefficients.pixels}});
+  if (!normals.pixels.empty()) uploadNow(mRuntime, {{&mNormals, normals.pixels}});
   finish(normals.pixels.empty(), false, false);
   mActivity.loadedImages = true;
 }
@@ -294,9 +293,9 @@ void HighCloudTextures::loadProcedural(const Scene& scene, bool regionalCover) {
   mActivity.cacheFile = file;
   if (std::optional<high_clouds::CacheEntry> entry = high_clouds::readCacheEntry(file, key, size)) {
     allocate(size, true, regionalCover);
-    uploadImage(mCtx, mCoefficients.image, mCoefficients.state, entry->coefficients);
-    uploadImage(mCtx, mNormals.image, mNormals.state, entry->normals);
-    uploadImage(mCtx, mRankShape.image, mRankShape.state, entry->rankShape);
+    uploadNow(mRuntime, {{&mCoefficients, entry->coefficients},
+                         {&mNormals, entry->normals},
+                         {&mRankShape, entry->rankShape}});
     mHasRankShape = true;
     finish(false, false, regionalCover);
     mActivity.loadedCache = true;
@@ -321,7 +320,7 @@ void HighCloudTextures::bake(const Scene& scene, uint32_t size, const std::strin
                           VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT |
                               VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
                           1, DebugView::Scalar);
-  uploadImage(mCtx, mCoverMap.image, mCoverMap.state, map.pixels);
+  uploadNow(mRuntime, {{&mCoverMap, map.pixels}});
   allocate(size, true, regionalCover);
 
   const uint32_t bands = bandsFor(size), rows = size / bands;

@@ -45,8 +45,8 @@ public:
   // params.regional.x = 1 only (setRegionalCover): all three must be set, and `coefficients`,
   // `levels` and `coarse` of `textures` are not read (normals still are).
   struct Regional {
-    ImageId cover;                          // R16F, RegionalCoverTexture (the high cover)
-    const Sampler* coverSampler = nullptr;  // linear, clamp (RegionalCoverTexture::sampler)
+    ImageId cover;                          // R16F, WeatherTextures::addHighCover (the high cover)
+    const Sampler* coverSampler = nullptr;  // linear, clamp (WeatherTextures::sampler)
     ImageId rankShape;    // HighCloudTextures::Outputs::rankShape, with `textures.sampler`
     ImageId coverCoarse;  // HighCloudTextures::Outputs::coverCoarse, with `textures.sampler`
   };
@@ -110,7 +110,7 @@ void setRegionalCover(shared::SkyHighCloudsParams& params, const Scene& scene,
 //  - auto: when the source is procedural and the map has a high layer.
 // When true, the caller passes
 // regionalCover to HighCloudTextures::addTo (which then bakes even at cover 0), uploads the
-// high layer with RegionalCoverTexture and calls setRegionalCover.
+// high layer with WeatherTextures::addHighCover and calls setRegionalCover.
 bool highCloudsFromWeather(const Scene& scene, const WeatherMap& map);
 
 }  // namespace sky

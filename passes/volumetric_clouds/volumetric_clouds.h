@@ -28,7 +28,7 @@ class ShaderCompiler;
 struct CloudTextures {
   ImageId shape, detail, curl;              // passes/cloud_noise
   const Sampler* noiseSampler = nullptr;    // linear, repeat
-  ImageId weather, weatherCoarse;           // engine/weather WeatherTexture
+  ImageId weather, weatherCoarse;           // engine/render WeatherTextures
   const Sampler* weatherSampler = nullptr;  // linear, clamp
 };
 

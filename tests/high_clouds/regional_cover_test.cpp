@@ -18,10 +18,10 @@
 #include "engine/io/exr.h"
 #include "engine/lighting/lighting_state.h"
 #include "engine/render/camera.h"
+#include "engine/render/weather_textures.h"
 #include "engine/weather/geo.h"
 #include "error_capture.h"
 #include "passes/atmosphere_luts/atmosphere_luts.h"
-#include "passes/high_cloud_textures/regional_cover_texture.h"
 #include "passes/sky_high_clouds/sky_high_clouds.h"
 #include "tests/high_clouds/high_cloud_test_util.h"
 
@@ -151,8 +151,8 @@ protected:
     if (!mTextures) mTextures = make();
     return *mTextures;
   }
-  RegionalCoverTexture& coverTexture() {
-    if (!mCover) mCover = std::make_unique<RegionalCoverTexture>(ctx());
+  WeatherTextures& coverTexture() {
+    if (!mCover) mCover = std::make_unique<WeatherTextures>(ctx());
     return *mCover;
   }
 
@@ -176,7 +176,7 @@ protected:
     in.textures = {tex.coefficients, tex.normals, tex.coarse, &textures().sampler(), tex.levels};
     if (regional) {
       setRegionalCover(in.params, scene, map->region, tex);
-      in.regional = {coverTexture().addTo(graph, *map, ++mRevision), &coverTexture().sampler(),
+      in.regional = {coverTexture().addHighCover(graph, *map, ++mRevision), &coverTexture().sampler(),
                      tex.rankShape, tex.coverCoarse};
     }
     if (scene.sky.model == SkyModel::Physical) {
@@ -201,7 +201,7 @@ protected:
 
   std::unique_ptr<HighCloudTextures> mTextures;
   std::unique_ptr<SkyHighCloudsPass> mPass;
-  std::unique_ptr<RegionalCoverTexture> mCover;
+  std::unique_ptr<WeatherTextures> mCover;
   std::unique_ptr<AtmosphereLuts> mLuts;
   uint64_t mRevision = 0;
 };
@@ -438,10 +438,10 @@ TEST_F(RegionalCoverTest, CoverUploadsOncePerRevision) {
   const WeatherMap map =
       highCoverMap(regionAround(scene, -1, 1, -1, 1), 3, 2,
                    [](uint32_t x, uint32_t y) { return 0.1f * float(x + 3 * y); });
-  RegionalCoverTexture& cover = coverTexture();
+  WeatherTextures& cover = coverTexture();
   for (uint64_t revision : {7u, 7u, 8u}) {
     FrameGraph graph(runtime());
-    const ImageId image = cover.addTo(graph, map, revision);
+    const ImageId image = cover.addHighCover(graph, map, revision);
     graph.requestOutput(image, "cover");
     const FrameResult result = graph.execute();
     const ReadbackImage& got = result.output("cover");
@@ -450,11 +450,12 @@ TEST_F(RegionalCoverTest, CoverUploadsOncePerRevision) {
     for (size_t i = 0; i < map.coverHigh.size(); ++i)
       EXPECT_NEAR(got.pixels[i], map.coverHigh[i], 1e-3f);  // r16f
   }
-  EXPECT_EQ(cover.uploadCount(), 2u);
+  EXPECT_EQ(cover.highCoverUploadCount(), 2u);
   WeatherMap none = map;
   none.coverHigh.clear();
   FrameGraph graph(runtime());
-  EXPECT_EQ(test::catchError([&] { cover.addTo(graph, none, 9); }).kind(), ErrorKind::Internal);
+  EXPECT_EQ(test::catchError([&] { cover.addHighCover(graph, none, 9); }).kind(),
+            ErrorKind::Internal);
 }
 
 // ---- CPU: which cover, which altitude ----------------------------------------------------

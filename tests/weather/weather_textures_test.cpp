@@ -1,6 +1,7 @@
-// engine/weather/weather_texture.h: the coarse max-cover map is conservative (no map texel
-// and no bilinear lookup of the map within a coarse texel exceeds it; on the CPU and as the
-// GPU samples the uploaded images), and WeatherTexture uploads only when the revision changes.
+// engine/weather/coarse_cover.h and engine/render/weather_textures.h: the coarse max-cover map
+// is conservative (no map texel and no bilinear lookup of the map within a coarse texel
+// exceeds it; on the CPU and as the GPU samples the uploaded images), and WeatherTextures
+// (RevisionedImage) uploads only when the revision changes, and again after a failed frame.
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -16,7 +17,8 @@
 #include "engine/graph/graph_runtime.h"
 #include "engine/graph/pass_context.h"
 #include "engine/shader/shader_compiler.h"
-#include "engine/weather/weather_texture.h"
+#include "engine/render/weather_textures.h"
+#include "engine/weather/coarse_cover.h"
 #include "gpu_test.h"
 
 namespace sky {
@@ -87,20 +89,19 @@ TEST(CoarseCover, EveryTexelAndEveryNearbyLookupIsBelowItsCoarseTexel) {
   }
 }
 
-class WeatherTextureTest : public GpuTest {
+class WeatherTexturesTest : public GpuTest {
 protected:
   struct Sampled {
     std::vector<float> map, coarse, results, nearest;
   };
   // Reads both images back and runs the sampling kernel on them, in one graph.
-  Sampled run(WeatherTexture& texture, const WeatherMap& map, uint64_t revision) {
+  Sampled run(WeatherTextures& texture, const WeatherMap& map, uint64_t revision) {
     ShaderCompiler compiler(shaderDir(), std::nullopt);
     const CompiledShader shader = compiler.compile(std::filesystem::path(SKY_WEATHER_TEST_DIR) /
                                                    "weather_sample_kernel.comp");
     ComputePipeline pipeline(ctx(), "weather_sample_kernel", shader.spirv, shader.reflection);
-    GraphRuntime runtime(ctx());
-    FrameGraph graph(runtime);
-    const WeatherTexture::Outputs out = texture.addTo(graph, map, revision);
+    FrameGraph graph(mRuntime);
+    const WeatherTextures::Clouds out = texture.addClouds(graph, map, revision);
     ImageId results, nearest;
     GraphBuilder b = graph.addPass("weather_sample_kernel", [&](PassContext& pc) {
       pc.dispatch(pipeline,
@@ -126,11 +127,12 @@ protected:
     return {r.output("map").pixels, r.output("coarse").pixels, r.output("results").pixels,
             r.output("nearest").pixels};
   }
+  GraphRuntime mRuntime{ctx()};
 };
 
-TEST_F(WeatherTextureTest, UploadedCoarseMapIsConservativeAsTheGpuSamplesIt) {
+TEST_F(WeatherTexturesTest, UploadedCoarseMapIsConservativeAsTheGpuSamplesIt) {
   const WeatherMap map = sparseMap(61, 45, 9);
-  WeatherTexture texture(ctx());
+  WeatherTextures texture(ctx());
   const Sampled s = run(texture, map, 1);
   const WeatherMap coarse = coarseCoverMap(map);
   ASSERT_EQ(s.map.size(), map.texels.size() * 4);
@@ -164,25 +166,42 @@ TEST_F(WeatherTextureTest, UploadedCoarseMapIsConservativeAsTheGpuSamplesIt) {
     }
   }
   EXPECT_GT(zeros, 0) << "the test map leaves empty space to skip";
-  EXPECT_EQ(texture.uploadCount(), 1u);
+  EXPECT_EQ(texture.mapUploadCount(), 1u);
 }
 
-TEST_F(WeatherTextureTest, UploadsOnlyWhenTheRevisionChanges) {
-  WeatherTexture texture(ctx());
+TEST_F(WeatherTexturesTest, UploadsOnlyWhenTheRevisionChanges) {
+  WeatherTextures texture(ctx());
   WeatherMap map = sparseMap(16, 16, 1);
   for (glm::vec4& t : map.texels) t.x = 0.25f;
   EXPECT_EQ(run(texture, map, 7).map[0], 0.25f);
   // Same revision: the images stay as they were even though the map changed.
   for (glm::vec4& t : map.texels) t.x = 0.75f;
   EXPECT_EQ(run(texture, map, 7).map[0], 0.25f);
-  EXPECT_EQ(texture.uploadCount(), 1u);
+  EXPECT_EQ(texture.mapUploadCount(), 1u);
   // A new revision uploads, also at a new size.
   EXPECT_EQ(run(texture, map, 8).map[0], 0.75f);
   const WeatherMap bigger = sparseMap(40, 24, 2);
   const Sampled s = run(texture, bigger, 9);
   EXPECT_EQ(s.map.size(), size_t(40 * 24 * 4));
   EXPECT_EQ(s.coarse.size(), size_t(5 * 3 * 4));
-  EXPECT_EQ(texture.uploadCount(), 3u);
+  EXPECT_EQ(texture.mapUploadCount(), 3u);
+}
+
+TEST_F(WeatherTexturesTest, AFrameThatFailsAfterTheUploadIsRecordedUploadsAgain) {
+  WeatherTextures texture(ctx());
+  WeatherMap map = sparseMap(16, 16, 1);
+  for (glm::vec4& t : map.texels) t.x = 0.25f;
+  EXPECT_EQ(run(texture, map, 1).map[0], 0.25f);
+  // Revision 2 is added to a frame that is never executed (a later pass's setup failed).
+  for (glm::vec4& t : map.texels) t.x = 0.75f;
+  {
+    FrameGraph failed(mRuntime);
+    (void)texture.addClouds(failed, map, 2);
+  }
+  EXPECT_EQ(texture.mapUploadCount(), 1u);
+  // The next frame with revision 2 uploads it: the image never held it.
+  EXPECT_EQ(run(texture, map, 2).map[0], 0.75f);
+  EXPECT_EQ(texture.mapUploadCount(), 2u);
 }
 
 }  // namespace

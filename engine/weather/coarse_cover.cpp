@@ -1,20 +1,14 @@
-#include "engine/weather/weather_texture.h"
+#include "engine/weather/coarse_cover.h"
 
 #include <algorithm>
 #include <cmath>
-#include <span>
 
 #include <glm/common.hpp>
 
 #include "engine/core/error.h"
-#include "engine/gpu/image_upload.h"
 
 namespace sky {
 namespace {
-
-// Sampled by the cloud pass, written by uploads, read back for debug outputs and tests.
-constexpr VkImageUsageFlags kUsage =
-    VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
 
 // The map texels [first, last] a bilinear lookup can reach from any u in coarse texels
 // [i - 1, i + 1] (of `coarse` across) of a map `size` texels across.
@@ -24,23 +18,6 @@ std::pair<uint32_t, uint32_t> reach(uint32_t i, uint32_t coarse, uint32_t size) 
   const double first = std::floor(a - 0.5), last = std::floor(b - 0.5) + 1.0;
   const double top = double(size - 1);
   return {uint32_t(std::clamp(first, 0.0, top)), uint32_t(std::clamp(last, 0.0, top))};
-}
-
-std::span<const float> floats(const std::vector<glm::vec4>& texels) {
-  return {&texels.front().x, texels.size() * 4};
-}
-
-PersistentImage makeImage(const Context& ctx, const char* name, const char* about, uint32_t width,
-                          uint32_t height) {
-  ImageDesc desc;
-  desc.name = name;
-  desc.about = about;
-  desc.format = VK_FORMAT_R16G16B16A16_SFLOAT;
-  desc.width = width;
-  desc.height = height;
-  desc.usage = kUsage;
-  checkImageDesc(ctx, desc);
-  return {Image(ctx, desc), {}};
 }
 
 }  // namespace
@@ -78,37 +55,6 @@ WeatherMap coarseCoverMap(const WeatherMap& map) {
     }
   }
   return coarse;
-}
-
-WeatherTexture::WeatherTexture(const Context& ctx)
-    : mCtx(ctx), mSampler(ctx, SamplerWrap::Clamp, true) {}
-
-WeatherTexture::Outputs WeatherTexture::addTo(FrameGraph& graph, const WeatherMap& map,
-                                              uint64_t revision) {
-  if (!mRevision || *mRevision != revision) {
-    // Forget the old revision first: if the upload fails, the next call tries again.
-    mRevision.reset();
-    upload(map);
-    mRevision = revision;
-  }
-  return {graph.importImage(mMap), graph.importImage(mCoarse)};
-}
-
-void WeatherTexture::upload(const WeatherMap& map) {
-  const WeatherMap coarse = coarseCoverMap(map);  // also checks the map is well formed
-  if (!mMap.image || mMap.image.desc().width != map.width ||
-      mMap.image.desc().height != map.height) {
-    mMap = makeImage(mCtx, "weather_map",
-                     "the weather map over its region: R low cover, G mid cover, B cloud type, "
-                     "A density",
-                     map.width, map.height);
-    mCoarse = makeImage(mCtx, "weather_coarse",
-                        "the weather map's maximum cover over coarse cells (empty-space skip)",
-                        coarse.width, coarse.height);
-  }
-  uploadImage(mCtx, mMap.image, mMap.state, floats(map.texels));
-  uploadImage(mCtx, mCoarse.image, mCoarse.state, floats(coarse.texels));
-  ++mUploads;
 }
 
 }  // namespace sky

@@ -1,7 +1,7 @@
-// engine/gpu/image_upload: float texels reach the image in its own format, the image ends in
-// the asked layout, and a frame graph importing it afterwards (and an upload after that
-// graph) synchronise from the ResourceState the upload leaves, with validation on.
-#include <cmath>
+// FrameGraph::upload: float texels reach the image in its own format through a graph transfer
+// pass; a later graph (and an upload after it) synchronise from the ResourceState the frame
+// leaves, with validation on; the pass is kept though nothing in its frame reads the image;
+// afterExecute runs only for a frame that ran.
 #include <string>
 #include <vector>
 
@@ -9,7 +9,6 @@
 
 #include "engine/core/error.h"
 #include "engine/gpu/image.h"
-#include "engine/gpu/image_upload.h"
 #include "engine/graph/frame_graph.h"
 #include "engine/graph/graph_runtime.h"
 #include "gpu_test.h"
@@ -26,7 +25,7 @@ std::vector<float> readBack(GraphRuntime& runtime, PersistentImage& image) {
 
 PersistentImage makeImage(const Context& ctx, VkFormat format, uint32_t w, uint32_t h) {
   ImageDesc desc;
-  desc.name = "upload test";
+  desc.name = "upload_test";
   desc.format = format;
   desc.width = w;
   desc.height = h;
@@ -41,7 +40,7 @@ std::vector<float> ramp(size_t count, float scale, float offset) {
   return v;
 }
 
-TEST_F(GpuTest, UploadedTexelsReadBackInEachFormat) {
+TEST_F(GpuTest, UploadedTexelsReadBackInEachFormatInTheSameFrame) {
   GraphRuntime runtime(ctx());
   struct Case {
     VkFormat format;
@@ -58,32 +57,62 @@ TEST_F(GpuTest, UploadedTexelsReadBackInEachFormat) {
     SCOPED_TRACE(formatName(c.format));
     PersistentImage image = makeImage(ctx(), c.format, 13, 7);
     const std::vector<float> pixels = ramp(13 * 7 * c.channels, c.scale, c.offset);
-    uploadImage(ctx(), image.image, image.state, pixels);
-    EXPECT_EQ(image.state.layout, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-    const std::vector<float> back = readBack(runtime, image);
+    FrameGraph graph(runtime);
+    const ImageId uploaded = graph.upload(graph.importImage(image), pixels, "upload");
+    graph.requestOutput(uploaded, "image");
+    const FrameResult r = graph.execute();
+    ASSERT_EQ(r.passes.size(), 2u);
+    EXPECT_EQ(r.passes[0].name, "upload");
+    EXPECT_EQ(r.passes[1].name, "readback");
+    const std::vector<float>& back = r.output("image").pixels;
     ASSERT_EQ(back.size(), pixels.size());
     for (size_t i = 0; i < pixels.size(); ++i)
       ASSERT_NEAR(back[i], pixels[i], c.tolerance) << "value " << i;
   }
 }
 
-TEST_F(GpuTest, UploadAfterAGraphReplacesTheContents) {
+TEST_F(GpuTest, AnUploadNothingReadsIsKeptAndLaterFramesSeeIt) {
   GraphRuntime runtime(ctx());
   PersistentImage image = makeImage(ctx(), VK_FORMAT_R16G16B16A16_SFLOAT, 8, 8);
-  uploadImage(ctx(), image.image, image.state, std::vector<float>(8 * 8 * 4, 0.25f),
-              VK_IMAGE_LAYOUT_GENERAL);
-  EXPECT_EQ(image.state.layout, VK_IMAGE_LAYOUT_GENERAL);
+  bool landed = false;
+  {
+    FrameGraph graph(runtime);
+    (void)graph.upload(graph.importImage(image), std::vector<float>(8 * 8 * 4, 0.25f), "upload");
+    graph.afterExecute([&] { landed = true; });
+    EXPECT_EQ(graph.execute().passes.size(), 1u) << "the upload was culled";
+  }
+  EXPECT_TRUE(landed);
+  EXPECT_EQ(image.state.layout, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
   EXPECT_EQ(readBack(runtime, image), std::vector<float>(8 * 8 * 4, 0.25f));
-  // The graph left the image as a transfer source; the next upload starts from there.
+  // The read-back left the image as a transfer source; the next upload starts from there.
   EXPECT_EQ(image.state.layout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
-  uploadImage(ctx(), image.image, image.state, std::vector<float>(8 * 8 * 4, 0.75f));
+  {
+    FrameGraph graph(runtime);
+    (void)graph.upload(graph.importImage(image), std::vector<float>(8 * 8 * 4, 0.75f), "upload");
+    graph.execute();
+  }
   EXPECT_EQ(readBack(runtime, image), std::vector<float>(8 * 8 * 4, 0.75f));
 }
 
+TEST_F(GpuTest, AFrameNeverExecutedCallsNothingAfterIt) {
+  GraphRuntime runtime(ctx());
+  PersistentImage image = makeImage(ctx(), VK_FORMAT_R16_SFLOAT, 4, 4);
+  bool landed = false;
+  {
+    FrameGraph graph(runtime);
+    (void)graph.upload(graph.importImage(image), std::vector<float>(16, 0.5f), "upload");
+    graph.afterExecute([&] { landed = true; });
+    // Dropped before execute(), as a frame whose building failed.
+  }
+  EXPECT_FALSE(landed);
+}
+
 TEST_F(GpuTest, UploadOfTheWrongSizeIsAnInternalError) {
+  GraphRuntime runtime(ctx());
   PersistentImage image = makeImage(ctx(), VK_FORMAT_R16G16B16A16_SFLOAT, 4, 4);
+  FrameGraph graph(runtime);
   try {
-    uploadImage(ctx(), image.image, image.state, std::vector<float>(4 * 4 * 3, 0.0f));
+    (void)graph.upload(graph.importImage(image), std::vector<float>(4 * 4 * 3, 0.0f), "upload");
     ADD_FAILURE() << "no error";
   } catch (const Error& e) {
     EXPECT_EQ(e.kind(), ErrorKind::Internal);
