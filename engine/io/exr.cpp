@@ -11,7 +11,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
+#include <optional>
 #include <set>
+#include <string>
 
 #include "engine/core/error.h"
 #include "engine/core/files.h"
@@ -148,6 +151,54 @@ namespace {
 // render, map or texture skylayers makes or reads (output sizes stop at 16384).
 constexpr int64_t kMaxExrSide = 32768;
 constexpr int64_t kMaxExrValues = int64_t(1) << 28;
+
+// OpenEXR 3.1 allocates (and for strings fills) the size an attribute's header declares
+// before it reads the value, so a 24-byte file claiming a 1.4 GB attribute took 1.4 GB and
+// 5 s before failing (tests/fuzz image_fuzz, issue 31). Walks the header(s) the way the
+// format lays them out (name, type, int32 size, value; an empty name ends a header; a
+// multi-part file lists headers until an empty one) and refuses a size past the end of the
+// file. Stops at anything it cannot follow and leaves that to OpenEXR.
+void refuseOversizedAttributes(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::error_code ec;
+  const uintmax_t fileSize = fs::file_size(path, ec);
+  char head[8];
+  if (ec || !in.read(head, 8)) return;
+  const bool multiPart = static_cast<unsigned char>(head[5]) & 0x10;  // version flags, bit 12
+  // A NUL-terminated string of at most 255 characters (long names); nullopt at the end of
+  // the file or past that length.
+  const auto text = [&]() -> std::optional<std::string> {
+    std::string s;
+    for (char c; in.get(c);) {
+      if (c == 0) return s;
+      if (s.size() == 255) return std::nullopt;
+      s += c;
+    }
+    return std::nullopt;
+  };
+  for (int headers = 0; headers < 1024; ++headers) {
+    for (;;) {
+      const std::optional<std::string> name = text();
+      if (!name) return;
+      if (name->empty()) break;  // the end of this header (for a multi-part file's list: of all)
+      if (!text()) return;       // the type
+      unsigned char b[4];
+      if (!in.read(reinterpret_cast<char*>(b), 4)) return;
+      const int32_t size = int32_t(uint32_t(b[0]) | uint32_t(b[1]) << 8 | uint32_t(b[2]) << 16 |
+                                   uint32_t(b[3]) << 24);
+      const std::streamoff at = in.tellg();
+      if (at < 0) return;
+      if (size < 0 || uintmax_t(size) > fileSize - uintmax_t(at))
+        inputError(path.string() + ": cannot read EXR: header attribute '" + oneLine(*name) +
+                   "' declares " + std::to_string(size) + " bytes, more than the " +
+                   std::to_string(fileSize - uintmax_t(at)) + " left in the file");
+      in.seekg(size, std::ios::cur);
+    }
+    if (!multiPart) return;
+    // A multi-part file: the next header, or an empty one (a lone NUL) ending the list.
+    if (in.peek() == 0 || !in) return;
+  }
+}
 }  // namespace
 
 LayeredImage readExr(const fs::path& path) {
@@ -166,6 +217,7 @@ LayeredImage readExr(const fs::path& path) {
     return true;
   }();
   (void)limited;
+  refuseOversizedAttributes(path);
 
   LayeredImage image;
   try {

@@ -199,6 +199,33 @@ TEST_F(ExrTest, AHugeDataWindowIsRefusedBeforeItsPixels) {
       << e.what();
 }
 
+TEST_F(ExrTest, AnAttributeLongerThanTheFileIsRefusedBeforeOpenExrAllocatesIt) {
+  // The fuzz finding: 24 bytes whose one attribute claims 2 GB (OpenEXR 3.1 allocated and
+  // filled 1.4 GB of it before failing). A multi-part file's second header too.
+  const std::string magic("\x76\x2f\x31\x01", 4);
+  const std::string huge("\xff\xff\xff\x7f", 4);
+  struct Case {
+    const char* name;
+    std::string bytes;
+  };
+  const Case cases[] = {
+      {"single.exr", magic + std::string("\x02\0\0\0", 4) + std::string("a\0string\0", 9) + huge},
+      {"multi.exr", magic + std::string("\x02\x10\0\0", 4) +
+                        std::string("a\0int\0\x04\0\0\0\x01\0\0\0\0", 15) +
+                        std::string("bb\0string\0", 10) + huge + "x"},
+  };
+  for (const Case& c : cases) {
+    const fs::path file = dir() / c.name;
+    writeFileAtomic(file, c.bytes);
+    Error e = catchError([&] { readExr(file); });
+    EXPECT_EQ(e.kind(), ErrorKind::BadInput) << e.what();
+    EXPECT_TRUE(mentions(e, file)) << e.what();
+    EXPECT_NE(std::string(e.what()).find("declares 2147483647 bytes, more than the"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 TEST_F(ExrTest, TruncatedFileIsBadInputNamingIt) {
   LayeredImage image;
   image.width = 64;

@@ -98,9 +98,11 @@ TEST_F(ImageFuzz, MutatedExrEndsInAnImageOrABadInputError) {
       ADD_FAILURE() << "mutation " << i << ": not a sky::Error: " << e.what();
     }
   }
-  // Both outcomes occur: the mutations neither all break the file nor all miss.
+  // Both outcomes occur: the mutations neither all break the file nor all miss. (27 of 300
+  // read: an attribute whose declared size runs past the file is refused before OpenEXR,
+  // which ignored the size of fixed-size types, reads it.)
   EXPECT_GT(errors, 30);
-  EXPECT_GT(reads, 30);
+  EXPECT_GT(reads, 20);
   RecordProperty("reads", reads);
 }
 
