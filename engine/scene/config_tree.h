@@ -53,6 +53,12 @@ public:
 // (a multi-line YAML scalar stays on one line), anything past maxLength bytes cut to "...".
 std::string messageText(std::string_view text, size_t maxLength = 60);
 
+// The byte offset of the first sequence in `text` that is not well-formed UTF-8 (RFC 3629:
+// no overlong forms, surrogates or code points past U+10FFFF), or npos when there is none.
+// JSON files cannot hold such text, and a scene written back would change it (issue 31's
+// fuzzing), so the scene reader refuses it in strings.
+size_t illFormedUtf8At(std::string_view text);
+
 // Parse a whole document. Syntax errors, duplicate keys and non-name keys throw
 // sky::Error(BadInput) as "file:line:col: ...". An empty YAML document is an empty map.
 ConfigNode parseYamlTree(std::string_view text, const std::string& sourceName);

@@ -523,6 +523,29 @@ TEST(SceneErrors, AtmosphereAndHighCloudRules) {
             "equirectangular");
 }
 
+TEST(SceneErrors, TextThatIsNotUtf8IsRefused) {
+  // YAML takes the bytes as they are; JSON cannot hold them and a scene written back would
+  // change them (U+FFFD), so strings must be UTF-8 (issue 31's fuzzing).
+  EXPECT_EQ(yamlError("weather:\n  file: a\xe9.grib2\n"),
+            "x.yaml:2:9: weather.file: is not valid UTF-8 (byte 0xE9 at 1); write the text in "
+            "UTF-8");
+  // Overlong forms and surrogates too; well-formed text of every length passes.
+  EXPECT_NE(yamlError("weather:\n  image: \"\xc0\xaf\"\n")
+                .find("weather.image: is not valid UTF-8 (byte 0xC0 at 0)"),
+            std::string::npos);
+  EXPECT_NE(yamlError("weather:\n  image: \"\xed\xa0\x80\"\n").find("(byte 0xED at 0)"),
+            std::string::npos);
+  EXPECT_EQ(loadSceneText("weather:\n  image: \"\xc3\xa9\xe2\x82\xac\xf0\x9f\x8c\xa7\"\n",
+                          ConfigFormat::Yaml, "x.yaml")
+                .weather.image,
+            "\xc3\xa9\xe2\x82\xac\xf0\x9f\x8c\xa7");
+  const std::string set = errorOf(
+      [&] { loadSceneText("{}", ConfigFormat::Json, "x.json", {"high_clouds.normals=n\xff"}); });
+  EXPECT_NE(set.find("high_clouds.normals: is not valid UTF-8 (byte 0xFF at 1)"),
+            std::string::npos)
+      << set;
+}
+
 TEST(SceneErrors, CloudAndWeatherRules) {
   EXPECT_EQ(yamlError("clouds:\n  low:\n    base_m: 3000\n    top_m: 2000\n"),
             "x.yaml:4:12: clouds.low.top_m: must be above base_m");

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <regex>
 
 #include "engine/core/error.h"
@@ -168,6 +169,13 @@ void SceneReader::field(std::string_view key, std::string& value, const TextRule
   }
   if (rule.maxLength && text.size() > rule.maxLength)
     fail(*node, path, "is longer than " + std::to_string(rule.maxLength) + " characters");
+  if (const size_t bad = illFormedUtf8At(text); bad != std::string::npos) {
+    char hex[8];
+    std::snprintf(hex, sizeof hex, "0x%02X", static_cast<unsigned char>(text[bad]));
+    fail(*node, path,
+         std::string("is not valid UTF-8 (byte ") + hex + " at " + std::to_string(bad) +
+             "); write the text in UTF-8");
+  }
   if (rule.pattern && !std::regex_search(text, std::regex(rule.pattern, std::regex::ECMAScript)))
     fail(*node, path,
          "'" + messageText(text) + "' is not allowed: use " +
