@@ -180,7 +180,8 @@ PresentStatus Presenter::present(const DebugPlacement& placement,
   // Out of date: nothing was acquired and the semaphore stays unsignalled. Suboptimal: the
   // image was acquired and must be presented; the swapchain is recreated after.
   if (acquired == VK_ERROR_OUT_OF_DATE_KHR) return PresentStatus::Recreate;
-  if (acquired != VK_SUBOPTIMAL_KHR) SKY_VK(acquired);
+  if (acquired != VK_SUBOPTIMAL_KHR && acquired != VK_SUCCESS)
+    mCtx.failed(acquired, "acquiring a window image");
 
   SKY_VK(vkResetCommandBuffer(mCmd, 0));
   VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
@@ -253,7 +254,7 @@ PresentStatus Presenter::present(const DebugPlacement& placement,
   if (presented == VK_ERROR_OUT_OF_DATE_KHR || presented == VK_SUBOPTIMAL_KHR ||
       acquired == VK_SUBOPTIMAL_KHR)
     return PresentStatus::Recreate;
-  SKY_VK(presented);
+  if (presented != VK_SUCCESS) mCtx.failed(presented, "at present");
   return PresentStatus::Presented;
 }
 

@@ -137,7 +137,7 @@ int Viewer::run() {
     }
     if (mOptions.frames && mFrames >= *mOptions.frames) break;
   }
-  if (mCtx) vkDeviceWaitIdle(mCtx->device());
+  if (mCtx) vkDeviceWaitIdle(mCtx->device());  // a lost device answers at once
   const auto end = Clock::now();
   const double seconds = std::chrono::duration<double>(end - start).count();
   if (mOptions.reportFps) {
@@ -154,7 +154,17 @@ int Viewer::run() {
         steadySeconds > 0 ? static_cast<double>(steadyFrames) / steadySeconds : 0.0);
   }
   std::fflush(stdout);
+  if (!mStopped.empty()) {
+    std::fprintf(stderr, "skyview: %s\n", mStopped.c_str());
+    return 1;
+  }
   return 0;
+}
+
+void Viewer::stopDrawing(const std::string& message) {
+  mStopped = oneLine(message);
+  say(mStopped + "; nothing more is drawn, the window stays open until closed");
+  glfwSetWindowTitle(mWindow->handle(), ("skyview: stopped: " + mStopped).c_str());
 }
 
 bool Viewer::frame(double dt) {
@@ -168,6 +178,15 @@ bool Viewer::frame(double dt) {
     glfwWaitEventsTimeout(0.25);
   if (mWindow->closeRequested() || gStop) return false;
 
+  if (!mStopped.empty()) {
+    // Nothing can run on a lost device: the window keeps its last frame and the title says
+    // why. A script still runs (to its quit), a person closes the window.
+    for (const ScriptCommand& c : mScript.step()) {
+      if (c.op == ScriptOp::Quit) return false;
+    }
+    if (!scripted) glfwWaitEventsTimeout(0.25);
+    return true;
+  }
   pollReloads();
   for (const ScriptCommand& c : mScript.step()) {
     runScriptCommand(c);
@@ -215,9 +234,14 @@ bool Viewer::frame(double dt) {
   mImgui->beginFrame();
   drawUi();
   const DebugPlacement placement = mDebug.place(target.width, target.height, mDisplayW, mDisplayH);
-  if (mPresenter->present(placement, [&](VkCommandBuffer cmd) { mImgui->draw(cmd); }) ==
-      PresentStatus::Recreate)
-    mRecreate = true;
+  try {
+    if (mPresenter->present(placement, [&](VkCommandBuffer cmd) { mImgui->draw(cmd); }) ==
+        PresentStatus::Recreate)
+      mRecreate = true;
+  } catch (const DeviceLost& e) {
+    stopDrawing(e.what());
+    return true;
+  }
   ++mPresented;
   if (dt > 0) mFps = 0.9 * mFps + 0.1 / dt;
   if (mOptions.logFrames) {
@@ -293,6 +317,10 @@ void Viewer::renderView() {
   RenderedFrame frame;
   try {
     frame = renderWith(*mRenderer);
+  } catch (const DeviceLost& e) {
+    if (mDisplay.empty()) throw;  // no window content yet: the one-line error and exit 1
+    stopDrawing(e.what());
+    return;
   } catch (const Error& e) {
     // A setting the renderer refuses (a size too large, a shader variant that does not
     // compile): back to the last scene that rendered; the frame on screen stays.
@@ -330,6 +358,8 @@ void Viewer::reloadShaders() {
     show(frame);
     mShaderError.clear();
     say("shaders reloaded");
+  } catch (const DeviceLost& e) {
+    stopDrawing(e.what());
   } catch (const Error& e) {
     mShaderError = "shader reload failed: " + oneLine(e.what());
     say(mShaderError);

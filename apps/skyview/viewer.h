@@ -48,6 +48,9 @@ private:
   // viewer.cpp: frames, rendering, reloads, files.
   bool frame(double dt);
   void renderView();
+  // The GPU device was lost: keep the window (and the last frame in it) with the message in
+  // its title and on stdout, draw nothing more, and exit 1 once it is closed.
+  void stopDrawing(const std::string& message);
   RenderedFrame renderWith(Renderer& renderer);
   void show(RenderedFrame& frame);
   void pollReloads();
@@ -106,6 +109,7 @@ private:
   double mDragX = 0.0, mDragY = 0.0;
 
   std::string mShaderError, mSceneError, mRenderError, mStatus;
+  std::string mStopped;  // why nothing is drawn any more (a lost device); empty while drawing
   int64_t mFrames = 0, mPresented = 0, mRendered = 0;
   double mRenderMsTotal = 0.0;
   double mFps = 0.0;

@@ -431,26 +431,25 @@ void Context::setName(VkObjectType type, uint64_t handle, const std::string& nam
   mSetObjectName(mDevice, &info);
 }
 
-namespace {
 // One line for a device that stopped working: the cause is the driver's or the GPU's, and
 // the run ends with exit 1 after its temporary files are removed (docs/outputs.md).
-[[noreturn]] void deviceFailed(VkResult r, const char* during, const std::string& device) {
+void Context::failed(VkResult r, const char* during) const {
   if (r == VK_ERROR_DEVICE_LOST)
-    internalError("the Vulkan device " + device + " was lost (VK_ERROR_DEVICE_LOST) " + during +
-                  ": the driver or the GPU failed; the frame was not written");
-  internalError(std::string("Vulkan ") + during + " on " + device + " failed: " + vkResultName(r));
+    throw DeviceLost("the Vulkan device " + deviceName() + " was lost (VK_ERROR_DEVICE_LOST) " +
+                     during + ": the driver or the GPU failed; the frame was not written");
+  internalError(std::string("Vulkan ") + during + " on " + deviceName() +
+                " failed: " + vkResultName(r));
 }
-}  // namespace
 
 void Context::submit(const VkSubmitInfo2& info, VkFence fence) const {
   VkResult r = faultAt(FaultPoint::DeviceLostAtSubmit) ? VK_ERROR_DEVICE_LOST
                                                        : vkQueueSubmit2(mQueue, 1, &info, fence);
-  if (r != VK_SUCCESS) deviceFailed(r, "at a queue submit", deviceName());
+  if (r != VK_SUCCESS) failed(r, "at a queue submit");
 }
 
 void Context::wait(VkFence fence) const {
   VkResult r = vkWaitForFences(mDevice, 1, &fence, VK_TRUE, UINT64_MAX);
-  if (r != VK_SUCCESS) deviceFailed(r, "while waiting for the GPU", deviceName());
+  if (r != VK_SUCCESS) failed(r, "while waiting for the GPU");
 }
 
 VkDeviceMemory Context::allocate(const VkMemoryAllocateInfo& info, const std::string& what) const {
@@ -462,7 +461,7 @@ VkDeviceMemory Context::allocate(const VkMemoryAllocateInfo& info, const std::st
     internalError("out of memory on " + deviceName() + " (" + vkResultName(r) + ") for " + what +
                   ", " + std::to_string(info.allocationSize >> 20) +
                   " MiB (lower output.width and output.height, or free the GPU)");
-  if (r != VK_SUCCESS) deviceFailed(r, "allocating memory", deviceName());
+  if (r != VK_SUCCESS) failed(r, "allocating memory");
   return memory;
 }
 

@@ -10,6 +10,8 @@
 
 #include <vulkan/vulkan.h>
 
+#include "engine/core/error.h"
+
 namespace sky {
 
 struct ContextOptions {
@@ -38,6 +40,14 @@ struct PhysicalDeviceInfo {
   std::string name;
   VkPhysicalDeviceType type;
   uint32_t apiVersion;
+};
+
+// The GPU stopped working (VK_ERROR_DEVICE_LOST): nothing more can run on this device. An
+// Internal error (exit 1) of its own type, so an app that keeps a window (skyview) can show the
+// message and stop drawing instead of retrying.
+class DeviceLost : public Error {
+public:
+  explicit DeviceLost(const std::string& message) : Error(ErrorKind::Internal, message) {}
 };
 
 class Context {
@@ -70,9 +80,12 @@ public:
 
   // A memory type index with all of `flags` among `typeBits`; Internal error if none.
   uint32_t memoryType(uint32_t typeBits, VkMemoryPropertyFlags flags) const;
-  // vkQueueSubmit2 on the compute queue. A lost device is an Internal error that says so
-  // (exit 1), as is any other failure; SKY_FAULT=device_lost_submit injects the loss.
+  // vkQueueSubmit2 on the compute queue. A lost device is DeviceLost, which says so (exit 1);
+  // any other failure an Internal error; SKY_FAULT=device_lost_submit injects the loss.
   void submit(const VkSubmitInfo2& info, VkFence fence) const;
+  // Throws for a device call that returned `r` (not VK_SUCCESS) `during` something ("at
+  // present"): DeviceLost for VK_ERROR_DEVICE_LOST, else an Internal error naming the result.
+  [[noreturn]] void failed(VkResult r, const char* during) const;
   // Waits for `fence`; a device lost while waiting is the same Internal error.
   void wait(VkFence fence) const;
   // vkAllocateMemory. Out of device or host memory is an Internal error naming `what`, its

@@ -158,6 +158,29 @@ TEST_F(SkyviewTest, ResizeMinimiseAndDebugLayoutsStayValid) {
   EXPECT_THAT(r.out, Not(HasSubstr("frame 7 (")));
 }
 
+TEST_F(SkyviewTest, ALostDeviceShowsTheMessageAndKeepsTheWindow) {
+  // Issue 31: a device lost mid-session (injected at the 200th queue submit, some frames
+  // after the first is on screen with pan 1) stops the drawing, not the window.
+  start("--width 160 --height 90 --log-frames --script 'pan 1'",
+        "SKY_FAULT=device_lost_submit@200");
+  ASSERT_TRUE(waitFor("was lost (VK_ERROR_DEVICE_LOST)", 120)) << out();
+  const std::string o = out();
+  EXPECT_THAT(o.substr(0, o.find("was lost")), HasSubstr("skyview: frame 2 ("))
+      << "the loss came before a frame was on screen; inject it later";
+  EXPECT_THAT(o, HasSubstr("nothing more is drawn, the window stays open until closed"));
+  // A second later the window is still open, and nothing more was drawn.
+  const size_t before = frames();
+  std::this_thread::sleep_for(std::chrono::seconds(1));
+  int status = 0;
+  EXPECT_EQ(waitpid(mPid, &status, WNOHANG), 0) << "skyview exited after the device was lost";
+  EXPECT_EQ(frames(), before);
+  // Closed, it exits 1 with the message as its one line on stderr.
+  const ViewRun r = stop();
+  EXPECT_EQ(r.rc, 1) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("skyview: the Vulkan device "));
+}
+
 TEST_F(SkyviewTest, ErrorsAreOneLineAndNonZero) {
   auto expectOneLine = [](const ViewRun& r, int rc, const std::string& fragment) {
     EXPECT_EQ(r.rc, rc) << r.err;
