@@ -162,8 +162,9 @@ float meanCosine() {
 // The sun's and the moon's light that a cloud sample of `layer` and `type` scatters toward
 // the eye (direction d) per unit of extinction, given the optical depth toward each: Lu (24)
 // with the clamp (22), the phase (23) and the multiple-scattering octaves, plus the diffusion
-// term. Scattering equals extinction: cloud droplets barely absorb.
-vec3 cloudKeyLightScattering(vec3 d, int layer, float type, vec2 tau) {
+// term, of which the point keeps `diffuseShare` (diffuseBoundaryShare). Scattering equals
+// extinction: cloud droplets barely absorb.
+vec3 cloudKeyLightScattering(vec3 d, int layer, float type, vec2 tau, float diffuseShare) {
   vec3 S = vec3(0.0);
   // Lu (22): the attenuation is at most that of ac times the densest path toward the light.
   float tauClamp =
@@ -176,8 +177,9 @@ vec3 cloudKeyLightScattering(vec3 d, int layer, float type, vec2 tau) {
     S += VIEW_PI * E *
          cloudInScatter(tau[i], tauClamp, dot(d, keyLightDirection(i)), params.g, params.gBack,
                         params.backWeight, CLOUD_DUAL_LOBE, int(params.octaves));
-    S += E * cloudDiffuseInScatter(tau[i] * cloudDiffusionLeak(type), meanCosine(),
-                                   params.multipleScattering);
+    S += diffuseShare * E *
+         cloudDiffuseInScatter(tau[i] * cloudDiffusionLeak(type), meanCosine(),
+                               params.multipleScattering);
   }
   return S;
 }
@@ -479,7 +481,9 @@ vec3 cloudLightSample(CloudRay ray, CloudStep st, float tauView, inout CloudMarc
     m.lightFar = far;
     m.lightSamples += k.samples;
   }
-  return scattering + cloudKeyLightScattering(ray.direction, st.s.layer, st.s.type, m.tau);
+  // The depths to the base and the top at this point's density, as the ambient takes them.
+  float share = diffuseBoundaryShare(sigmaT * st.s.hBottom, sigmaT * st.s.hTop, meanCosine());
+  return scattering + cloudKeyLightScattering(ray.direction, st.s.layer, st.s.type, m.tau, share);
 }
 
 // A cloud sample's share of the pixel: Lu (19)(20) over its step. The step's integral of the

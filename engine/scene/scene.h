@@ -322,7 +322,7 @@ struct CloudSettings {
   double transmittanceCutoff = 0.05;  // stop marching below this transmittance
   bool energyConserving = true;       // Hillaire 2016's integration of each step
   int scatteringOctaves = 3;          // multiple-scattering octaves (Wrenninge); 1 = single
-  double multipleScattering = 1.4;    // strength of the diffusion term, 0..4 (0: octaves only)
+  double multipleScattering = 2.2;    // strength of the diffusion term, 0..4 (0: octaves only)
   double edgeSharpness = 4.0;         // density gain at cloud boundaries, 1..32 (1: the noise's)
   double shapeScaleKm = 5.0;          // ground size of one repeat of the shape noise
   double detailScaleKm = 0.4;         // ground size of one repeat of the detail noise
