@@ -482,7 +482,8 @@ vec3 cloudLightSample(CloudRay ray, CloudStep st, float tauView, inout CloudMarc
     m.lightSamples += k.samples;
   }
   // The depths to the base and the top at this point's density, as the ambient takes them.
-  float share = diffuseBoundaryShare(sigmaT * st.s.hBottom, sigmaT * st.s.hTop, meanCosine());
+  float share = diffuseBoundaryShare(sigmaT * st.s.hBottom, sigmaT * st.s.hTop, meanCosine(),
+                                     dot(ray.direction, geoUp(params.geo, st.p)));
   return scattering + cloudKeyLightScattering(ray.direction, st.s.layer, st.s.type, m.tau, share);
 }
 

@@ -116,11 +116,17 @@ float diffuseTransmittance(float tau, float g) {
 // The path tracer draws a cumulus seen from the side with a sun 3 degrees behind the camera
 // bright in its middle and dark at the base (docs/cloud-model.md, "Low sun"): the term without
 // this lit the whole face evenly and the base twice too bright (30.8 % off Cycles, 24 % with).
-float diffuseBoundaryShare(float tauBottom, float tauTop, float g) {
+// What leaves through a boundary is not thinned: an eye looking into the base from below sees
+// the stream going out through it, whole. `viewUp` is the view ray's cosine with the local up;
+// each boundary's share goes to 1 with the square of the cosine of the eye looking into it
+// (a deck seen from below: 34 % off Cycles without this, 28 % with; with the cosine itself
+// the cumulus seen from the side lost a point).
+float diffuseBoundaryShare(float tauBottom, float tauTop, float g, float viewUp) {
   float c = 0.75 * (1.0 - g);
   float bottom = (1.0 + c * max(tauBottom, 0.0)) / (2.0 + c * max(tauBottom, 0.0));
   float top = (1.0 + c * max(tauTop, 0.0)) / (2.0 + c * max(tauTop, 0.0));
-  return bottom * top;
+  float up = max(viewUp, 0.0), down = max(-viewUp, 0.0);
+  return mix(bottom, 1.0, up * up) * mix(top, 1.0, down * down);
 }
 
 // The diffuse light scattered toward the eye per unit of extinction and of illuminance, at
