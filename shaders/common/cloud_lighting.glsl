@@ -115,8 +115,8 @@ float diffuseTransmittance(float tau, float g) {
 // above the cloud's base and tauTop below its top keeps this share of the diffusion term.
 // The path tracer draws a cumulus seen from the side with a sun 3 degrees behind the camera
 // bright in its middle and dark at the base (docs/cloud-model.md, "The diffuse field at the
-// boundaries"): the term without
-// this lit the whole face evenly and the base twice too bright (30.8 % off Cycles, 24 % with).
+// boundaries"): the term without this lit the whole face evenly and the base twice too
+// bright (30.8 % off Cycles, 24 % with).
 // What leaves through a boundary is not thinned: an eye looking into the base from below sees
 // the stream going out through it, whole. `viewUp` is the view ray's cosine with the local up;
 // each boundary's share goes to 1 with the square of the cosine of the eye looking into it
