@@ -14,6 +14,7 @@
 #include "engine/core/files.h"
 #include "engine/io/exr.h"
 #include "engine/io/png.h"
+#include "byte_mutation.h"
 #include "io_test_util.h"
 
 namespace sky {
@@ -24,36 +25,6 @@ namespace fs = std::filesystem;
 fs::path testData() {
   const char* v = std::getenv("SKY_TEST_DATA");  // set by tests/support's main()
   return v && *v ? fs::path(v) : fs::path("tests/data");
-}
-
-std::string mutate(const std::string& base, std::mt19937& rng, int kind, size_t header) {
-  std::string m = base;
-  // Half the edits land in the header, where the sizes, counts and offsets are.
-  auto offset = [&](size_t limit) {
-    const size_t span = (rng() % 2) ? std::min(limit, header) : limit;
-    return size_t(rng() % span);
-  };
-  switch (kind) {
-    case 0:  // one to three flipped bits
-      for (int i = 0, n = 1 + int(rng() % 3); i < n; ++i)
-        m[offset(m.size())] ^= char(1 << (rng() % 8));
-      break;
-    case 1:  // cut short
-      m.resize(offset(m.size()));
-      break;
-    case 2: {  // a zeroed range
-      const size_t at = offset(m.size()), len = 1 + rng() % 16;
-      for (size_t i = at; i < std::min(m.size(), at + len); ++i) m[i] = 0;
-      break;
-    }
-    default: {  // a range of 0xff or random bytes (huge sizes, counts and offsets)
-      const size_t at = offset(m.size()), len = 1 + rng() % 8;
-      const bool ones = rng() % 2;
-      for (size_t i = at; i < std::min(m.size(), at + len); ++i) m[i] = char(ones ? 0xff : rng());
-      break;
-    }
-  }
-  return m;
 }
 
 class ImageFuzz : public test::ScratchDirTest {
@@ -79,7 +50,7 @@ TEST_F(ImageFuzz, MutatedExrEndsInAnImageOrABadInputError) {
 
   std::mt19937 rng(20240621);
   for (int i = 0; i < 300; ++i) {
-    writeFileAtomic(file, mutate(base, rng, (i / 3) % 4, header));
+    writeFileAtomic(file, test::mutateBytes(base, rng, (i / 3) % 4, {header, 16, 0}));
     try {
       const LayeredImage image = readExr(file);
       ++reads;
@@ -117,7 +88,7 @@ TEST_F(ImageFuzz, MutatedPngEndsInAnImageOrABadInputError) {
   std::mt19937 rng(20240621);
   for (int i = 0; i < 300; ++i) {
     // The signature, IHDR (size, depth, colour type) and the start of the first IDAT.
-    writeFileAtomic(file, mutate(base, rng, (i / 3) % 4, 64));
+    writeFileAtomic(file, test::mutateBytes(base, rng, (i / 3) % 4, {64, 16, 0}));
     try {
       const Image8 image = readPng(file);
       ++reads;

@@ -12,6 +12,7 @@
 
 #include "engine/core/error.h"
 #include "engine/weather/grib_reader.h"
+#include "byte_mutation.h"
 #include "grib_writer.h"
 
 namespace sky {
@@ -44,36 +45,6 @@ std::string gfsLowCloudMessage() {
   }
   codes_grib_multi_support_reset_file(codes_context_get_default(), f.get());
   return {};
-}
-
-std::string mutate(const std::string& base, std::mt19937& rng, int kind) {
-  std::string m = base;
-  // Half the edits land in the sections before the data, where the lengths and counts are.
-  auto offset = [&](size_t limit) {
-    size_t span = (rng() % 2) ? std::min<size_t>(limit, 200) : limit;
-    return size_t(rng() % span);
-  };
-  switch (kind) {
-    case 0:  // one to three flipped bits
-      for (int i = 0, n = 1 + int(rng() % 3); i < n; ++i)
-        m[offset(m.size())] ^= char(1 << (rng() % 8));
-      break;
-    case 1:  // cut short
-      m.resize(1 + offset(m.size() - 1));
-      break;
-    case 2: {  // a zeroed range
-      size_t at = offset(m.size()), len = 1 + rng() % 32;
-      for (size_t i = at; i < std::min(m.size(), at + len); ++i) m[i] = 0;
-      break;
-    }
-    default: {  // a range of 0xff or random bytes (huge counts, lengths and scale factors)
-      size_t at = offset(m.size()), len = 1 + rng() % 8;
-      bool ones = rng() % 2;
-      for (size_t i = at; i < std::min(m.size(), at + len); ++i) m[i] = char(ones ? 0xff : rng());
-      break;
-    }
-  }
-  return m;
 }
 
 TEST(GribFuzz, MutatedFixturesNeverCrash) {
@@ -112,7 +83,7 @@ TEST(GribFuzz, MutatedFixturesNeverCrash) {
   int errors = 0, reads = 0;
   for (int i = 0; i < 200; ++i) {
     const std::string& base = bases[size_t(i) % bases.size()];
-    std::string input = mutate(base, rng, (i / 3) % 4);
+    std::string input = test::mutateBytes(base, rng, (i / 3) % 4, {200, 32, 1});
     if (i % 5 == 0) input = bases[0] + input;  // a good message first: errors name message 2
     std::ofstream(file, std::ios::binary | std::ios::trunc) << input;
     try {
