@@ -109,8 +109,9 @@ float diffuseTransmittance(float tau, float g) {
 }
 
 // The diffuse field near the cloud's free boundaries. In the two-stream solution for a
-// conservative slab the diffuse radiance at a face where no diffuse light comes in is about
-// half its value inside (only the outgoing stream is there), and it recovers over about
+// conservative slab (Bohren & Clothiaux 2006, 6.3; Meador & Weaver 1980) the diffuse radiance
+// at a face where no diffuse light comes in is about half its value inside (only the outgoing
+// stream is there), and it recovers over about
 // 1 / (3/4 (1 - g)) optical depths, the scale of diffuseTransmittance. So a point tauBottom
 // above the cloud's base and tauTop below its top keeps this share of the diffusion term.
 // The path tracer draws a cumulus seen from the side with a sun 3 degrees behind the camera
