@@ -118,17 +118,22 @@ float diffuseTransmittance(float tau, float g) {
 // bright in its middle and dark at the base (docs/cloud-model.md, "The diffuse field at the
 // boundaries"): the term without this lit the whole face evenly and the base twice too
 // bright (30.8 % off Cycles, 24 % with).
-// What leaves through a boundary is not thinned: an eye looking into the base from below sees
-// the stream going out through it, whole. `viewUp` is the view ray's cosine with the local up;
-// each boundary's share goes to 1 with the square of the cosine of the eye looking into it
-// (a deck seen from below: 34 % off Cycles without this, 28 % with; with the cosine itself
-// the cumulus seen from the side lost a point).
+// What leaves through a boundary is not thinned, and it is not isotropic: the same solution's
+// radiance going out through a face is I0 (1 + 3/2 mu), mu the cosine from the face's normal,
+// I0 the face's isotropic part (half the interior's), so an eye looking straight into the
+// base from below sees 1.25 times the interior's diffuse light and one looking along it half.
+// `viewUp` is the view ray's cosine with the local up; each boundary's share goes to
+// CLOUD_EMERGENT_PEAK with the square of the cosine of the eye looking into it. A deck seen
+// from below was 34 % off Cycles without the term, 28.1 % with it going to 1, 24.0 % going to
+// 1.25; with the cosine itself instead of its square 26.7 % (too bright looking obliquely
+// into the base), and the cumulus scenes moved by 0.3 points at most (docs/cloud-model.md).
+#define CLOUD_EMERGENT_PEAK 1.25
 float diffuseBoundaryShare(float tauBottom, float tauTop, float g, float viewUp) {
   float c = 0.75 * (1.0 - g);
   float bottom = (1.0 + c * max(tauBottom, 0.0)) / (2.0 + c * max(tauBottom, 0.0));
   float top = (1.0 + c * max(tauTop, 0.0)) / (2.0 + c * max(tauTop, 0.0));
   float up = max(viewUp, 0.0), down = max(-viewUp, 0.0);
-  return mix(bottom, 1.0, up * up) * mix(top, 1.0, down * down);
+  return mix(bottom, CLOUD_EMERGENT_PEAK, up * up) * mix(top, CLOUD_EMERGENT_PEAK, down * down);
 }
 
 // The diffuse light scattered toward the eye per unit of extinction and of illuminance, at
