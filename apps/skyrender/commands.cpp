@@ -18,6 +18,7 @@
 #include "apps/common/contact_sheet.h"
 #include "apps/common/debug_outputs.h"
 #include "apps/common/default_scene.h"
+#include "apps/common/stop_signals.h"
 #include "cli_args.h"
 #include "engine/color/ocio_output.h"
 #include "engine/core/error.h"
@@ -177,38 +178,6 @@ std::function<void(double)> bakeProgressBar() {
 
 namespace {
 
-// The signal that asked a render to stop (SIGINT or SIGTERM), 0 while none did. The handler
-// only records it: the frame being made is finished and written whole, then the loop stops.
-// SA_RESETHAND puts the default back, so a second Ctrl-C stops at once; SA_RESTART keeps a
-// read or a driver call it interrupts from failing with "Interrupted system call".
-volatile sig_atomic_t gStopSignal = 0;
-
-void recordStop(int signal) {
-  gStopSignal = signal;
-}
-
-class StopOnSignals {
-public:
-  StopOnSignals() {
-    gStopSignal = 0;
-    struct sigaction action {};
-    action.sa_handler = recordStop;
-    action.sa_flags = SA_RESETHAND | SA_RESTART;  // a system call it lands in carries on
-    sigemptyset(&action.sa_mask);
-    sigaction(SIGINT, &action, &mOldInt);
-    sigaction(SIGTERM, &action, &mOldTerm);
-  }
-  ~StopOnSignals() {
-    sigaction(SIGINT, &mOldInt, nullptr);
-    sigaction(SIGTERM, &mOldTerm, nullptr);
-  }
-  int signal() const { return gStopSignal; }
-
-private:
-  struct sigaction mOldInt {
-  }, mOldTerm{};
-};
-
 // Once per process: a cache that cannot be written makes every run bake and compile again.
 // Called before the work (a folder that takes no probe) and after it (a write that failed on
 // the way, such as a full disk).
@@ -231,7 +200,7 @@ int renderCommand(const std::vector<std::string>& argv) {
   // a folder it made and wrote nothing into removed, exit 128 + the signal). Installed after
   // the output folder was made, a signal in the first 0.7 s (the device and the pipelines)
   // killed the process with no word and left the empty folder (issue 31, 8).
-  const StopOnSignals stop;
+  const StopSignals stop;
   CliArgs args("render", argv,
                {"--out", "--name", "--width", "--height", "--time", "--set", "--dump-graph",
                 "--gpu", "--ocio", "--debug-output", "--debug-passes"},

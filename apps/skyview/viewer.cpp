@@ -1,7 +1,5 @@
 #include "viewer.h"
 
-#include <signal.h>
-
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 
@@ -12,6 +10,7 @@
 
 #include "apps/common/debug_view.h"
 #include "apps/common/default_scene.h"
+#include "apps/common/stop_signals.h"
 #include "engine/core/error.h"
 #include "engine/core/files.h"
 #include "engine/core/paths.h"
@@ -29,23 +28,6 @@ namespace sky::view {
 namespace fs = std::filesystem;
 
 namespace {
-
-// SIGINT/SIGTERM close the window the way its close button does: the frame in hand is
-// finished, everything is destroyed in order. A second signal kills (SA_RESETHAND).
-volatile sig_atomic_t gStop = 0;
-
-void recordStop(int) {
-  gStop = 1;
-}
-
-void installStopHandlers() {
-  struct sigaction action {};
-  action.sa_handler = recordStop;
-  action.sa_flags = SA_RESETHAND;
-  sigemptyset(&action.sa_mask);
-  sigaction(SIGINT, &action, nullptr);
-  sigaction(SIGTERM, &action, nullptr);
-}
 
 // Library messages may hold new lines; every line skyview prints is one line.
 std::string oneLine(std::string s) {
@@ -117,7 +99,9 @@ void Viewer::say(const std::string& line) {
 }
 
 int Viewer::run() {
-  installStopHandlers();
+  // SIGINT/SIGTERM close the window the way its close button does: the frame in hand is
+  // finished, everything is destroyed in order; a second request kills (stop_signals.h).
+  mStop.emplace();
   using Clock = std::chrono::steady_clock;
   const auto start = Clock::now();
   auto last = start;
@@ -176,7 +160,7 @@ bool Viewer::frame(double dt) {
     glfwPollEvents();
   else
     glfwWaitEventsTimeout(0.25);
-  if (mWindow->closeRequested() || gStop) return false;
+  if (mWindow->closeRequested() || (mStop && mStop->signal())) return false;
 
   if (!mStopped.empty()) {
     // Nothing can run on a lost device: the window keeps its last frame and the title says

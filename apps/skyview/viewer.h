@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "apps/common/stop_signals.h"
 #include "debug_panel.h"
 #include "engine/color/ocio_output.h"
 #include "engine/graph/frame_graph.h"
@@ -72,6 +73,7 @@ private:
   void advanceTime(double dt);
 
   ViewerOptions mOptions;
+  std::optional<StopSignals> mStop;  // from the start of run()
   OcioOutput mOcio;
   Scene mScene;     // what the window shows (its time an instant)
   Scene mLastGood;  // the last scene that rendered, to fall back to
