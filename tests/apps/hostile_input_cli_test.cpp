@@ -111,12 +111,15 @@ TEST_F(SkyrenderCli, OneRequestDeliveredTwiceStillStopsCleanly) {
   // timeout(1) signals its child and then its process group, so the child gets SIGTERM twice
   // within microseconds. A second signal used to kill at once (SA_RESETHAND), and the test
   // above failed one run in three: no word, the empty folder left. A repeat within 0.2 s is
-  // now the same request (apps/common/stop_signals.h). Here SIGTERM once the run has started,
-  // and again 50 ms later (two kills back to back often merge into one pending signal).
+  // now the same request (apps/common/stop_signals.h). Here SIGTERM once the run has made its
+  // --out folder (after the handler is in place), and again 20 ms later (two kills back to
+  // back often merge into one pending signal).
   const fs::path dir = mDir / "twice";
   CliRun r = run("render --width 16 --height 9 --time 2024-06-21T00:00Z/2024-06-22T00:00Z/15m "
                  "--out " + dir.string(),
-                 "sh -c '\"$0\" \"$@\" & p=$!; sleep 0.5; kill -TERM $p; sleep 0.05; kill -TERM $p; wait $p'");
+                 "sh -c '\"$0\" \"$@\" & p=$!; i=0; while [ ! -d " + dir.string() +
+                     " ] && [ $i -lt 200 ]; do sleep 0.05; i=$((i+1)); done; "
+                     "kill -TERM $p; sleep 0.02; kill -TERM $p; wait $p'");
   EXPECT_EQ(r.rc, 143) << r.err;
   EXPECT_THAT(r.err, HasSubstr("interrupted after ")) << "the second copy did not kill it";
   EXPECT_THAT(r.err, HasSubstr(" of 97 frames (SIGTERM)"));
