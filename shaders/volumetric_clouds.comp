@@ -363,16 +363,15 @@ struct CloudStep {
 // ray shows as a sliver of its height, the sine of a few degrees of it, so the rays are
 // stratified in the vertical, one in each of `count` equal slices of the pixel's height, at
 // golden-ratio places across it. Six such rays are as close to the supersampled render as
-// nine at R2 places were (4.4 % RMS; four of them 6.2 %, four at R2 places 7.7 %). Each
-// resolves CLOUD_BAND_RESOLVE of the pixel's width, as the nine did (the footprint of a
-// render three times the size): at the sixth of its area a ray covers, the sheet of moonlit
-// altocumulus blurred into a cloudy mean at every sample of the band and its light marches
-// doubled.
+// nine at R2 places were (4.4 % RMS; four of them 6.2 %, four at R2 places 7.7 %). Each of
+// the six resolves CLOUD_BAND_RESOLVE of the pixel's width, as the nine did (the footprint of
+// a render three times the size), the four their share as any marches do: at the sixth of its
+// area a ray covers, the sheet of moonlit altocumulus blurred into a cloudy mean at every
+// sample of the band and its light marches doubled.
 #define CLOUD_BAND_FROM 0.04
 #define CLOUD_BAND_TO 0.3
 #define CLOUD_BAND_RAYS_NEAR 4
 #define CLOUD_BAND_RAYS 6
-#define CLOUD_BAND_RESOLVE_NEAR 0.5
 #define CLOUD_BAND_RESOLVE (1.0 / 3.0)
 // Only rays that rise by less than this sine (4 degrees): the band as a viewer on or under
 // the clouds sees it. Grazing rays cross many clouds a pixel: with nine rays the band cost
@@ -598,10 +597,9 @@ void main() {
   // size instead.
   int count = CLOUD_TOPDOWN != 0 ? CLOUD_TOPDOWN_SUBPIXELS * CLOUD_TOPDOWN_SUBPIXELS
                                  : max(int(params.samplesPerPixel), band);
-  float spread = params.view.forward.w *
-                 (!bandRays ? 1.0 / sqrt(float(count))
-                  : band == CLOUD_BAND_RAYS_NEAR ? CLOUD_BAND_RESOLVE_NEAR
-                                                 : CLOUD_BAND_RESOLVE);
+  float spread = params.view.forward.w * (bandRays && band == CLOUD_BAND_RAYS
+                                             ? CLOUD_BAND_RESOLVE
+                                             : 1.0 / sqrt(float(count)));
   float jitter0 = pixelHash(id, params.frameIndex, 0u) * params.jitter;
   vec2 rotation = vec2(pixelHash(id, params.frameIndex, 0x51u), pixelHash(id, params.frameIndex, 0x52u));
   vec3 radiance = vec3(0.0);
