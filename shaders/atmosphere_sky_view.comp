@@ -1,11 +1,11 @@
 #version 460
 // Sky-view LUTs (Hillaire 2020, section 5.3): the sky's radiance around the camera at its
 // altitude, single and multiple scattering, in the latitude/longitude parametrisation of
-// shaders/common/atmosphere.glsl, once lit by the sun (z = 0) and once by the moon (z = 1),
-// each light's illuminance applied. Below the horizon: the light the air in front of the
+// shaders/common/atmosphere.glsl, lit by the sun or by the moon (one dispatch each, the push
+// constant saying which), the light's illuminance applied. Below the horizon: the light the air in front of the
 // ground scatters toward the camera, without the ground itself, which the composite draws
 // lit, shadowed by the clouds and dimmed by this same air (passes/atmosphere_composite).
-// Made every frame.
+// Made again only when what it depends on changes (passes/atmosphere_luts).
 #include "common/params_block.glsl"
 #include "common/atmosphere.glsl"
 
@@ -17,8 +17,10 @@ layout(std140, binding = ATMOSPHERE_BINDING_PARAMS) uniform Params {
 #define params paramsBlock[SKY_PARAMS_INDEX]
 layout(binding = ATMOSPHERE_SKY_VIEW_BINDING_TRANSMITTANCE) uniform sampler2D transmittanceLut;
 layout(binding = ATMOSPHERE_SKY_VIEW_BINDING_MULTISCATTERING) uniform sampler2D multiScatteringLut;
-layout(binding = ATMOSPHERE_SKY_VIEW_BINDING_SUN, rgba32f) uniform writeonly image2D sunImage;
-layout(binding = ATMOSPHERE_SKY_VIEW_BINDING_MOON, rgba32f) uniform writeonly image2D moonImage;
+layout(push_constant) uniform Push {
+  AtmosphereSkyViewLight which;
+};
+layout(binding = ATMOSPHERE_SKY_VIEW_BINDING_OUT, rgba32f) uniform writeonly image2D lutImage;
 
 // Radiance reaching the camera along V per unit illuminance of the light L (1/sr).
 vec3 skyRadiance(AtmosphereParams p, vec3 V, vec3 L) {
@@ -47,7 +49,7 @@ void main() {
   uvec3 id = gl_GlobalInvocationID;
   if (id.x >= ATMOSPHERE_SKY_VIEW_WIDTH || id.y >= ATMOSPHERE_SKY_VIEW_HEIGHT) return;
   AtmosphereParams p = params;
-  bool moon = id.z == 1u;
+  bool moon = which.light.x == ATMOSPHERE_SKY_VIEW_LIGHT_MOON;
   vec3 light = moon ? p.moonDirection.xyz : p.sunDirection.xyz;
   vec3 illuminance = moon ? p.moonIlluminance.rgb : p.sunIlluminance.rgb;
   vec2 unit = vec2(atmosphereTexelToUnit(float(id.x), float(ATMOSPHERE_SKY_VIEW_WIDTH)),
@@ -61,9 +63,5 @@ void main() {
   vec3 L = vec3(sqrt(max(1.0 - muS * muS, 0.0)), 0.0, muS);
   vec3 V = vec3(sinTheta * cosPhi, sinTheta * sinPhi, cosTheta);
   vec4 value = vec4(ATMOSPHERE_RENDERER_SCALE * skyRadiance(p, V, L) * illuminance, 1.0);
-  if (moon) {
-    imageStore(moonImage, ivec2(id.xy), value);
-  } else {
-    imageStore(sunImage, ivec2(id.xy), value);
-  }
+  imageStore(lutImage, ivec2(id.xy), value);
 }

@@ -124,55 +124,53 @@ AtmosphereLuts::AtmosphereLuts(const Context& ctx, ShaderCompiler& compiler)
           "quadrupole, packed in blocks side by side",
           ATMOSPHERE_MULTISCATTERING_SIZE * ATMOSPHERE_MS_TEXELS,
           ATMOSPHERE_MULTISCATTERING_SIZE)),
-      mCameraSkyView{persistentLut(ctx, "atmosphere_sky_view_sun",
-                                   "sky radiance lit by the sun (Hillaire 2020)",
+      mCameraSkyView{{persistentLut(ctx, "atmosphere_sky_view_sun",
+                                    "sky radiance lit by the sun (Hillaire 2020)",
+                                    ATMOSPHERE_SKY_VIEW_WIDTH, ATMOSPHERE_SKY_VIEW_HEIGHT),
+                      std::nullopt},
+                     {persistentLut(ctx, "atmosphere_sky_view_moon",
+                                    "sky radiance lit by the moon", ATMOSPHERE_SKY_VIEW_WIDTH,
+                                    ATMOSPHERE_SKY_VIEW_HEIGHT),
+                      std::nullopt}},
+      mCloudSkyView{{persistentLut(ctx, "atmosphere_sky_view_clouds_sun",
+                                   "sky radiance lit by the sun, seen from the clouds",
                                    ATMOSPHERE_SKY_VIEW_WIDTH, ATMOSPHERE_SKY_VIEW_HEIGHT),
-                     persistentLut(ctx, "atmosphere_sky_view_moon",
-                                   "sky radiance lit by the moon", ATMOSPHERE_SKY_VIEW_WIDTH,
-                                   ATMOSPHERE_SKY_VIEW_HEIGHT),
                      std::nullopt},
-      mCloudSkyView{persistentLut(ctx, "atmosphere_sky_view_clouds_sun",
-                                  "sky radiance lit by the sun, seen from the clouds",
-                                  ATMOSPHERE_SKY_VIEW_WIDTH, ATMOSPHERE_SKY_VIEW_HEIGHT),
-                    persistentLut(ctx, "atmosphere_sky_view_clouds_moon",
-                                  "sky radiance lit by the moon, seen from the clouds",
-                                  ATMOSPHERE_SKY_VIEW_WIDTH, ATMOSPHERE_SKY_VIEW_HEIGHT),
-                    std::nullopt} {}
+                    {persistentLut(ctx, "atmosphere_sky_view_clouds_moon",
+                                   "sky radiance lit by the moon, seen from the clouds",
+                                   ATMOSPHERE_SKY_VIEW_WIDTH, ATMOSPHERE_SKY_VIEW_HEIGHT),
+                     std::nullopt}} {}
 
-std::pair<ImageId, ImageId> AtmosphereLuts::addSkyView(FrameGraph& graph, const char* name,
-                                                       SkyView& luts,
-                                                       const shared::AtmosphereParams& p,
-                                                       const SkyViewKey& key,
-                                                       ImageId transmittance,
-                                                       ImageId multiScattering) {
+ImageId AtmosphereLuts::addSkyView(FrameGraph& graph, const char* name, SkyViewLut& lut,
+                                   const shared::AtmosphereParams& p, uint32_t light,
+                                   const SkyViewKey& key, ImageId transmittance,
+                                   ImageId multiScattering) {
   struct Handles {
-    ImageId transmittance, multiScattering, sun, moon;
+    ImageId transmittance, multiScattering, lut;
   };
-  auto h = std::make_shared<Handles>(Handles{transmittance, multiScattering,
-                                             graph.importImage(luts.sun),
-                                             graph.importImage(luts.moon)});
+  auto h = std::make_shared<Handles>(
+      Handles{transmittance, multiScattering, graph.importImage(lut.image)});
   // A new transmittance or multiple scattering changes the atmosphere, hence the key.
-  if (!luts.key || *luts.key != key) {
-    GraphBuilder s = graph.addPass(name, [this, h, p, key, &luts](PassContext& ctx) {
-      ctx.dispatch(
-          mSkyView,
-          {Binding::of(ATMOSPHERE_BINDING_PARAMS, ctx.uniform(p)),
-           Binding::of(ATMOSPHERE_SKY_VIEW_BINDING_TRANSMITTANCE, h->transmittance, &mSampler),
-           Binding::of(ATMOSPHERE_SKY_VIEW_BINDING_MULTISCATTERING, h->multiScattering,
-                       &mSampler),
-           Binding::of(ATMOSPHERE_SKY_VIEW_BINDING_SUN, h->sun),
-           Binding::of(ATMOSPHERE_SKY_VIEW_BINDING_MOON, h->moon)},
-          mSkyView.groupsX(ATMOSPHERE_SKY_VIEW_WIDTH), mSkyView.groupsY(ATMOSPHERE_SKY_VIEW_HEIGHT),
-          2);  // z: 0 the sun, 1 the moon
-      // Recorded: later frames with the same lights and altitude keep the LUTs.
-      luts.key = key;
-    });
-    s.read(h->transmittance, Access::SampledCompute);
-    s.read(h->multiScattering, Access::SampledCompute);
-    h->sun = s.write(h->sun, Access::StorageWriteCompute);
-    h->moon = s.write(h->moon, Access::StorageWriteCompute);
-  }
-  return {h->sun, h->moon};
+  if (lut.key && *lut.key == key) return h->lut;
+  GraphBuilder s = graph.addPass(name, [this, h, p, light, key, &lut](PassContext& ctx) {
+    const shared::AtmosphereSkyViewLight which{glm::uvec4(light, 0u, 0u, 0u)};
+    ctx.dispatch(mSkyView,
+                 {Binding::of(ATMOSPHERE_BINDING_PARAMS, ctx.uniform(p)),
+                  Binding::of(ATMOSPHERE_SKY_VIEW_BINDING_TRANSMITTANCE, h->transmittance,
+                              &mSampler),
+                  Binding::of(ATMOSPHERE_SKY_VIEW_BINDING_MULTISCATTERING, h->multiScattering,
+                              &mSampler),
+                  Binding::of(ATMOSPHERE_SKY_VIEW_BINDING_OUT, h->lut)},
+                 mSkyView.groupsX(ATMOSPHERE_SKY_VIEW_WIDTH),
+                 mSkyView.groupsY(ATMOSPHERE_SKY_VIEW_HEIGHT), 1, &which, sizeof which);
+    // Recorded: later frames with the same light and altitude keep the LUT. A frame that
+    // culls the pass (nothing reads the LUT) records nothing, so the next reader remakes it.
+    lut.key = key;
+  });
+  s.read(h->transmittance, Access::SampledCompute);
+  s.read(h->multiScattering, Access::SampledCompute);
+  h->lut = s.write(h->lut, Access::StorageWriteCompute);
+  return h->lut;
 }
 
 AtmosphereLuts::Outputs AtmosphereLuts::addTo(FrameGraph& graph, const Frame& frame) {
@@ -223,18 +221,26 @@ AtmosphereLuts::Outputs AtmosphereLuts::addTo(FrameGraph& graph, const Frame& fr
     out.multiScattering = m.write(out.multiScattering, Access::StorageWriteCompute);
   }
 
-  const SkyViewKey key{frame.atmosphere,     frame.cameraAltitudeM, frame.sunDirection,
-                       frame.moonDirection,  frame.sunIlluminance,  frame.moonIlluminance};
-  std::tie(out.skyViewSun, out.skyViewMoon) = addSkyView(
-      graph, kSkyViewName, mCameraSkyView, p, key, out.transmittance, out.multiScattering);
+  auto addPair = [&](SkyView& luts, const shared::AtmosphereParams& params, double altitudeM,
+                     const char* sunName, const char* moonName) {
+    const SkyViewKey sunKey{frame.atmosphere, altitudeM, frame.sunDirection.z,
+                            frame.sunIlluminance};
+    const SkyViewKey moonKey{frame.atmosphere, altitudeM, frame.moonDirection.z,
+                             frame.moonIlluminance};
+    return std::pair{addSkyView(graph, sunName, luts.sun, params, ATMOSPHERE_SKY_VIEW_LIGHT_SUN,
+                                sunKey, out.transmittance, out.multiScattering),
+                     addSkyView(graph, moonName, luts.moon, params,
+                                ATMOSPHERE_SKY_VIEW_LIGHT_MOON, moonKey, out.transmittance,
+                                out.multiScattering)};
+  };
+  std::tie(out.skyViewSun, out.skyViewMoon) =
+      addPair(mCameraSkyView, p, frame.cameraAltitudeM, kSkyViewName, kSkyViewMoonName);
   mCloudParams = p;
   if (frame.cloudAltitudeM) {
     setAtmosphereCamera(mCloudParams, *frame.cloudAltitudeM);
-    SkyViewKey cloudKey = key;
-    cloudKey.cameraAltitudeM = *frame.cloudAltitudeM;
     std::tie(out.skyViewSunClouds, out.skyViewMoonClouds) =
-        addSkyView(graph, kSkyViewCloudsName, mCloudSkyView, mCloudParams, cloudKey,
-                   out.transmittance, out.multiScattering);
+        addPair(mCloudSkyView, mCloudParams, *frame.cloudAltitudeM, kSkyViewCloudsName,
+                kSkyViewCloudsMoonName);
   }
 
   GraphBuilder a = graph.addPass(kAerialPerspectiveName, [this, h, p](PassContext& ctx) {

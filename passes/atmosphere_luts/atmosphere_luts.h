@@ -67,8 +67,11 @@ public:
   // Pass names (FrameResult timings, graph dumps).
   static constexpr const char* kTransmittanceName = "atmosphere_transmittance";
   static constexpr const char* kMultiScatteringName = "atmosphere_multiscattering";
+  // The sky-view LUTs: one pass per light and per place seen from (the camera, the clouds).
   static constexpr const char* kSkyViewName = "atmosphere_sky_view";
+  static constexpr const char* kSkyViewMoonName = "atmosphere_sky_view_moon";
   static constexpr const char* kSkyViewCloudsName = "atmosphere_sky_view_clouds";
+  static constexpr const char* kSkyViewCloudsMoonName = "atmosphere_sky_view_clouds_moon";
   static constexpr const char* kAerialPerspectiveName = "atmosphere_aerial_perspective";
   static constexpr const char* kSkyProbeName = "atmosphere_sky_probe";
 
@@ -77,10 +80,12 @@ public:
 
   // Adds the passes to `graph`. Transmittance and multiple scattering live in persistent
   // images and are recomputed (their passes added) only when `frame.atmosphere` differs from
-  // the settings they were last recorded with. The sky-view LUTs are persistent too: they
-  // depend on the atmosphere, the camera's altitude and the lights, not on where the camera
-  // looks, so a pan (a window, a benchmark) keeps them. Aerial perspective follows the view
-  // and runs every frame. Must outlive graph.execute().
+  // the settings they were last recorded with. The sky-view LUTs are persistent too, one per
+  // light: each depends on the atmosphere, the camera's altitude, its light's elevation and
+  // illuminance, not on where the camera looks or the light's azimuth, so a pan (a window, a
+  // benchmark) keeps them, and a moon that moves with the clock remakes only the moon's. A
+  // LUT no pass of the frame reads (the moon's by day) is culled with its pass. Aerial
+  // perspective follows the view and runs every frame. Must outlive graph.execute().
   Outputs addTo(FrameGraph& graph, const Frame& frame);
 
   // Adds the sky probe: a width x height RGBA32F equirectangular image of the whole sphere
@@ -105,23 +110,29 @@ private:
   PersistentImage mMultiScatteringLut;
   // The settings the persistent LUTs were last recorded for (set when their passes record).
   std::optional<AtmosphereSettings> mBaked;
-  // What the sky-view LUTs were last recorded for, likewise.
+  // What a sky-view LUT was last recorded for, likewise: what the shader reads of the frame
+  // (its light's direction only through the elevation, atmosphere_sky_view.comp).
   struct SkyViewKey {
     AtmosphereSettings atmosphere;
     double cameraAltitudeM = 0.0;
-    glm::vec3 sunDirection{0.0f}, moonDirection{0.0f}, sunIlluminance{0.0f},
-        moonIlluminance{0.0f};
+    float lightElevation = 0.0f;  // the light direction's up component
+    glm::vec3 illuminance{0.0f};
     bool operator==(const SkyViewKey&) const = default;
   };
-  // A pair of sky-view LUTs and what they were last recorded for.
-  struct SkyView {
-    PersistentImage sun, moon;
+  // One light's sky-view LUT and what it was last recorded for.
+  struct SkyViewLut {
+    PersistentImage image;
     std::optional<SkyViewKey> key;
   };
-  // Adds the pass that makes `luts` for `p` unless they hold `key` already; returns them.
-  std::pair<ImageId, ImageId> addSkyView(FrameGraph& graph, const char* name, SkyView& luts,
-                                         const shared::AtmosphereParams& p, const SkyViewKey& key,
-                                         ImageId transmittance, ImageId multiScattering);
+  // The pair of one place.
+  struct SkyView {
+    SkyViewLut sun, moon;
+  };
+  // Adds the pass `name` that remakes `lut` for `light` (ATMOSPHERE_SKY_VIEW_LIGHT_*) unless
+  // it holds `key` already; returns the LUT.
+  ImageId addSkyView(FrameGraph& graph, const char* name, SkyViewLut& lut,
+                     const shared::AtmosphereParams& p, uint32_t light, const SkyViewKey& key,
+                     ImageId transmittance, ImageId multiScattering);
   SkyView mCameraSkyView;  // seen from the camera
   SkyView mCloudSkyView;   // seen from the clouds
   shared::AtmosphereParams mParams{};

@@ -48,8 +48,7 @@
 #define ATMOSPHERE_MULTISCATTERING_BINDING_OUT 2
 #define ATMOSPHERE_SKY_VIEW_BINDING_TRANSMITTANCE 1
 #define ATMOSPHERE_SKY_VIEW_BINDING_MULTISCATTERING 2
-#define ATMOSPHERE_SKY_VIEW_BINDING_SUN 3
-#define ATMOSPHERE_SKY_VIEW_BINDING_MOON 4
+#define ATMOSPHERE_SKY_VIEW_BINDING_OUT 3
 #define ATMOSPHERE_AP_BINDING_TRANSMITTANCE 1
 #define ATMOSPHERE_AP_BINDING_MULTISCATTERING 2
 #define ATMOSPHERE_AP_BINDING_OUT 3
@@ -76,10 +75,21 @@ struct AtmosphereParams {
   ViewState view;           // the camera whose screen the aerial-perspective froxels cover
 };
 
+// Push constants of atmosphere_sky_view.comp: which light's LUT a dispatch makes. The sun's
+// and the moon's are separate passes, so a frame remakes only the one whose light moved and
+// culls the moon's when nothing reads it (daylight: LIGHTING_MOON 0 everywhere).
+#define ATMOSPHERE_SKY_VIEW_LIGHT_SUN 0u
+#define ATMOSPHERE_SKY_VIEW_LIGHT_MOON 1u
+struct AtmosphereSkyViewLight {
+  uvec4 light;  // x: ATMOSPHERE_SKY_VIEW_LIGHT_SUN or _MOON; yzw: unused
+};
+
 SKY_SHARED_END
 
 #ifdef __cplusplus
 static_assert(sizeof(sky::shared::AtmosphereParams) == 12 * 16 + 64,
               "std140 layout of AtmosphereParams");
+static_assert(sizeof(sky::shared::AtmosphereSkyViewLight) == 16,
+              "layout of AtmosphereSkyViewLight");
 #endif
 #endif

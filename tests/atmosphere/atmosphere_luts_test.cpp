@@ -200,21 +200,36 @@ TEST_F(AtmosphereTest, LutsAreRemadeOnlyWhenWhatTheyDependOnChanges) {
   frame.atmosphere.groundAlbedo = glm::vec3(0.25f);
   std::vector<float> firstSky;
   // Frame 1 changes nothing, frame 2 the atmosphere (every LUT again), frame 3 only the sun
-  // (the sky-view LUTs again, which do not depend on where the camera looks).
-  for (int i = 0; i < 4; ++i) {
+  // (the sky-view LUTs again, which do not depend on where the camera looks), frame 4 only
+  // the sun's azimuth (nothing: the LUT lies in the light's own frame), frame 5 only the moon
+  // (its own LUT alone). Frame 6 moves the moon again but reads no moon LUT: its pass is
+  // added and culled, and frame 7, which reads it, adds it again.
+  for (int i = 0; i < 8; ++i) {
     if (i == 2) frame.atmosphere.mieAnisotropy = 0.75;  // a change re-adds both bakes
     if (i == 3) frame.sunDirection = glm::normalize(glm::vec3(0.3f, 0.9f, 0.3f));
+    if (i == 4) frame.sunDirection = glm::vec3(-frame.sunDirection.y, frame.sunDirection.x,
+                                               frame.sunDirection.z);
+    if (i == 5 || i == 6)
+      frame.moonDirection = glm::normalize(frame.moonDirection + glm::vec3(0.1f));
+    const bool readMoon = i != 6;
     FrameGraph graph(runtime());
     AtmosphereLuts::Outputs out = luts().addTo(graph, frame);
     graph.requestOutput(out.skyViewSun, "sky");
+    if (readMoon) graph.requestOutput(out.skyViewMoon, "moon");
     graph.requestOutput(out.aerialPerspective, "ap");
     const std::vector<std::string> names = passNames(graph);
     const bool bake = i == 0 || i == 2;
     EXPECT_EQ(has(names, AtmosphereLuts::kTransmittanceName), bake) << "frame " << i;
     EXPECT_EQ(has(names, AtmosphereLuts::kMultiScatteringName), bake) << "frame " << i;
-    EXPECT_EQ(has(names, AtmosphereLuts::kSkyViewName), i != 1) << "frame " << i;
+    EXPECT_EQ(has(names, AtmosphereLuts::kSkyViewName), i == 0 || i == 2 || i == 3)
+        << "frame " << i;
+    const bool moonAdded = i == 0 || i == 2 || i == 5 || i == 6 || i == 7;
+    EXPECT_EQ(has(names, AtmosphereLuts::kSkyViewMoonName), moonAdded) << "frame " << i;
     EXPECT_TRUE(has(names, AtmosphereLuts::kAerialPerspectiveName));
     FrameResult r = graph.execute();
+    std::vector<std::string> ran;
+    for (const PassTiming& t : r.passes) ran.push_back(t.name);
+    EXPECT_EQ(has(ran, AtmosphereLuts::kSkyViewMoonName), moonAdded && readMoon) << "frame " << i;
     if (i == 0)
       for (const PassTiming& t : r.passes) std::cout << t.name << ": " << t.gpuMs << " ms\n";
     const std::vector<float>& sky = r.output("sky").pixels;
@@ -222,7 +237,7 @@ TEST_F(AtmosphereTest, LutsAreRemadeOnlyWhenWhatTheyDependOnChanges) {
     // The LUTs persisted: the frame without a bake gives the same sky, bit for bit.
     if (i == 1) {
       EXPECT_EQ(sky, firstSky);
-    } else if (i > 1) {
+    } else if (i == 2 || i == 3) {
       EXPECT_NE(sky, firstSky) << "frame " << i;
     }
   }
