@@ -15,6 +15,9 @@
 // runs both sides of a branch): ATMOSPHERE_COMPOSITE_SUN_DISC and _MOON_DISC only when the
 // disc can reach a pixel of the view, ATMOSPHERE_COMPOSITE_STARS only when the star passes
 // ran (passes/atmosphere_composite picks the variant per frame; the image is the same).
+// Likewise per band of rows (AtmosphereCompositeBand): ATMOSPHERE_COMPOSITE_GROUND only where
+// a row can see below the horizon, ATMOSPHERE_COMPOSITE_CLOUD_AIR only where a row can see
+// the volumetric clouds.
 #include "common/params_block.glsl"
 #include "common/atmosphere_composite_shared.h"
 #include "common/view.glsl"
@@ -31,6 +34,16 @@
 
 layout(local_size_x = ATMOSPHERE_COMPOSITE_GROUP_X, local_size_y = ATMOSPHERE_COMPOSITE_GROUP_Y) in;
 
+#ifndef ATMOSPHERE_COMPOSITE_GROUND
+#define ATMOSPHERE_COMPOSITE_GROUND 1
+#endif
+#ifndef ATMOSPHERE_COMPOSITE_CLOUD_AIR
+#define ATMOSPHERE_COMPOSITE_CLOUD_AIR 1
+#endif
+
+layout(push_constant) uniform Push {
+  AtmosphereCompositeBand band;
+};
 layout(std140, binding = ATMOSPHERE_COMPOSITE_BINDING_PARAMS) uniform Params {
   AtmosphereCompositeParams paramsBlock[1];
 };
@@ -200,7 +213,7 @@ vec3 groundRadiance(LightingState L, vec3 V, float t) {
 }
 
 void main() {
-  uvec2 p = gl_GlobalInvocationID.xy;
+  uvec2 p = gl_GlobalInvocationID.xy + uvec2(0u, band.rows.x);
   if (any(greaterThanEqual(p, params.view.size.xy))) return;
   vec2 pixelCentre = vec2(p) + 0.5;
   vec3 V = viewDirection(params.view, pixelCentre);
@@ -268,6 +281,7 @@ void main() {
   // The air toward the horizon below this direction: Kozlov's sky there is the airlight.
   vec3 level = vec3(length(V.xy) > 1e-6 ? normalize(V.xy) : vec2(0.0, 1.0), 0.0);
   vec3 horizon = clearSky(L, level);
+#if ATMOSPHERE_COMPOSITE_GROUND
   if (params.observer != 0u && aboveHorizon < 1.0) {
     // The part of the pixel below the horizon sees the ground: along V, or where V passes
     // above it, just under the horizon.
@@ -285,11 +299,13 @@ void main() {
     vec3 ground = groundRadiance(L, Vg, t) * air.transmittance + air.inScattered;
     beyond = mix(ground, beyond, aboveHorizon);
   }
+#endif
 
   // Premultiplied "over": what lies beyond each cloud layer shows through its clear share.
   vec4 clouds = vec4(0.0);
 #if ATMOSPHERE_COMPOSITE_CLOUDS
   clouds = imageLoad(cloudImage, ivec2(p));
+#if ATMOSPHERE_COMPOSITE_CLOUD_AIR
   if (params.observer != 0u && clouds.a > 0.0) {
     // At the clouds' transmittance-weighted depth.
     float depth = imageLoad(cloudDepthImage, ivec2(p)).r;
@@ -300,6 +316,7 @@ void main() {
 #endif
     clouds.rgb = clouds.rgb * air.transmittance + clouds.a * air.inScattered;
   }
+#endif
 #endif
   vec4 nearer = highClouds, farther = clouds;
   if (params.aboveHighClouds == 0u) {  // below the high clouds: the volumetric clouds are nearer

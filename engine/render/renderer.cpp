@@ -430,8 +430,12 @@ Renderer::FramePlan Renderer::buildFrame(FrameGraph& graph, const Scene& scene, 
   composite.params = atmosphereCompositeParams(compositeSettings, out.lighting, f.view);
   if (clouds)
     composite.clouds =
-        AtmosphereCompositePass::Clouds{clouds->clouds, clouds->depth, clouds->shadow.shadow,
-                                        clouds->shadow.map, clouds->frame.textures.weatherSampler};
+        AtmosphereCompositePass::Clouds{clouds->clouds,
+                                        clouds->depth,
+                                        clouds->shadow.shadow,
+                                        clouds->shadow.map,
+                                        clouds->frame.textures.weatherSampler,
+                                        compositeSettings.belowClouds};
   if (f.physical)
     composite.atmosphere =
         AtmosphereCompositePass::Atmosphere{mAtmosphere.params(), sky.luts.transmittance,

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <glm/geometric.hpp>
+
 #include "engine/core/error.h"
 #include "engine/lighting/light_model.h"
 #include "engine/shader/shader_compiler.h"
@@ -10,10 +12,29 @@
 namespace sky {
 namespace {
 
-ShaderDefine flag(const char* name, bool on) { return {name, on ? "1" : "0"}; }
+ShaderDefine flag(const char* name, bool on) {
+  return {name, on ? "1" : "0"};
+}
 
 glm::vec4 v4(const glm::dvec3& v, double w = 0.0) {
   return glm::vec4(glm::vec3(v), static_cast<float>(w));
+}
+
+// The world direction through `pixel`: viewDirection() of shaders/common/view.glsl on the
+// CPU, for planning the bands.
+glm::dvec3 viewDirection(const shared::ViewState& view, glm::dvec2 pixel) {
+  constexpr double kPi = 3.14159265358979323846;
+  const glm::dvec2 uv = pixel / glm::dvec2(view.size.x, view.size.y);
+  const glm::dvec3 forward(view.forward), right(view.right), up(view.up);
+  if (view.size.z == VIEW_PROJECTION_TOPDOWN) return glm::dvec3(0.0, 0.0, -1.0);
+  if (view.size.z == VIEW_PROJECTION_EQUIRECTANGULAR) {
+    const double azimuth = (uv.x - 0.5) * 2.0 * kPi, elevation = (0.5 - uv.y) * kPi;
+    const glm::dvec3 horizontal = std::cos(azimuth) * forward + std::sin(azimuth) * right;
+    return std::cos(elevation) * horizontal + std::sin(elevation) * up;
+  }
+  const glm::dvec2 ndc = uv * 2.0 - 1.0;
+  return glm::normalize(forward + ndc.x * double(view.right.w) * right -
+                        ndc.y * double(view.up.w) * up);
 }
 
 }  // namespace
@@ -63,9 +84,56 @@ bool discReachesView(const shared::ViewState& view, const glm::vec3& direction, 
   const double corner = std::atan(std::hypot(double(view.right.w), double(view.up.w)));
   const double pixel = view.forward.w;
   const double reach = std::max(double(radius), pixel) + pixel + 1e-3;
-  const double fromAxis = std::acos(std::clamp(
-      double(glm::dot(glm::normalize(direction), glm::vec3(view.forward))), -1.0, 1.0));
+  const double fromAxis = std::acos(
+      std::clamp(double(glm::dot(glm::normalize(direction), glm::vec3(view.forward))), -1.0, 1.0));
   return fromAxis <= corner + reach;
+}
+
+std::vector<CompositeBand> compositeBands(const shared::AtmosphereCompositeParams& params,
+                                          bool clouds, bool cloudsAboveHorizon, uint32_t bandRows) {
+  const shared::ViewState& view = params.view;
+  const uint32_t width = view.size.x, height = view.size.y;
+  std::vector<CompositeBand> bands;
+  if (height == 0 || bandRows == 0) return bands;
+  if (params.observer == 0u) {
+    // No ground and no aerial perspective anywhere (the shader's params.observer).
+    bands.push_back({0, height, false, false});
+    return bands;
+  }
+  // The horizon's cosine of zenith, as the shader takes it.
+  const double planetR = params.planetRadiusM, cameraR = params.cameraRadiusM;
+  const double h = cameraR - planetR;
+  const double horizonZ = -std::sqrt(std::max(h * (2.0 * planetR + h), 0.0)) / cameraR;
+  // Wider than any pixel's reach: the shader's ground blends over half a pixel at the
+  // horizon, and the reduced-resolution clouds' filters reach a pixel or two of the source
+  // (two of the view's) across it. The largest pixel of a pinhole is the centre's
+  // (forward.w); of an equirectangular image, a row's (pi / height).
+  const double pixel = view.size.z == VIEW_PROJECTION_EQUIRECTANGULAR
+                           ? 3.14159265358979323846 / height
+                           : double(view.forward.w);
+  const double margin = 8.0 * pixel;
+  // Each band's lowest and highest view direction, from its top and bottom pixel edges
+  // every few pixels across and at both ends: a straight line of the image is an arc of a
+  // great circle, along which z is smooth, and the margin covers what lies between samples.
+  const uint32_t stepX = std::max(1u, std::min(8u, width / 8u));
+  for (uint32_t first = 0; first < height; first += bandRows) {
+    const uint32_t rows = std::min(bandRows, height - first);
+    double zMin = 1.0, zMax = -1.0;
+    for (double y : {double(first), double(first + rows)})
+      for (uint32_t x = 0;; x = std::min(x + stepX, width)) {
+        const double z = viewDirection(view, glm::dvec2(x, y)).z;
+        zMin = std::min(zMin, z);
+        zMax = std::max(zMax, z);
+        if (x == width) break;
+      }
+    CompositeBand b{first, rows, zMin < horizonZ + margin,
+                    clouds && (!cloudsAboveHorizon || zMax > horizonZ - margin)};
+    if (!bands.empty() && bands.back().ground == b.ground && bands.back().cloudAir == b.cloudAir)
+      bands.back().rows += rows;
+    else
+      bands.push_back(b);
+  }
+  return bands;
 }
 
 AtmosphereCompositePass::AtmosphereCompositePass(const Context& ctx, ShaderCompiler& compiler)
@@ -75,15 +143,22 @@ AtmosphereCompositePass::Outputs AtmosphereCompositePass::setup(GraphBuilder& b,
   mInputs = in;
   mInputs.params.clouds = in.clouds ? 1u : 0u;
   const shared::LightingState& L = in.lighting;
-  const bool sunDisc = discReachesView(in.params.view, glm::vec3(L.sun.direction),
-                                       L.sun.direction.w);
-  const bool moonDisc = discReachesView(in.params.view, glm::vec3(L.moon.direction),
-                                        L.moon.direction.w);
-  mPipeline = &mVariants.get({flag("ATMOSPHERE_COMPOSITE_PHYSICAL", in.atmosphere.has_value()),
+  const bool sunDisc =
+      discReachesView(in.params.view, glm::vec3(L.sun.direction), L.sun.direction.w);
+  const bool moonDisc =
+      discReachesView(in.params.view, glm::vec3(L.moon.direction), L.moon.direction.w);
+  mBands.clear();
+  for (const CompositeBand& band :
+       compositeBands(mInputs.params, in.clouds.has_value(), in.clouds && in.clouds->belowBase,
+                      ATMOSPHERE_COMPOSITE_GROUP_Y))
+    mBands.emplace_back(
+        band, &mVariants.get({flag("ATMOSPHERE_COMPOSITE_PHYSICAL", in.atmosphere.has_value()),
                               flag("ATMOSPHERE_COMPOSITE_CLOUDS", in.clouds.has_value()),
                               flag("ATMOSPHERE_COMPOSITE_STARS", in.starFlux.has_value()),
                               flag("ATMOSPHERE_COMPOSITE_SUN_DISC", sunDisc),
-                              flag("ATMOSPHERE_COMPOSITE_MOON_DISC", moonDisc)});
+                              flag("ATMOSPHERE_COMPOSITE_MOON_DISC", moonDisc),
+                              flag("ATMOSPHERE_COMPOSITE_GROUND", band.ground),
+                              flag("ATMOSPHERE_COMPOSITE_CLOUD_AIR", band.cloudAir)}));
   if (in.starFlux) b.read(*in.starFlux, Access::StorageReadCompute);
   b.read(in.sky, Access::StorageReadCompute);
   b.read(in.highClouds, Access::StorageReadCompute);
@@ -136,7 +211,11 @@ void AtmosphereCompositePass::execute(PassContext& ctx) const {
     bindings.push_back(Binding::of(ATMOSPHERE_COMPOSITE_BINDING_AERIAL_PERSPECTIVE,
                                    a->aerialPerspective, a->sampler));
   }
-  ctx.dispatch(*mPipeline, bindings, mPipeline->groupsX(size.x), mPipeline->groupsY(size.y));
+  for (const auto& [band, pipeline] : mBands) {
+    const shared::AtmosphereCompositeBand rows{glm::uvec4(band.firstRow, band.rows, 0u, 0u)};
+    ctx.dispatch(*pipeline, bindings, pipeline->groupsX(size.x), pipeline->groupsY(band.rows), 1,
+                 &rows, sizeof rows);
+  }
 }
 
 }  // namespace sky

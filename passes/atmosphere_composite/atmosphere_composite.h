@@ -4,6 +4,8 @@
 // LightingState, the lit ground in the clouds' shadows (passes/cloud_shadow), and the
 // volumetric clouds, the ground and the clouds seen through the aerial perspective.
 #include <optional>
+#include <utility>
+#include <vector>
 
 #include "engine/gpu/compute_pipeline.h"
 #include "engine/graph/frame_graph.h"
@@ -42,6 +44,24 @@ shared::AtmosphereCompositeParams atmosphereCompositeParams(
 // a share, so leaving the disc out changes nothing.
 bool discReachesView(const shared::ViewState& view, const glm::vec3& direction, float radius);
 
+// A band of whole rows of the composite's workgroups, drawn by one dispatch, and what its
+// rows can see: the ground below the horizon, the volumetric clouds (their aerial
+// perspective). The variant for the band compiles out what it cannot see.
+struct CompositeBand {
+  uint32_t firstRow = 0, rows = 0;
+  bool ground = true, cloudAir = true;
+  bool operator==(const CompositeBand&) const = default;
+};
+
+// The bands of the image of `params` (its view, planet and camera), in order from the top,
+// neighbours with the same needs merged. A band sees the ground where some pixel of it looks
+// within a few pixels of the horizon or below it; the clouds' air where some pixel looks
+// within a few pixels below the horizon or above it, or everywhere when `cloudsAboveHorizon`
+// is false (the camera at or above the clouds' lowest base, or no ground to hide them).
+// `bandRows` is the workgroup's height.
+std::vector<CompositeBand> compositeBands(const shared::AtmosphereCompositeParams& params,
+                                          bool clouds, bool cloudsAboveHorizon, uint32_t bandRows);
+
 class AtmosphereCompositePass {
 public:
   static constexpr const char* kName = "atmosphere_composite";
@@ -52,6 +72,8 @@ public:
     ImageId shadow;                          // from CloudShadowPass
     shared::CloudShadowMap shadowMap{};      // how the shadow map lies on the ground
     const Sampler* shadowSampler = nullptr;  // linear, clamp to edge
+    // The camera is below the clouds' lowest base: no ray below the horizon reaches them.
+    bool belowBase = false;
   };
   // sky.model physical: the atmosphere's LUTs (passes/atmosphere_luts).
   struct Atmosphere {
@@ -72,15 +94,16 @@ public:
     ImageId beauty;  // RGBA16F scene-linear, alpha 1
   };
 
-  // The shader's variants (physical or kozlov; clouds, stars, each disc or not) are compiled
-  // on first use: setup picks the one this frame needs.
+  // The shader's variants (physical or kozlov; clouds, stars, each disc or not; ground and
+  // clouds' air or not) are compiled on first use: setup picks those this frame's bands need.
   AtmosphereCompositePass(const Context& ctx, ShaderCompiler& compiler);
   Outputs setup(GraphBuilder& builder, const Inputs& inputs);
   void execute(PassContext& ctx) const;
 
 private:
   ComputePipelineVariants mVariants;
-  const ComputePipeline* mPipeline = nullptr;  // this frame's variant
+  // This frame's bands, each with its variant.
+  std::vector<std::pair<CompositeBand, const ComputePipeline*>> mBands;
   Inputs mInputs{};
   Outputs mOutputs;
 };

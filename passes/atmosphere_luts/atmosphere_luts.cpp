@@ -122,15 +122,13 @@ AtmosphereLuts::AtmosphereLuts(const Context& ctx, ShaderCompiler& compiler)
           ctx, "atmosphere_multiscattering",
           "multiple scattering: Psi_ms (Hillaire 2020) and the second order's dipole and "
           "quadrupole, packed in blocks side by side",
-          ATMOSPHERE_MULTISCATTERING_SIZE * ATMOSPHERE_MS_TEXELS,
-          ATMOSPHERE_MULTISCATTERING_SIZE)),
+          ATMOSPHERE_MULTISCATTERING_SIZE * ATMOSPHERE_MS_TEXELS, ATMOSPHERE_MULTISCATTERING_SIZE)),
       mCameraSkyView{{persistentLut(ctx, "atmosphere_sky_view_sun",
                                     "sky radiance lit by the sun (Hillaire 2020)",
                                     ATMOSPHERE_SKY_VIEW_WIDTH, ATMOSPHERE_SKY_VIEW_HEIGHT),
                       std::nullopt},
-                     {persistentLut(ctx, "atmosphere_sky_view_moon",
-                                    "sky radiance lit by the moon", ATMOSPHERE_SKY_VIEW_WIDTH,
-                                    ATMOSPHERE_SKY_VIEW_HEIGHT),
+                     {persistentLut(ctx, "atmosphere_sky_view_moon", "sky radiance lit by the moon",
+                                    ATMOSPHERE_SKY_VIEW_WIDTH, ATMOSPHERE_SKY_VIEW_HEIGHT),
                       std::nullopt}},
       mCloudSkyView{{persistentLut(ctx, "atmosphere_sky_view_clouds_sun",
                                    "sky radiance lit by the sun, seen from the clouds",
@@ -154,15 +152,14 @@ ImageId AtmosphereLuts::addSkyView(FrameGraph& graph, const char* name, SkyViewL
   if (lut.key && *lut.key == key) return h->lut;
   GraphBuilder s = graph.addPass(name, [this, h, p, light, key, &lut](PassContext& ctx) {
     const shared::AtmosphereSkyViewLight which{glm::uvec4(light, 0u, 0u, 0u)};
-    ctx.dispatch(mSkyView,
-                 {Binding::of(ATMOSPHERE_BINDING_PARAMS, ctx.uniform(p)),
-                  Binding::of(ATMOSPHERE_SKY_VIEW_BINDING_TRANSMITTANCE, h->transmittance,
-                              &mSampler),
-                  Binding::of(ATMOSPHERE_SKY_VIEW_BINDING_MULTISCATTERING, h->multiScattering,
-                              &mSampler),
-                  Binding::of(ATMOSPHERE_SKY_VIEW_BINDING_OUT, h->lut)},
-                 mSkyView.groupsX(ATMOSPHERE_SKY_VIEW_WIDTH),
-                 mSkyView.groupsY(ATMOSPHERE_SKY_VIEW_HEIGHT), 1, &which, sizeof which);
+    ctx.dispatch(
+        mSkyView,
+        {Binding::of(ATMOSPHERE_BINDING_PARAMS, ctx.uniform(p)),
+         Binding::of(ATMOSPHERE_SKY_VIEW_BINDING_TRANSMITTANCE, h->transmittance, &mSampler),
+         Binding::of(ATMOSPHERE_SKY_VIEW_BINDING_MULTISCATTERING, h->multiScattering, &mSampler),
+         Binding::of(ATMOSPHERE_SKY_VIEW_BINDING_OUT, h->lut)},
+        mSkyView.groupsX(ATMOSPHERE_SKY_VIEW_WIDTH), mSkyView.groupsY(ATMOSPHERE_SKY_VIEW_HEIGHT),
+        1, &which, sizeof which);
     // Recorded: later frames with the same light and altitude keep the LUT. A frame that
     // culls the pass (nothing reads the LUT) records nothing, so the next reader remakes it.
     lut.key = key;
@@ -229,9 +226,8 @@ AtmosphereLuts::Outputs AtmosphereLuts::addTo(FrameGraph& graph, const Frame& fr
                              frame.moonIlluminance};
     return std::pair{addSkyView(graph, sunName, luts.sun, params, ATMOSPHERE_SKY_VIEW_LIGHT_SUN,
                                 sunKey, out.transmittance, out.multiScattering),
-                     addSkyView(graph, moonName, luts.moon, params,
-                                ATMOSPHERE_SKY_VIEW_LIGHT_MOON, moonKey, out.transmittance,
-                                out.multiScattering)};
+                     addSkyView(graph, moonName, luts.moon, params, ATMOSPHERE_SKY_VIEW_LIGHT_MOON,
+                                moonKey, out.transmittance, out.multiScattering)};
   };
   std::tie(out.skyViewSun, out.skyViewMoon) =
       addPair(mCameraSkyView, p, frame.cameraAltitudeM, kSkyViewName, kSkyViewMoonName);

@@ -51,11 +51,11 @@ public:
     std::optional<double> cloudAltitudeM;
   };
   struct Outputs {
-    ImageId transmittance;      // 256x64, rgb transmittance to the top of the atmosphere
-    ImageId multiScattering;    // 160x32: Hillaire's Psi_ms and the second order's moments
-                                // (per unit illuminance; packing in atmosphere_shared.h)
-    ImageId skyViewSun;         // 192x108, sky radiance lit by the sun (illuminance applied)
-    ImageId skyViewMoon;        // 192x108, the same lit by the moon
+    ImageId transmittance;    // 256x64, rgb transmittance to the top of the atmosphere
+    ImageId multiScattering;  // 160x32: Hillaire's Psi_ms and the second order's moments
+                              // (per unit illuminance; packing in atmosphere_shared.h)
+    ImageId skyViewSun;       // 192x108, sky radiance lit by the sun (illuminance applied)
+    ImageId skyViewMoon;      // 192x108, the same lit by the moon
     // The same two seen from Frame::cloudAltitudeM (invalid without one): from the clouds the
     // low sky is bluer and brighter than from the ground, and below the horizon lies the air
     // between them and the ground.
@@ -97,7 +97,7 @@ public:
   // The last addTo's with the camera at Frame::cloudAltitudeM: what skyViewRadiance() needs to
   // read the clouds' sky-view LUTs.
   const shared::AtmosphereParams& cloudParams() const { return mCloudParams; }
-  const Sampler& sampler() const { return mSampler; }                 // linear clamp, for every LUT
+  const Sampler& sampler() const { return mSampler; }  // linear clamp, for every LUT
 
 private:
   ComputePipeline mTransmittance;

@@ -1,6 +1,11 @@
 // Parameters and bindings of passes/atmosphere_composite (shaders/atmosphere_composite.comp).
 // The physical variant (ATMOSPHERE_COMPOSITE_PHYSICAL 1) also binds the atmosphere's
 // parameters, its transmittance LUT and its aerial-perspective volume.
+//
+// The pass draws the image in bands of whole rows of workgroups, one dispatch each, with
+// the variant the band needs (AtmosphereCompositeBand): lavapipe runs every side of a branch
+// for every pixel, so the ground below the horizon and the air in front of the volumetric
+// clouds cost all pixels of a dispatch that holds them, whether or not a pixel needs them.
 #ifndef SKY_ATMOSPHERE_COMPOSITE_SHARED_H
 #define SKY_ATMOSPHERE_COMPOSITE_SHARED_H
 #include "shared_prelude.h"
@@ -57,9 +62,16 @@ struct AtmosphereCompositeParams {
   vec4 hazeAerosol;   // rgb: 1/m; w: scale height (m)
 };
 
+// Push constants: the band of rows one dispatch draws.
+struct AtmosphereCompositeBand {
+  uvec4 rows;  // x: the band's first row; y: its row count; zw: unused
+};
+
 SKY_SHARED_END
 
 #ifdef __cplusplus
+static_assert(sizeof(sky::shared::AtmosphereCompositeBand) == 16,
+              "layout of AtmosphereCompositeBand");
 static_assert(sizeof(sky::shared::AtmosphereCompositeParams) == 64 + 48 + 2 * 16 + 5 * 16,
               "std140 layout of AtmosphereCompositeParams");
 #endif

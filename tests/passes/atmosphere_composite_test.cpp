@@ -165,7 +165,8 @@ TEST_F(AtmosphereCompositeTest, SunDiscJustPastTheEdgeIsStillDrawn) {
   // Facing south the sun lies to the right by the heading's offset (times cos 45 degrees in
   // angle, at 45 degrees up): its centre `beyondPx` pixels past the right edge.
   auto edgeExcess = [&](double beyondPx) {
-    scene.camera.heading = 180.0 - (halfWidthDeg + beyondPx * pixelDeg) / std::cos(3.14159265358979 / 4);
+    scene.camera.heading =
+        180.0 - (halfWidthDeg + beyondPx * pixelDeg) / std::cos(3.14159265358979 / 4);
     const RenderedFrame frame = render(scene);
     const ImageLayer* beauty = frame.image.find("");
     const ImageLayer* sky = frame.image.find("sky");
@@ -194,7 +195,8 @@ TEST_F(AtmosphereCompositeTest, SunDiscJustPastTheEdgeIsStillDrawn) {
   const glm::vec3 outward = glm::normalize(corner - forward * glm::dot(corner, forward));
   const double reach = cornerAngle + r + 0.4 * view.forward.w;
   EXPECT_TRUE(discReachesView(
-      view, glm::normalize(float(std::cos(reach)) * forward + float(std::sin(reach)) * outward), r));
+      view, glm::normalize(float(std::cos(reach)) * forward + float(std::sin(reach)) * outward),
+      r));
   EXPECT_FALSE(discReachesView(view, along(cornerAngle + r + 4.0 * view.forward.w + 2e-3), r));
 }
 
@@ -390,6 +392,102 @@ TEST(ClearSkyGoldenSet, ReferencesDifferFromEachOther) {
   const double peak = *std::max_element(high.begin(), high.end());
   EXPECT_LT(psnr(high, low, peak), 40.0);
   EXPECT_LT(psnr(low, sunset, peak), 40.0);
+}
+
+// The composite's bands (lavapipe runs every side of a branch for every pixel, so a band
+// compiles out what its rows cannot see): checked against every pixel's own direction.
+shared::AtmosphereCompositeParams bandParams(const CameraSettings& cam, int w, int h,
+                                             double altitudeM) {
+  shared::AtmosphereCompositeParams p{};
+  p.view = makeViewState(cam, w, h);
+  p.observer = 1u;
+  p.planetRadiusM = 6371e3f;
+  p.cameraRadiusM = static_cast<float>(6371e3 + altitudeM);
+  return p;
+}
+
+// A pixel centre's direction, pinhole or equirectangular (written from view_shared.h's
+// description, apart from the shader).
+glm::vec3 pixelDirection(const CameraSettings& cam, int w, int h, int x, int y) {
+  if (cam.projection == CameraProjection::Perspective) return referenceDirection(cam, w, h, x, y);
+  const double azimuth = cam.heading + 360.0 * ((x + 0.5) / w - 0.5);
+  const double elevation = 90.0 - 180.0 * (y + 0.5) / h;
+  return directionFromAzEl(azimuth, elevation);
+}
+
+// Each row's band must hold the ground if a pixel of the row looks at or below the horizon
+// (within the half pixel the shader blends over), and the clouds' air if one looks above it.
+void expectBandsCoverEveryRow(const CameraSettings& cam, int w, int h, double altitudeM,
+                              const std::vector<CompositeBand>& bands) {
+  const shared::AtmosphereCompositeParams p = bandParams(cam, w, h, altitudeM);
+  const double hc = p.cameraRadiusM - p.planetRadiusM;
+  const double horizonZ = -std::sqrt(hc * (2.0 * p.planetRadiusM + hc)) / double(p.cameraRadiusM);
+  uint32_t next = 0;
+  for (const CompositeBand& b : bands) {
+    ASSERT_EQ(b.firstRow, next) << "bands must tile the image";
+    next += b.rows;
+    for (uint32_t y = b.firstRow; y < b.firstRow + b.rows; ++y)
+      for (int x = 0; x < w; ++x) {
+        const glm::vec3 d = pixelDirection(cam, w, h, x, static_cast<int>(y));
+        const double pixel = p.view.forward.w;
+        if (d.z < horizonZ + pixel) {
+          ASSERT_TRUE(b.ground) << "row " << y << " sees the ground";
+        }
+        if (d.z > horizonZ - pixel) {
+          ASSERT_TRUE(b.cloudAir) << "row " << y << " sees the sky";
+        }
+      }
+  }
+  EXPECT_EQ(next, static_cast<uint32_t>(h));
+}
+
+TEST(AtmosphereCompositeBands, TheGroundOnlyBelowTheHorizonAndTheCloudsAirOnlyAboveIt) {
+  CameraSettings cam;  // the peer's view: 20 degrees up, 60 degrees vertical field of view
+  cam.pitch = 20.0;
+  cam.verticalFov = 60.0;
+  cam.heading = 30.0;
+  const int w = 320, h = 180;
+  const std::vector<CompositeBand> bands =
+      compositeBands(bandParams(cam, w, h, 10.0), true, true, 8);
+  expectBandsCoverEveryRow(cam, w, h, 10.0, bands);
+  ASSERT_GE(bands.size(), 3u);
+  // The sky at the top needs no ground, the ground at the bottom no clouds' air; the ground
+  // (the lowest 18 % of the image) and the band around the horizon are all that pays for it.
+  EXPECT_EQ(bands.front(), (CompositeBand{0, bands.front().rows, false, true}));
+  EXPECT_FALSE(bands.back().cloudAir);
+  EXPECT_TRUE(bands.back().ground);
+  uint32_t groundRows = 0;
+  for (const CompositeBand& b : bands) groundRows += b.ground ? b.rows : 0;
+  EXPECT_LT(groundRows, 0.3 * h);
+
+  // From above the clouds' base every row may see clouds; looking down from 3 km, the
+  // horizon dips and every row sees the ground.
+  for (const CompositeBand& b : compositeBands(bandParams(cam, w, h, 10.0), true, false, 8))
+    EXPECT_TRUE(b.cloudAir);
+  cam.pitch = -40.0;
+  const std::vector<CompositeBand> down =
+      compositeBands(bandParams(cam, w, h, 3000.0), true, true, 8);
+  expectBandsCoverEveryRow(cam, w, h, 3000.0, down);
+  for (const CompositeBand& b : down) EXPECT_TRUE(b.ground);
+  // Without volumetric clouds there is no clouds' air to compute.
+  for (const CompositeBand& b : compositeBands(bandParams(cam, w, h, 10.0), false, true, 8))
+    EXPECT_FALSE(b.cloudAir);
+}
+
+TEST(AtmosphereCompositeBands, AnEquirectangularImageAndATopDownOne) {
+  CameraSettings cam;
+  cam.projection = CameraProjection::Equirectangular;
+  const int w = 256, h = 128;
+  const std::vector<CompositeBand> bands =
+      compositeBands(bandParams(cam, w, h, 10.0), true, true, 8);
+  expectBandsCoverEveryRow(cam, w, h, 10.0, bands);
+  EXPECT_FALSE(bands.front().ground);
+  EXPECT_FALSE(bands.back().cloudAir);
+  // A top-down render has no observer: no ground and no air anywhere, in one dispatch.
+  shared::AtmosphereCompositeParams top = bandParams(cam, w, h, 10.0);
+  top.observer = 0u;
+  EXPECT_EQ(compositeBands(top, true, false, 8),
+            (std::vector<CompositeBand>{{0, static_cast<uint32_t>(h), false, false}}));
 }
 
 }  // namespace
