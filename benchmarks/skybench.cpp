@@ -10,6 +10,7 @@
 //   {"op":"quality","case":"a","reference":"r"}   PSNR and max error of the display images
 //   {"op":"save","case":"a","png":"out.png"}      the last frame's display image
 //   {"op":"close","case":"a"}
+//   {"op":"empty","width":1280,"height":720,"frames":5}   an empty full-screen pass, timed
 //   {"op":"quit"}
 //
 // Each case has its own Renderer (its own temporal history); all share one Vulkan context,
@@ -28,7 +29,11 @@
 #include "engine/color/ocio_output.h"
 #include "engine/core/error.h"
 #include "engine/core/paths.h"
+#include "engine/gpu/compute_pipeline.h"
 #include "engine/gpu/context.h"
+#include "engine/graph/frame_graph.h"
+#include "engine/graph/graph_runtime.h"
+#include "engine/graph/pass_context.h"
 #include "engine/io/image_metrics.h"
 #include "engine/io/png.h"
 #include "engine/render/exposure.h"
@@ -37,6 +42,7 @@
 #include "engine/scene/scene.h"
 #include "engine/scene/scene_io.h"
 #include "engine/shader/shader_compiler.h"
+#include "shaders/common/empty_pass_shared.h"
 
 namespace sky {
 namespace {
@@ -63,8 +69,7 @@ double elapsedMs(std::chrono::steady_clock::time_point since) {
 
 class Server {
 public:
-  explicit Server(const ContextOptions& options)
-      : mCtx(options), mOcio(OcioOutput::load()) {}
+  explicit Server(const ContextOptions& options) : mCtx(options), mOcio(OcioOutput::load()) {}
 
   Json handle(const Json& request) {
     const std::string op = request.value("op", "");
@@ -76,9 +81,10 @@ public:
       mCases.erase(request.value("case", ""));
       return {{"ok", true}};
     }
-    if (op == "hello") return {{"ok", true}, {"device", mCtx.deviceName()},
-                               {"version", skylayersVersion()}};
-    inputError("unknown op '" + op + "' (open, frame, quality, save, close, hello, quit)");
+    if (op == "empty") return empty(request);
+    if (op == "hello")
+      return {{"ok", true}, {"device", mCtx.deviceName()}, {"version", skylayersVersion()}};
+    inputError("unknown op '" + op + "' (open, frame, quality, save, close, empty, hello, quit)");
   }
 
 private:
@@ -93,7 +99,8 @@ private:
     const std::string name = r.value("case", "");
     if (name.empty()) inputError("open: 'case' is required");
     std::vector<std::string> sets = r.value("set", std::vector<std::string>{});
-    if (r.contains("width")) sets.push_back("output.width=" + std::to_string(r["width"].get<int>()));
+    if (r.contains("width"))
+      sets.push_back("output.width=" + std::to_string(r["width"].get<int>()));
     if (r.contains("height"))
       sets.push_back("output.height=" + std::to_string(r["height"].get<int>()));
     Case c;
@@ -135,15 +142,51 @@ private:
     c.width = scene.output.width;
     c.height = scene.output.height;
     Json passes = Json::array();
-    for (const PassTiming& p : f.frame.passes) passes.push_back({{"name", p.name}, {"gpu_ms", p.gpuMs}});
-    return {{"ok", true},          {"frame", index},
-            {"gpu_ms", f.frame.gpuMs}, {"graph_wall_ms", f.frame.wallMs},
-            {"render_ms", renderMs},   {"display_ms", displayMs},
-            {"frame_ms", renderMs + displayMs}, {"passes", passes}};
+    for (const PassTiming& p : f.frame.passes)
+      passes.push_back({{"name", p.name}, {"gpu_ms", p.gpuMs}, {"texels", p.texels}});
+    return {{"ok", true},
+            {"frame", index},
+            {"gpu_ms", f.frame.gpuMs},
+            {"graph_wall_ms", f.frame.wallMs},
+            {"render_ms", renderMs},
+            {"display_ms", displayMs},
+            {"frame_ms", renderMs + displayMs},
+            {"passes", passes}};
+  }
+
+  // The yardstick of the per-pass goals: shaders/empty_pass.comp over a width x height
+  // RGBA32F image in a graph of its own, `frames` times; each frame's GPU time.
+  Json empty(const Json& r) {
+    const int width = r.value("width", 0), height = r.value("height", 0);
+    const int frames = r.value("frames", 5);
+    if (width < 1 || height < 1 || width > 16384 || height > 16384)
+      inputError("empty: width and height must be 1..16384");
+    if (frames < 1 || frames > 1000) inputError("empty: frames must be 1..1000");
+    Json ms = Json::array();
+    for (int k = 0; k < frames; ++k) {
+      FrameGraph graph(mRuntime);
+      ImageId out;
+      GraphBuilder b = graph.addPass("empty_pass", [&](PassContext& pc) {
+        pc.dispatch(mEmpty, {Binding::of(EMPTY_PASS_BINDING_OUT, out)},
+                    mEmpty.groupsX(uint32_t(width)), mEmpty.groupsY(uint32_t(height)));
+      });
+      ImageDesc d;
+      d.name = "empty_pass";
+      d.about = "a constant: the benchmark's empty full-screen pass";
+      d.format = VK_FORMAT_R32G32B32A32_SFLOAT;
+      d.width = uint32_t(width);
+      d.height = uint32_t(height);
+      out = b.write(b.create(d), Access::StorageWriteCompute);
+      b.sideEffect();
+      const FrameResult f = graph.execute();
+      ms.push_back(f.passes.empty() ? 0.0 : f.passes.front().gpuMs);
+    }
+    return {{"ok", true}, {"width", width}, {"height", height}, {"gpu_ms", ms}};
   }
 
   Json quality(const Case& a, const Case& ref) {
-    if (a.display.empty() || ref.display.empty()) inputError("quality: render a frame of both first");
+    if (a.display.empty() || ref.display.empty())
+      inputError("quality: render a frame of both first");
     if (a.width != ref.width || a.height != ref.height) inputError("quality: the sizes differ");
     // The display-referred image as a viewer sees it (before the PNG's dither), RGB only.
     std::vector<float> x, y;
@@ -173,6 +216,8 @@ private:
   Context mCtx;
   ShaderCompiler mCompiler;
   OcioOutput mOcio;
+  GraphRuntime mRuntime{mCtx};  // the empty pass's graphs
+  ComputePipeline mEmpty{buildComputePipeline(mCtx, mCompiler, "empty_pass.comp", "empty_pass")};
   std::map<std::string, Case> mCases;
 };
 

@@ -94,6 +94,10 @@ private:
 struct PassTiming {
   std::string name;
   double gpuMs = 0.0;
+  // Texels of the largest image the pass writes (width x height x depth; 0 for a pass that
+  // writes only buffers): the size a benchmark compares the pass with (an empty full-screen
+  // pass of as many pixels, benchmarks/README.md).
+  uint64_t texels = 0;
 };
 
 struct ReadbackImage {

@@ -1,4 +1,5 @@
 // FrameGraph::compile and FrameGraph::execute: the GPU side of the frame graph.
+#include <algorithm>
 #include <chrono>
 #include <set>
 
@@ -59,8 +60,8 @@ const CompiledGraph& FrameGraph::compile() {
           const BufferImage& layout = mDesc.resources[o.resource].buffer.image;
           const VkBufferCopy region{layout.offset, 0,
                                     VkDeviceSize(layout.width) * layout.height * 4};
-          vkCmdCopyBuffer(ctx.cmd(), ctx.buffer(BufferId{o.resource, o.version}).buffer(),
-                          target, 1, &region);
+          vkCmdCopyBuffer(ctx.cmd(), ctx.buffer(BufferId{o.resource, o.version}).buffer(), target,
+                          1, &region);
           continue;
         }
         const Image& image = ctx.image(ImageId{o.resource, o.version});
@@ -153,14 +154,12 @@ FrameResult FrameGraph::execute() {
   readback.resize(mOutputs.size());
   for (size_t i = 0; i < mOutputs.size(); ++i) {
     const ResourceNode& n = mDesc.resources[mOutputs[i].resource];
-    const VkDeviceSize bytes =
-        n.kind == ResourceKind::Buffer
-            ? VkDeviceSize(n.buffer.image.width) * n.buffer.image.height * 4
-            : texelBytes(n.image);
+    const VkDeviceSize bytes = n.kind == ResourceKind::Buffer
+                                   ? VkDeviceSize(n.buffer.image.width) * n.buffer.image.height * 4
+                                   : texelBytes(n.image);
     if (!readback[i] || readback[i].size() != bytes)
-      readback[i] =
-          Buffer(ctx, {"readback " + mOutputs[i].label, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                       BufferMemory::HostVisible});
+      readback[i] = Buffer(ctx, {"readback " + mOutputs[i].label, bytes,
+                                 VK_BUFFER_USAGE_TRANSFER_DST_BIT, BufferMemory::HostVisible});
   }
 
   VkCommandBuffer cmd = runtime.beginFrame();
@@ -229,7 +228,14 @@ FrameResult FrameGraph::execute() {
   std::vector<double> ms = timestamps.resultsMs();
   for (size_t pos = 0; pos < c.order.size(); ++pos) {
     double passMs = pos < ms.size() ? ms[pos] : 0.0;
-    result.passes.push_back({mDesc.passes[c.order[pos]].name, passMs});
+    const PassNode& node = mDesc.passes[c.order[pos]];
+    uint64_t texels = 0;
+    for (const ResourceAccess& a : node.accesses) {
+      const ResourceNode& r = mDesc.resources[a.resource];
+      if (accessInfo(a.access).write && r.kind == ResourceKind::Image)
+        texels = std::max(texels, uint64_t(r.image.width) * r.image.height * r.image.depth);
+    }
+    result.passes.push_back({node.name, passMs, texels});
     result.gpuMs += passMs;
   }
   for (size_t i = 0; i < mOutputs.size(); ++i) {
