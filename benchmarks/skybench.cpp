@@ -151,7 +151,14 @@ private:
             {"render_ms", renderMs},
             {"display_ms", displayMs},
             {"frame_ms", renderMs + displayMs},
-            {"passes", passes}};
+            {"passes", passes},
+            {"costs",
+             {{"renderer_ms", f.costs.rendererMs},
+              {"renderer_pipelines_ms", f.costs.rendererPipelinesMs},
+              {"pipelines_ms", f.costs.pipelinesMs},
+              {"textures_ms", f.costs.texturesMs},
+              {"lut_bake_gpu_ms", f.costs.lutBakeGpuMs},
+              {"setup_ms", f.costs.setupMs()}}}};
   }
 
   // The yardstick of the per-pass goals: shaders/empty_pass.comp over a width x height

@@ -4,6 +4,7 @@
 #include <cerrno>
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <csignal>
 #include <signal.h>
@@ -20,14 +21,20 @@ namespace {
 // What a special file is ("a FIFO"), or nullptr for a regular file, a folder or nothing.
 const char* specialKind(const fs::file_status& st) {
   switch (st.type()) {
-    case fs::file_type::fifo: return "a FIFO";
-    case fs::file_type::socket: return "a socket";
-    case fs::file_type::character: return "a character device";
-    case fs::file_type::block: return "a block device";
+    case fs::file_type::fifo:
+      return "a FIFO";
+    case fs::file_type::socket:
+      return "a socket";
+    case fs::file_type::character:
+      return "a character device";
+    case fs::file_type::block:
+      return "a block device";
     case fs::file_type::regular:
     case fs::file_type::directory:
-    case fs::file_type::not_found: return nullptr;
-    default: return "something";
+    case fs::file_type::not_found:
+      return nullptr;
+    default:
+      return "something";
   }
 }
 }  // namespace
@@ -50,7 +57,13 @@ std::string notARegularFile(const fs::path& path) {
   return "file not found";
 }
 
-std::string readTextFile(const fs::path& path, std::uintmax_t maxBytes) {
+namespace {
+
+// The whole of `path` into a container of bytes: one allocation of the file's size and one
+// read into it (a cache file of megabytes is read at start-up), then whatever the file grew
+// by since its size was taken.
+template <class Bytes>
+Bytes readWholeFile(const fs::path& path, std::uintmax_t maxBytes) {
   // An ifstream opens a folder and reads it as empty: say what it is instead.
   std::error_code ec;
   if (fs::is_directory(path, ec)) inputError(path.string() + ": is a directory, not a file");
@@ -61,15 +74,32 @@ std::string readTextFile(const fs::path& path, std::uintmax_t maxBytes) {
                std::to_string(maxBytes) + " read from it");
   std::ifstream in(path, std::ios::binary);
   if (!in) inputError(path.string() + ": cannot open file: " + std::strerror(errno));
-  std::ostringstream ss;
-  ss << in.rdbuf();
+  Bytes out(ec ? 0 : static_cast<size_t>(size), 0);
+  in.read(reinterpret_cast<char*>(out.data()), static_cast<std::streamsize>(out.size()));
+  out.resize(static_cast<size_t>(in.gcount()));
   if (in.bad()) inputError(path.string() + ": read error");
-  return ss.str();
+  if (!in.eof()) {
+    in.clear();
+    char chunk[65536];
+    while (in.read(chunk, sizeof chunk) || in.gcount() > 0) {
+      out.insert(out.end(), chunk, chunk + in.gcount());
+      if (out.size() > maxBytes)
+        inputError(path.string() + ": grew past the " + std::to_string(maxBytes) +
+                   " bytes read from it");
+    }
+    if (in.bad()) inputError(path.string() + ": read error");
+  }
+  return out;
+}
+
+}  // namespace
+
+std::string readTextFile(const fs::path& path, std::uintmax_t maxBytes) {
+  return readWholeFile<std::string>(path, maxBytes);
 }
 
 std::vector<uint8_t> readBinaryFile(const fs::path& path) {
-  std::string text = readTextFile(path);
-  return std::vector<uint8_t>(text.begin(), text.end());
+  return readWholeFile<std::vector<uint8_t>>(path, std::numeric_limits<std::uintmax_t>::max());
 }
 
 namespace {
@@ -91,8 +121,8 @@ std::string temporaryPrefix() {
 fs::path temporaryFor(const fs::path& path) {
   static std::atomic<unsigned> counter{0};
   fs::path dir = path.parent_path().empty() ? fs::path(".") : path.parent_path();
-  return dir / (temporaryPrefix() + std::to_string(::getpid()) + "-" +
-                std::to_string(counter++) + "-" + path.filename().string());
+  return dir / (temporaryPrefix() + std::to_string(::getpid()) + "-" + std::to_string(counter++) +
+                "-" + path.filename().string());
 }
 
 // Runs write(tmp); an error it throws names the file the caller asked for, not the

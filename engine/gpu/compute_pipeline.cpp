@@ -1,13 +1,39 @@
 #include "engine/gpu/compute_pipeline.h"
 
+#include <atomic>
+#include <chrono>
+
 #include "engine/gpu/context.h"
 #include "engine/gpu/vk_check.h"
 
 namespace sky {
+namespace {
+
+std::atomic<int64_t> gBuildNs{0};
+
+// Adds the time from its construction to its end to pipelineBuildMs().
+class BuildClock {
+public:
+  ~BuildClock() {
+    gBuildNs += std::chrono::duration_cast<std::chrono::nanoseconds>(
+                    std::chrono::steady_clock::now() - mStart)
+                    .count();
+  }
+
+private:
+  std::chrono::steady_clock::time_point mStart = std::chrono::steady_clock::now();
+};
+
+}  // namespace
+
+double pipelineBuildMs() {
+  return static_cast<double>(gBuildNs.load()) * 1e-6;
+}
 
 CompiledShader compileForDevice(const Context& ctx, ShaderCompiler& compiler,
                                 const std::filesystem::path& file,
                                 std::vector<ShaderDefine> defines) {
+  BuildClock clock;
   for (const auto& [name, value] : ctx.shaderDefines()) defines.push_back({name, value});
   return compiler.compile(file, defines);
 }
@@ -17,6 +43,16 @@ ComputePipeline buildComputePipeline(const Context& ctx, ShaderCompiler& compile
                                      std::vector<ShaderDefine> defines) {
   CompiledShader shader = compileForDevice(ctx, compiler, file, std::move(defines));
   return ComputePipeline(ctx, name, shader.spirv, shader.reflection);
+}
+
+LazyComputePipeline::LazyComputePipeline(const Context& ctx, CompiledShader shader,
+                                         std::string name)
+    : mCtx(ctx), mShader(std::move(shader)), mName(std::move(name)) {}
+
+const ComputePipeline& LazyComputePipeline::get() const {
+  if (!mPipeline)
+    mPipeline = std::make_unique<ComputePipeline>(mCtx, mName, mShader.spirv, mShader.reflection);
+  return *mPipeline;
 }
 
 ComputePipelineVariants::ComputePipelineVariants(const Context& ctx, ShaderCompiler& compiler,
@@ -38,6 +74,7 @@ ComputePipeline::ComputePipeline(const Context& ctx, const std::string& name,
                                  const std::vector<uint32_t>& spirv,
                                  const ShaderReflection& reflection)
     : mCtx(ctx), mName(name), mReflection(reflection) {
+  BuildClock clock;
   std::vector<VkDescriptorSetLayoutBinding> bindings;
   for (const DescriptorBinding& b : reflection.bindings) {
     // One set per pass keeps binding numbers meaningful in the shared headers.

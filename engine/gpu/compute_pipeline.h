@@ -24,6 +24,12 @@ CompiledShader compileForDevice(const Context& ctx, ShaderCompiler& compiler,
                                 const std::filesystem::path& file,
                                 std::vector<ShaderDefine> defines = {});
 
+// Wall time (ms) this process has spent making compute pipelines, on every thread: compiling
+// the shaders or loading them from the SPIR-V cache (compileForDevice), and creating the
+// pipelines (lavapipe compiles to machine code there, or takes it from Mesa's cache). What a
+// first frame pays before it can draw; the render report states it (docs/outputs.md).
+double pipelineBuildMs();
+
 class ComputePipeline;
 // compileForDevice, then the pipeline: the whole of what a pass with one shader builds.
 ComputePipeline buildComputePipeline(const Context& ctx, ShaderCompiler& compiler,
@@ -68,13 +74,30 @@ private:
   VkPipeline mPipeline = VK_NULL_HANDLE;
 };
 
+// A pipeline compiled at once (its SPIR-V and the hash of its source are known: a cache key
+// can name it) but created only when first used. For bake passes, whose output usually
+// comes from a cache file: creating a pipeline is most of what it costs (lavapipe translates
+// it to machine code), ~30-90 ms each at start-up for nothing.
+class LazyComputePipeline {
+public:
+  LazyComputePipeline(const Context& ctx, CompiledShader shader, std::string name);
+  const ComputePipeline& get() const;  // created on the first call
+  uint64_t sourceHash() const { return mShader.sourceHash; }
+
+private:
+  const Context& mCtx;
+  CompiledShader mShader;
+  std::string mName;
+  mutable std::unique_ptr<ComputePipeline> mPipeline;
+};
+
 // One shader compiled once per combination of defines it meets: each pipeline is built on
 // first use and kept. A pass whose frames choose among many variants (what is on screen, the
 // scene's fixed choices) pays a compile only for those a run needs.
 class ComputePipelineVariants {
 public:
-  ComputePipelineVariants(const Context& ctx, ShaderCompiler& compiler,
-                          std::filesystem::path file, std::string name);
+  ComputePipelineVariants(const Context& ctx, ShaderCompiler& compiler, std::filesystem::path file,
+                          std::string name);
   const ComputePipeline& get(const std::vector<ShaderDefine>& defines);
 
 private:

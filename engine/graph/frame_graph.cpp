@@ -42,8 +42,8 @@ ImageId FrameGraph::importImage(PersistentImage& image) {
 
 void HistoryImage::ensure(const Context& ctx, const ImageDesc& wanted) {
   ImageDesc desc = wanted;
-  desc.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
-               VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+  desc.usage =
+      VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
   const ImageDesc& have = mImages[0].image.desc();
   if (mImages[0].image && have.format == desc.format && have.width == desc.width &&
       have.height == desc.height && have.depth == desc.depth && have.dim == desc.dim)
@@ -92,7 +92,18 @@ ImageId FrameGraph::upload(ImageId image, std::span<const float> pixels, std::st
   if (pixels.size() != texels * formatChannelCount(d.format))
     internalError("upload to image '" + d.name + "': " + std::to_string(pixels.size()) +
                   " values for " + std::to_string(texels) + " texels of " + formatName(d.format));
-  const std::vector<uint8_t> bytes = floatsToTexels(d.format, pixels);
+  return uploadTexels(image, floatsToTexels(d.format, pixels), std::move(name));
+}
+
+ImageId FrameGraph::uploadTexels(ImageId image, std::span<const uint8_t> bytes, std::string name) {
+  if (image.id >= mDesc.resources.size() || mDesc.resources[image.id].kind != ResourceKind::Image)
+    internalError("frame graph: upload '" + name + "' to an invalid image handle");
+  const ImageDesc& d = mDesc.resources[image.id].image;
+  const uint32_t depth = d.dim == ImageDim::Tex3D ? d.depth : 1;
+  const size_t texels = size_t(d.width) * d.height * depth;
+  if (bytes.size() != texels * formatTexelSize(d.format))
+    internalError("upload to image '" + d.name + "': " + std::to_string(bytes.size()) +
+                  " bytes for " + std::to_string(texels) + " texels of " + formatName(d.format));
   Buffer* staging = nullptr;
   if (mRuntime) {  // a graph without a GPU records the pass and never runs it
     mStaging.push_back(std::make_unique<Buffer>(
@@ -119,9 +130,12 @@ ImageId FrameGraph::upload(ImageId image, std::span<const float> pixels, std::st
 
 FrameResult uploadNow(GraphRuntime& runtime, std::initializer_list<ImageFill> fills) {
   FrameGraph graph(runtime, GraphUse::Bake);
-  for (const ImageFill& f : fills)
-    (void)graph.upload(graph.importImage(*f.image), f.pixels,
-                       "upload " + f.image->image.desc().name);
+  for (const ImageFill& f : fills) {
+    const ImageId image = graph.importImage(*f.image);
+    const std::string name = "upload " + f.image->image.desc().name;
+    (void)(f.texels.empty() ? graph.upload(image, f.pixels, name)
+                            : graph.uploadTexels(image, f.texels, name));
+  }
   return graph.execute();
 }
 
@@ -244,8 +258,7 @@ void FrameGraph::requestOutput(ImageId image, std::string label) {
 void FrameGraph::requestOutput(const GraphImage& image, std::string label) {
   if (image.latest.valid()) return requestOutput(image.latest, std::move(label));
   if (mCompiled) internalError("frame graph: output '" + label + "' requested after compile()");
-  if (!image.buffer.valid() ||
-      mDesc.resources[image.buffer.id].buffer.image.width == 0)
+  if (!image.buffer.valid() || mDesc.resources[image.buffer.id].buffer.image.width == 0)
     internalError("frame graph: output '" + label + "' is not an image");
   for (const auto& o : mOutputs)
     if (o.label == label) internalError("frame graph: output '" + label + "' requested twice");

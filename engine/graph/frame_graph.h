@@ -167,6 +167,10 @@ public:
   // reads the image (later frames do). Returns the image's new version. Internal error for a
   // count of values that is not the image's, or an image without TRANSFER_DST usage.
   [[nodiscard]] ImageId upload(ImageId image, std::span<const float> pixels, std::string name);
+  // The same with `texels` already in the image's format (formatTexelSize bytes each), copied
+  // as they are: a cache of 8-bit noise skips two conversions of every value.
+  [[nodiscard]] ImageId uploadTexels(ImageId image, std::span<const uint8_t> texels,
+                                     std::string name);
   // Calls `done` once execute() has run this frame to its end. An owner of a persistent image
   // learns that what the frame wrote there (an upload) landed: a frame that fails, or a graph
   // never executed, calls nothing, and the owner tries again next frame.
@@ -231,10 +235,12 @@ private:
   bool mExecuted = false;
 };
 
-// One persistent image and the texels to fill it with (FrameGraph::upload's layout).
+// One persistent image and the texels to fill it with: floats (FrameGraph::upload's layout),
+// or, when `texels` is not empty, bytes in the image's format (FrameGraph::uploadTexels).
 struct ImageFill {
   PersistentImage* image;
   std::span<const float> pixels;
+  std::span<const uint8_t> texels = {};
 };
 // Fills persistent images outside a frame (textures loaded from files or a cache): one graph
 // (GraphUse::Bake) of passes "upload NAME", executed before this returns.

@@ -81,6 +81,14 @@ RenderFiles writeRenderFiles(const std::filesystem::path& dir, const std::string
   report["passes"] = passes;
   report["gpu_ms_total"] = frame.frame.gpuMs;
   report["frame_wall_ms"] = frame.frame.wallMs;
+  // Where render() spent its wall time besides drawing: what a first frame pays once.
+  report["render_costs"] = {{"renderer_ms", frame.costs.rendererMs},
+                            {"renderer_pipelines_ms", frame.costs.rendererPipelinesMs},
+                            {"render_ms", frame.costs.renderMs},
+                            {"pipelines_ms", frame.costs.pipelinesMs},
+                            {"textures_ms", frame.costs.texturesMs},
+                            {"lut_bake_gpu_ms", frame.costs.lutBakeGpuMs},
+                            {"setup_ms", frame.costs.setupMs()}};
   nlohmann::ordered_json exposureJson = {{"mode", enumName(exposure.mode)}, {"ev", exposure.ev}};
   if (exposure.mode == ExposureMode::Histogram) {
     exposureJson["metered_luminance"] = exposure.meteredLuminance;

@@ -1,10 +1,12 @@
 #include "engine/render/renderer.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 
 #include "engine/core/error.h"
 #include "engine/core/paths.h"
+#include "engine/gpu/compute_pipeline.h"
 #include "engine/gpu/context.h"
 #include "engine/lighting/light_model.h"
 #include "engine/render/camera.h"
@@ -14,6 +16,11 @@
 
 namespace sky {
 namespace {
+
+double msSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+      .count();
+}
 
 DebugImageInfo debugImageInfo(const GraphImage& g) {
   const ImageDesc& d = g.desc;
@@ -80,7 +87,12 @@ Renderer::Renderer(const Context& ctx, ShaderCompiler& compiler)
       mHistorySampler(ctx, SamplerWrap::Clamp),
       mSlice(ctx, compiler),
       mVolumeExport(ctx, compiler),
-      mComposite(ctx, compiler) {}
+      mComposite(ctx, compiler) {
+  FrameCosts c;
+  c.rendererMs = msSince(mCreated);
+  c.rendererPipelinesMs = pipelineBuildMs() - mPipelinesAtCreation;
+  mConstruction = c;
+}
 
 void Renderer::setBakeProgress(std::function<void(double)> progress) {
   mHighCloudTextures.setProgress(std::move(progress));
@@ -229,8 +241,10 @@ Renderer::SkyImages Renderer::addSky(FrameGraph& graph, const FrameInputs& f, Re
   // With a forecast's high layer the cover comes from the map per pixel, at the data's
   // altitude (the middle of the layer's gh range).
   const bool highFromWeather = highCloudsFromWeather(scene, weather);
+  const auto texturesStart = std::chrono::steady_clock::now();
   const HighCloudTextures::Outputs textures =
       mHighCloudTextures.addTo(graph, scene, highFromWeather);
+  out.costs.texturesMs += msSince(texturesStart);
   out.highClouds = mHighCloudTextures.lastActivity();
   if (highFromWeather && weather.highAltitudeM)
     s.highAltitudeM = 0.5 * (weather.highAltitudeM->x + weather.highAltitudeM->y);
@@ -283,7 +297,9 @@ Renderer::CloudImages Renderer::addClouds(FrameGraph& graph, const FrameInputs& 
   const Scene& cloudScene = f.setup.cloudScene;
   const CloudFrameGeometry& geometry = f.setup.geometry;
   CloudImages c;
+  const auto texturesStart = std::chrono::steady_clock::now();
   c.frame = mClouds.addTo(graph, cloudScene, f.time);
+  out.costs.texturesMs += msSince(texturesStart);
   out.cloudNoise = mClouds.noiseActivity();
   // Temporal reuse: a sequence's frames march a share of the pixels and reproject the rest,
   // at the view's size or at half its width and height.
@@ -381,10 +397,10 @@ Renderer::CloudImages Renderer::addClouds(FrameGraph& graph, const FrameInputs& 
   }
   // The clouds' shadows on the ground around the observer (a top-down render draws no
   // ground, but the composite's cloud variant binds a map all the same).
-  c.shadow = mShadow.addTo(
-      graph, CloudShadowPass::Inputs{in.params, in.variant,
-                                     cloudShadowMap(in.params, geometry.altitudeM), in.textures,
-                                     field});
+  c.shadow =
+      mShadow.addTo(graph, CloudShadowPass::Inputs{in.params, in.variant,
+                                                   cloudShadowMap(in.params, geometry.altitudeM),
+                                                   in.textures, field});
   out.cloudShadow = c.shadow.map;
   // A cut through the density field for the debug view: culled unless it is asked for.
   graph.add(mSlice, CloudDensitySlicePass::Inputs{in.params, in.variant, in.textures});
@@ -429,13 +445,12 @@ Renderer::FramePlan Renderer::buildFrame(FrameGraph& graph, const Scene& scene, 
   AtmosphereCompositePass::Inputs composite{};
   composite.params = atmosphereCompositeParams(compositeSettings, out.lighting, f.view);
   if (clouds)
-    composite.clouds =
-        AtmosphereCompositePass::Clouds{clouds->clouds,
-                                        clouds->depth,
-                                        clouds->shadow.shadow,
-                                        clouds->shadow.map,
-                                        clouds->frame.textures.weatherSampler,
-                                        compositeSettings.belowClouds};
+    composite.clouds = AtmosphereCompositePass::Clouds{clouds->clouds,
+                                                       clouds->depth,
+                                                       clouds->shadow.shadow,
+                                                       clouds->shadow.map,
+                                                       clouds->frame.textures.weatherSampler,
+                                                       compositeSettings.belowClouds};
   if (f.physical)
     composite.atmosphere =
         AtmosphereCompositePass::Atmosphere{mAtmosphere.params(), sky.luts.transmittance,
@@ -491,8 +506,7 @@ void Renderer::requestOutputs(FrameGraph& graph, const FramePlan& plan,
     for (const GraphImage& image : graph.images())
       if (std::find(names.begin(), names.end(), image.name) == names.end())
         names.push_back(image.name);
-  for (const std::string& name : names)
-    graph.requestOutput(graph.image(name), kDebugLabel + name);
+  for (const std::string& name : names) graph.requestOutput(graph.image(name), kDebugLabel + name);
 }
 
 void Renderer::collectOutputs(RenderedFrame& out, const FrameGraph& graph, const FramePlan& plan,
@@ -535,6 +549,8 @@ RenderedFrame Renderer::render(const Scene& scene, const IsoTime& time,
                                const RenderOptions& options) {
   if (options.readBack == ReadBack::Display && !options.gpuDisplay)
     internalError("ReadBack::Display without RenderOptions::gpuDisplay");
+  const auto start = std::chrono::steady_clock::now();
+  const double pipelinesBefore = pipelineBuildMs();
   RenderedFrame out;
   FrameGraph graph(mRuntime);
   FramePlan plan = buildFrame(graph, scene, time, options, out);
@@ -549,6 +565,17 @@ RenderedFrame Renderer::render(const Scene& scene, const IsoTime& time,
   if (plan.pendingHistory) mHistory = std::move(*plan.pendingHistory);
   out.graphDot = graph.toDot(&out.frame);
   collectOutputs(out, graph, plan, options);
+  for (const PassTiming& t : out.frame.passes)
+    if (t.name == AtmosphereLuts::kTransmittanceName ||
+        t.name == AtmosphereLuts::kMultiScatteringName)
+      out.costs.lutBakeGpuMs += t.gpuMs;
+  out.costs.pipelinesMs = pipelineBuildMs() - pipelinesBefore;
+  out.costs.renderMs = msSince(start);
+  if (mConstruction) {
+    out.costs.rendererMs = mConstruction->rendererMs;
+    out.costs.rendererPipelinesMs = mConstruction->rendererPipelinesMs;
+    mConstruction.reset();
+  }
   return out;
 }
 

@@ -4,6 +4,7 @@
 // passes' pipelines, the star catalogue, the high-cloud textures and the atmosphere LUTs on
 // the GPU, so create it once and render many frames: what does not depend on the time of day
 // (baked textures, transmittance and multiple-scattering LUTs) is made once and reused.
+#include <chrono>
 #include <functional>
 #include <optional>
 #include <string>
@@ -78,12 +79,32 @@ struct DebugImage {
   LayeredImage image;  // main layer, channels named; a 3D image has its slices side by side
 };
 
+// What a render() call spent its wall time on besides the frame itself: what a first frame
+// pays once (making pipelines, baking or loading textures) and later frames keep.
+struct FrameCosts {
+  double renderMs = 0.0;      // the whole call
+  double pipelinesMs = 0.0;   // making pipelines: shader variants the frame used first
+  double texturesMs = 0.0;    // the noise and high-cloud textures: kept, loaded from their cache
+                              // files or baked (their own graphs), and the cover calibration
+  double lutBakeGpuMs = 0.0;  // GPU time of the frame's one-time bakes (the atmosphere's
+                              // transmittance and multiple-scattering LUTs)
+  // A Renderer's first frame only: constructing the Renderer (before render() was called),
+  // and of that, making the pipelines of its passes.
+  double rendererMs = 0.0;
+  double rendererPipelinesMs = 0.0;
+  // The part that is not this frame's own drawing: pipelines (the Renderer's and the
+  // frame's), textures and LUT bakes. The Renderer's other construction (the star
+  // catalogue, samplers) is in rendererMs alone.
+  double setupMs() const { return rendererPipelinesMs + pipelinesMs + texturesMs + lutBakeGpuMs; }
+};
+
 struct RenderedFrame {
   // "" = beauty (R,G,B,A); "sky" (R,G,B); "high_clouds" (R,G,B,A); "clouds" (R,G,B,A,depth);
   // with camera.mode geographic_topdown also "weather" (cover_low, cover_mid); as
   // RenderOptions::readBack says (ReadBack::Display: no layer).
   LayeredImage image;
   FrameResult frame;       // per-pass GPU timings, wall time
+  FrameCosts costs;        // where render() spent its wall time
   std::string graphDot;    // the compiled graph with timings (for --dump-graph)
   LightingState lighting;  // the sun, moon, palette and night state the frame was lit by
   HighCloudTextures::Activity highClouds;  // whether the textures were baked, loaded or kept
@@ -197,6 +218,11 @@ private:
   void collectOutputs(RenderedFrame& out, const FrameGraph& graph, const FramePlan& plan,
                       const RenderOptions& options);
 
+  // When construction began and the process's pipeline time then: the first render() reports
+  // what constructing took (FrameCosts::rendererMs). Declared first, so initialised first.
+  std::chrono::steady_clock::time_point mCreated = std::chrono::steady_clock::now();
+  double mPipelinesAtCreation = pipelineBuildMs();
+  std::optional<FrameCosts> mConstruction;  // until the first render() reports it
   GraphRuntime mRuntime;
   StarFieldPass mStars;
   HighCloudTextures mHighCloudTextures;

@@ -1,9 +1,12 @@
 #include "engine/shader/shader_compiler.h"
 
 #include <cctype>
+#include <functional>
 #include <mutex>
 #include <regex>
+#include <set>
 #include <sstream>
+#include <string_view>
 #include <system_error>
 
 #include <glslang/Public/ResourceLimits.h>
@@ -133,6 +136,64 @@ ShaderCompiler::ShaderCompiler(fs::path shaderRoot, std::optional<fs::path> cach
   if (mRootName.empty()) mRootName = mRoot.generic_string();
 }
 
+namespace {
+
+// A shader's files as they are on disk: the main file's text and that of every file an
+// #include line of it names, recursively, resolved as detail::FileIncluder does (the
+// including file's folder, then the root), whatever conditions surround the line. Nothing
+// is preprocessed: a comment changes the key. None when a named file is missing (the
+// include may sit in a branch the preprocessor drops): such a shader always preprocesses.
+struct RawSource {
+  uint64_t key = 0;
+  std::vector<fs::path> files;
+};
+
+std::optional<RawSource> rawSource(const fs::path& mainPath, const std::string& mainText,
+                                   const fs::path& root, const std::string& settings) {
+  RawSource raw;
+  std::string all = "raw1\n" + settings;
+  std::set<fs::path> seen;
+  std::function<bool(const fs::path&, const std::string&, int)> scan =
+      [&](const fs::path& path, const std::string& text, int depth) {
+        if (depth > 64 || !seen.insert(path).second) return depth <= 64;
+        raw.files.push_back(path);
+        all += "\n\x01" + path.string() + "\n" + text;
+        size_t line = 0;
+        while (line < text.size()) {
+          size_t end = text.find('\n', line);
+          if (end == std::string::npos) end = text.size();
+          std::string_view l(text.data() + line, end - line);
+          line = end + 1;
+          size_t i = l.find_first_not_of(" \t");
+          if (i == std::string_view::npos || l[i] != '#') continue;
+          i = l.find_first_not_of(" \t", i + 1);
+          if (i == std::string_view::npos || l.substr(i, 7) != "include") continue;
+          const size_t open = l.find_first_of("\"<", i + 7);
+          if (open == std::string_view::npos) return false;
+          const size_t close = l.find_first_of("\">", open + 1);
+          if (close == std::string_view::npos) return false;
+          const std::string name(l.substr(open + 1, close - open - 1));
+          std::error_code ec;
+          fs::path next = (path.parent_path() / name).lexically_normal();
+          if (!fs::is_regular_file(next, ec)) next = (root / name).lexically_normal();
+          if (!fs::is_regular_file(next, ec)) return false;
+          std::string nextText;
+          try {
+            nextText = readTextFile(next);
+          } catch (const Error&) {
+            return false;
+          }
+          if (!scan(next, nextText, depth + 1)) return false;
+        }
+        return true;
+      };
+  if (!scan(mainPath, mainText, 0)) return std::nullopt;
+  raw.key = hash64(all);
+  return raw;
+}
+
+}  // namespace
+
 CompiledShader ShaderCompiler::compile(const fs::path& relativePath,
                                        const std::vector<ShaderDefine>& defines) {
   ensureGlslangInitialized();
@@ -157,6 +218,28 @@ CompiledShader ShaderCompiler::compile(const fs::path& relativePath,
   const char* name = mainName.c_str();
   const TBuiltInResource* resources = GetDefaultResources();
 
+  // Pass 0: the files as they are. Unchanged since a compile that cached them, they give the
+  // SPIR-V's key without glslang (detail::loadSourceIndex).
+  const std::optional<RawSource> raw =
+      mCacheDir ? rawSource(out.path, mainText, mRoot, compilerVersion() + "\n" + preamble)
+                : std::nullopt;
+  if (raw) {
+    if (const auto key = detail::loadSourceIndex(*mCacheDir, raw->key)) {
+      if (auto cached = detail::loadCachedSpirv(*mCacheDir, *key)) {
+        try {
+          out.reflection = reflectSpirv(*cached);
+          out.spirv = std::move(*cached);
+          out.sourceHash = *key;
+          out.dependencies = raw->files;
+          out.fromCache = true;
+          return out;
+        } catch (const Error&) {
+          // Stale: compile as below.
+        }
+      }
+    }
+  }
+
   // Pass 1: preprocess only. Its output (every include expanded, macros applied) is what the
   // cache key hashes, so an edit to any included file or define changes the key.
   std::string preprocessed;
@@ -177,6 +260,7 @@ CompiledShader ShaderCompiler::compile(const fs::path& relativePath,
         out.reflection = reflectSpirv(*cached);
         out.spirv = std::move(*cached);
         out.fromCache = true;
+        if (raw) detail::storeSourceIndex(*mCacheDir, raw->key, out.sourceHash);
         return out;
       } catch (const Error&) {
         // A checksum-valid file that still does not reflect is stale garbage: recompile.
@@ -204,7 +288,10 @@ CompiledShader ShaderCompiler::compile(const fs::path& relativePath,
     throwCompileError("ERROR: SPIR-V generation: " + spvLog, mainName);
 
   out.reflection = reflectSpirv(out.spirv);
-  if (mCacheDir) detail::storeCachedSpirv(*mCacheDir, out.sourceHash, out.spirv);
+  if (mCacheDir) {
+    detail::storeCachedSpirv(*mCacheDir, out.sourceHash, out.spirv);
+    if (raw) detail::storeSourceIndex(*mCacheDir, raw->key, out.sourceHash);
+  }
   return out;
 }
 

@@ -53,11 +53,6 @@ PersistentImage makeImage(const Context& ctx, const char* name, const char* abou
 
 // UNORM bytes and the floats the engine's upload and read-back speak: b / 255 and back by
 // rounding, which is exact both ways.
-std::vector<float> toFloats(const std::vector<uint8_t>& bytes) {
-  std::vector<float> out(bytes.size());
-  for (size_t i = 0; i < bytes.size(); ++i) out[i] = float(bytes[i]) / 255.0f;
-  return out;
-}
 std::vector<uint8_t> toBytes(const std::vector<float>& pixels) {
   std::vector<uint8_t> out(pixels.size());
   for (size_t i = 0; i < pixels.size(); ++i)
@@ -126,9 +121,10 @@ void CloudNoise::load(CloudModel model) {
   allocate(detailSize);
   if (std::optional<cloud_noise::CacheEntry> entry = cloud_noise::readCacheEntry(
           file, key, CLOUD_NOISE_SHAPE_SIZE, detailSize, CLOUD_NOISE_CURL_SIZE)) {
-    uploadNow(mRuntime, {{&mShape, toFloats(entry->shape.rgba)},
-                         {&mDetail, toFloats(entry->detail.rgba)},
-                         {&mCurl, toFloats(entry->curl)}});
+    // The cache holds the images' own RGBA8 texels: copied as they are.
+    uploadNow(mRuntime, {{&mShape, {}, entry->shape.rgba},
+                         {&mDetail, {}, entry->detail.rgba},
+                         {&mCurl, {}, entry->curl}});
     setVolumes(std::move(entry->shape), std::move(entry->detail));
     mActivity.loadedCache = true;
     return;

@@ -10,17 +10,12 @@ namespace sky {
 
 CloudNoiseBakePass::CloudNoiseBakePass(const Context& ctx, ShaderCompiler& compiler,
                                        const std::string& name)
-    : CloudNoiseBakePass(ctx, compileForDevice(ctx, compiler, name + ".comp"), name) {}
-
-CloudNoiseBakePass::CloudNoiseBakePass(const Context& ctx, const CompiledShader& shader,
-                                       const std::string& name)
-    : mName(name),
-      mPipeline(ctx, name, shader.spirv, shader.reflection),
-      mSourceHash(shader.sourceHash) {}
+    : mName(name), mPipeline(ctx, compileForDevice(ctx, compiler, name + ".comp"), name) {}
 
 CloudNoiseBakePass::Outputs CloudNoiseBakePass::addTo(FrameGraph& graph,
                                                       const Inputs& inputs) const {
   if (inputs.params.size.x == 0) internalError(mName + ": empty texture");
+  (void)mPipeline.get();  // created now, before the graph records
   // The execute callback owns this use's inputs; setup's handle goes in once it exists.
   auto use = std::make_shared<Inputs>(inputs);
   GraphBuilder b = graph.addPass(inputs.label ? inputs.label : mName,
@@ -33,9 +28,10 @@ CloudNoiseBakePass::Outputs CloudNoiseBakePass::addTo(FrameGraph& graph,
 void CloudNoiseBakePass::execute(PassContext& ctx, const Inputs& inputs) const {
   const uint32_t n = inputs.params.size.x;
   const bool volume = ctx.image(inputs.target).desc().dim == ImageDim::Tex3D;
-  ctx.dispatch(mPipeline, {Binding::of(CLOUD_NOISE_BINDING_OUT, inputs.target)},
-               mPipeline.groupsX(n), mPipeline.groupsY(n), volume ? mPipeline.groupsZ(n) : 1,
-               &inputs.params, sizeof inputs.params);
+  const ComputePipeline& pipeline = mPipeline.get();
+  ctx.dispatch(pipeline, {Binding::of(CLOUD_NOISE_BINDING_OUT, inputs.target)}, pipeline.groupsX(n),
+               pipeline.groupsY(n), volume ? pipeline.groupsZ(n) : 1, &inputs.params,
+               sizeof inputs.params);
 }
 
 }  // namespace sky

@@ -28,22 +28,21 @@ public:
   struct Outputs {
     ImageId target;
   };
-  // Compiles shaders/<name>.comp (once); `name` also names the pass in graphs and timings.
+  // Compiles shaders/<name>.comp (once; the pipeline is created at the first bake, as most
+  // runs load the noise from its cache); `name` also names the pass in graphs and timings.
   CloudNoiseBakePass(const Context& ctx, ShaderCompiler& compiler, const std::string& name);
   const std::string& name() const { return mName; }
   // For cache keys: the shader's preprocessed source with every include (CompiledShader).
-  uint64_t sourceHash() const { return mSourceHash; }
+  uint64_t sourceHash() const { return mPipeline.sourceHash(); }
   // Adds one use of the pass to `graph`. Unlike setup() of single-use passes, every use keeps
   // its own inputs, so one object can bake the shape and the detail volume in the same graph.
   Outputs addTo(FrameGraph& graph, const Inputs& inputs) const;
 
 private:
-  CloudNoiseBakePass(const Context& ctx, const CompiledShader& shader, const std::string& name);
   void execute(PassContext& ctx, const Inputs& inputs) const;
 
   std::string mName;
-  ComputePipeline mPipeline;
-  uint64_t mSourceHash = 0;
+  LazyComputePipeline mPipeline;
 };
 
 }  // namespace sky

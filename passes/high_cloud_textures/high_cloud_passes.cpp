@@ -10,13 +10,7 @@ namespace sky {
 
 HighCloudBakePass::HighCloudBakePass(const Context& ctx, ShaderCompiler& compiler,
                                      const Sampler& sampler)
-    : HighCloudBakePass(ctx, compileForDevice(ctx, compiler, std::string(kName) + ".comp"),
-                        sampler) {}
-
-HighCloudBakePass::HighCloudBakePass(const Context& ctx, const CompiledShader& shader,
-                                     const Sampler& sampler)
-    : mPipeline(ctx, kName, shader.spirv, shader.reflection),
-      mSourceHash(shader.sourceHash),
+    : mPipeline(ctx, compileForDevice(ctx, compiler, std::string(kName) + ".comp"), kName),
       mSampler(sampler) {}
 
 HighCloudBakePass::Outputs HighCloudBakePass::setup(GraphBuilder& b, const Inputs& in) {
@@ -24,6 +18,7 @@ HighCloudBakePass::Outputs HighCloudBakePass::setup(GraphBuilder& b, const Input
   if (size.x == 0 || size.z == 0 || size.y + size.z > size.x)
     internalError("high_cloud_bake: band of rows " + std::to_string(size.y) + "+" +
                   std::to_string(size.z) + " outside a " + std::to_string(size.x) + " texture");
+  (void)mPipeline.get();  // created now, before the graph records
   mInputs = in;
   mInputs.coverMap = b.read(in.coverMap, Access::SampledCompute);
   // A band writes only its rows; the others keep what earlier bands wrote, which the graph
@@ -36,12 +31,13 @@ HighCloudBakePass::Outputs HighCloudBakePass::setup(GraphBuilder& b, const Input
 
 void HighCloudBakePass::execute(PassContext& ctx) const {
   const auto& size = mInputs.params.size;
-  ctx.dispatch(mPipeline,
+  const ComputePipeline& pipeline = mPipeline.get();
+  ctx.dispatch(pipeline,
                {Binding::of(HIGH_CLOUD_BAKE_BINDING_PARAMS, ctx.uniform(mInputs.params)),
                 Binding::of(HIGH_CLOUD_BAKE_BINDING_COVER_MAP, mInputs.coverMap, &mSampler),
                 Binding::of(HIGH_CLOUD_BAKE_BINDING_COEFFICIENTS, mOutputs.coefficients),
                 Binding::of(HIGH_CLOUD_BAKE_BINDING_RANK_SHAPE, mOutputs.rankShape)},
-               mPipeline.groupsX(size.x), mPipeline.groupsY(size.z));
+               pipeline.groupsX(size.x), pipeline.groupsY(size.z));
 }
 
 HighCloudNormalsPass::HighCloudNormalsPass(const Context& ctx, ShaderCompiler& compiler,

@@ -32,14 +32,13 @@ public:
   // Compiles the shader (once). `sampler` (linear, repeat) must outlive the pass.
   HighCloudBakePass(const Context& ctx, ShaderCompiler& compiler, const Sampler& sampler);
   // For cache keys: the shader's preprocessed source with every include (CompiledShader).
-  uint64_t sourceHash() const { return mSourceHash; }
+  uint64_t sourceHash() const { return mPipeline.sourceHash(); }
   Outputs setup(GraphBuilder& builder, const Inputs& inputs);
   void execute(PassContext& ctx) const;
 
 private:
-  HighCloudBakePass(const Context& ctx, const CompiledShader& shader, const Sampler& sampler);
-  ComputePipeline mPipeline;
-  uint64_t mSourceHash = 0;
+  // Created at the first bake: most runs load the textures from their cache.
+  LazyComputePipeline mPipeline;
   const Sampler& mSampler;
   Inputs mInputs;
   Outputs mOutputs;

@@ -64,4 +64,33 @@ void storeCachedSpirv(const fs::path& dir, uint64_t key, std::span<const uint32_
   }
 }
 
+namespace {
+constexpr uint64_t kIndexMagic = 0x31304352534b5953ull;  // "SKYSRC01" little-endian
+}
+
+std::optional<uint64_t> loadSourceIndex(const fs::path& dir, uint64_t rawKey) {
+  std::ifstream in(dir / (hex64(rawKey) + ".idx"), std::ios::binary);
+  if (!in) return std::nullopt;
+  uint64_t words[4] = {};
+  in.read(reinterpret_cast<char*>(words), sizeof words);
+  if (in.gcount() != sizeof words || in.peek() != std::char_traits<char>::eof())
+    return std::nullopt;
+  // {magic, raw key, SPIR-V key, a check of the two}: a torn or copied file is a miss.
+  if (words[0] != kIndexMagic || words[1] != rawKey || words[3] != (rawKey ^ ~words[2]))
+    return std::nullopt;
+  return words[2];
+}
+
+void storeSourceIndex(const fs::path& dir, uint64_t rawKey, uint64_t sourceHash) {
+  const uint64_t words[4] = {kIndexMagic, rawKey, sourceHash, rawKey ^ ~sourceHash};
+  try {
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    writeFileAtomic(dir / (hex64(rawKey) + ".idx"),
+                    std::string(reinterpret_cast<const char*>(words), sizeof words));
+  } catch (const std::exception& e) {
+    noteCacheWriteFailed(e.what());
+  }
+}
+
 }  // namespace sky::detail

@@ -19,4 +19,12 @@ std::optional<std::vector<uint32_t>> loadCachedSpirv(const std::filesystem::path
 void storeCachedSpirv(const std::filesystem::path& dir, uint64_t key,
                       std::span<const uint32_t> spirv);
 
+// The index from a shader's raw text (its files as they are on disk, before glslang
+// preprocesses them) to the key of its SPIR-V: a process that finds its shaders unchanged
+// loads them without starting glslang, whose first preprocess costs ~180 ms (the built-in
+// symbol tables). cacheDir()/spirv/<hex raw key>.idx. Same rules as above: a missing or
+// foreign file is a miss, a failed store is only slower.
+std::optional<uint64_t> loadSourceIndex(const std::filesystem::path& dir, uint64_t rawKey);
+void storeSourceIndex(const std::filesystem::path& dir, uint64_t rawKey, uint64_t sourceHash);
+
 }  // namespace sky::detail
