@@ -69,6 +69,32 @@ TEST_F(SkyrenderCli, RendersTheDefaultSceneIntoExrPngAndReport) {
   EXPECT_THAT(dot, HasSubstr("readback"));
 }
 
+// The report says what a frame paid besides drawing (docs/outputs.md): the first frame of a
+// process carries the Renderer's construction and its pipelines, a later one neither, and
+// the setup is the sum of its parts.
+TEST_F(SkyrenderCli, TheReportSaysWhatTheFirstFramePaidBesidesDrawing) {
+  CliRun r = run("render --out " + out() +
+                 " --width 32 --height 18 --time 2024-06-21T19:00+02:00/2024-06-21T19:01+02:00/1m");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  nlohmann::json first = nlohmann::json::parse(readTextFile(mDir / "out" / "sky_0001.json"));
+  nlohmann::json second = nlohmann::json::parse(readTextFile(mDir / "out" / "sky_0002.json"));
+  const auto& a = first["render_costs"];
+  const auto& b = second["render_costs"];
+  EXPECT_GT(a["renderer_ms"].get<double>(), 0.0);
+  EXPECT_GT(a["renderer_pipelines_ms"].get<double>(), 0.0);
+  EXPECT_LE(a["renderer_pipelines_ms"].get<double>(), a["renderer_ms"].get<double>());
+  EXPECT_GT(a["textures_ms"].get<double>(), 0.0);  // the noise, loaded or baked
+  EXPECT_NEAR(a["setup_ms"].get<double>(),
+              a["renderer_pipelines_ms"].get<double>() + a["pipelines_ms"].get<double>() +
+                  a["textures_ms"].get<double>() + a["lut_bake_gpu_ms"].get<double>(),
+              1e-6);
+  EXPECT_GE(a["render_ms"].get<double>(), a["pipelines_ms"].get<double>());
+  EXPECT_EQ(b["renderer_ms"].get<double>(), 0.0);
+  EXPECT_EQ(b["renderer_pipelines_ms"].get<double>(), 0.0);
+  // The second frame finds every pipeline made and the textures on the GPU.
+  EXPECT_LT(b["setup_ms"].get<double>(), 0.2 * a["setup_ms"].get<double>());
+}
+
 TEST_F(SkyrenderCli, NameTimeAndSetOverridesReachTheRender) {
   CliRun r = run("render --out " + out() +
                  " --name custom --width 32 --height 18 --time 2024-12-21T08:30:00+01:00 "
