@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstring>
 #include <memory>
+#include <utility>
 
 #include "engine/core/error.h"
 #include "engine/gpu/texel_convert.h"
@@ -83,24 +84,32 @@ BufferId FrameGraph::importBuffer(PersistentBuffer& buffer) {
   return {addResource(std::move(node), {nullptr, &buffer, -1}), 0};
 }
 
-ImageId FrameGraph::upload(ImageId image, std::span<const float> pixels, std::string name) {
-  if (image.id >= mDesc.resources.size() || mDesc.resources[image.id].kind != ResourceKind::Image)
+namespace {
+
+// The image an upload fills, and its texel count (layers of a 3D image included). Internal
+// error for a handle that is not an image.
+std::pair<const ImageDesc*, size_t> uploadTarget(const GraphDesc& desc, ImageId image,
+                                                 const std::string& name) {
+  if (image.id >= desc.resources.size() || desc.resources[image.id].kind != ResourceKind::Image)
     internalError("frame graph: upload '" + name + "' to an invalid image handle");
-  const ImageDesc& d = mDesc.resources[image.id].image;
+  const ImageDesc& d = desc.resources[image.id].image;
   const uint32_t depth = d.dim == ImageDim::Tex3D ? d.depth : 1;
-  const size_t texels = size_t(d.width) * d.height * depth;
-  if (pixels.size() != texels * formatChannelCount(d.format))
-    internalError("upload to image '" + d.name + "': " + std::to_string(pixels.size()) +
-                  " values for " + std::to_string(texels) + " texels of " + formatName(d.format));
-  return uploadTexels(image, floatsToTexels(d.format, pixels), std::move(name));
+  return {&d, size_t(d.width) * d.height * depth};
+}
+
+}  // namespace
+
+ImageId FrameGraph::upload(ImageId image, std::span<const float> pixels, std::string name) {
+  const auto [d, texels] = uploadTarget(mDesc, image, name);
+  if (pixels.size() != texels * formatChannelCount(d->format))
+    internalError("upload to image '" + d->name + "': " + std::to_string(pixels.size()) +
+                  " values for " + std::to_string(texels) + " texels of " + formatName(d->format));
+  return uploadTexels(image, floatsToTexels(d->format, pixels), std::move(name));
 }
 
 ImageId FrameGraph::uploadTexels(ImageId image, std::span<const uint8_t> bytes, std::string name) {
-  if (image.id >= mDesc.resources.size() || mDesc.resources[image.id].kind != ResourceKind::Image)
-    internalError("frame graph: upload '" + name + "' to an invalid image handle");
-  const ImageDesc& d = mDesc.resources[image.id].image;
-  const uint32_t depth = d.dim == ImageDim::Tex3D ? d.depth : 1;
-  const size_t texels = size_t(d.width) * d.height * depth;
+  const auto [target, texels] = uploadTarget(mDesc, image, name);
+  const ImageDesc& d = *target;
   if (bytes.size() != texels * formatTexelSize(d.format))
     internalError("upload to image '" + d.name + "': " + std::to_string(bytes.size()) +
                   " bytes for " + std::to_string(texels) + " texels of " + formatName(d.format));
@@ -113,7 +122,7 @@ ImageId FrameGraph::uploadTexels(ImageId image, std::span<const uint8_t> bytes, 
     // Host-coherent memory: the writes are visible to the device at submit without a flush.
     std::memcpy(staging->mapped(), bytes.data(), bytes.size());
   }
-  const VkExtent3D extent{d.width, d.height, depth};
+  const VkExtent3D extent{d.width, d.height, d.dim == ImageDim::Tex3D ? d.depth : 1u};
   // The graph's barriers put the image in TRANSFER_DST_OPTIMAL before the copy and make it
   // visible to whatever reads it next, in this frame or a later one (its ResourceState).
   GraphBuilder b = addPass(std::move(name), [staging, extent, image](PassContext& ctx) {
