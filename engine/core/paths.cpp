@@ -1,5 +1,6 @@
 #include "engine/core/paths.h"
 
+#include <dlfcn.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -7,6 +8,7 @@
 #include <cstring>
 #include <fstream>
 #include <mutex>
+#include <vector>
 
 namespace sky {
 namespace fs = std::filesystem;
@@ -16,10 +18,40 @@ const char* env(const char* name) {
   const char* v = std::getenv(name);
   return (v && *v) ? v : nullptr;
 }
+// The data an installed copy carries: PREFIX/share/skylayers beside PREFIX/lib or
+// PREFIX/bin (cmake --install, lib/CMakeLists.txt), found from where this code was loaded from.
+// dladdr names the shared library (libskylayers.so, the installed package's); for a program linked
+// statically against the modules (an installed skyrender) it may name no file, so the executable is
+// tried too.
+fs::path installedDataRoot() {
+  std::vector<fs::path> binaries;
+  Dl_info info{};
+  if (dladdr(reinterpret_cast<void*>(&installedDataRoot), &info) && info.dli_fname &&
+      *info.dli_fname)
+    binaries.emplace_back(info.dli_fname);
+  binaries.emplace_back("/proc/self/exe");
+  for (const fs::path& binary : binaries) {
+    std::error_code ec;
+    const fs::path real = fs::canonical(binary, ec);
+    if (ec) continue;
+    // PREFIX/bin/x, PREFIX/lib/x or PREFIX/lib/<multiarch>/x (GNUInstallDirs on Debian).
+    fs::path prefix = real.parent_path();
+    for (int up = 0; up < 2 && prefix.has_relative_path(); ++up) {
+      prefix = prefix.parent_path();
+      const fs::path share = prefix / "share" / "skylayers";
+      if (fs::is_directory(share / "shaders", ec) && fs::is_directory(share / "configs", ec))
+        return share;
+    }
+  }
+  return {};
+}
 }  // namespace
 
 fs::path dataRoot() {
   if (const char* v = env("SKY_DATA_DIR")) return v;
+  // Looked up once: the answer cannot change while the process runs.
+  static const fs::path installed = installedDataRoot();
+  if (!installed.empty()) return installed;
   return SKY_DATA_DIR_DEFAULT;
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 // Where run-time data lives. shaders/ and configs/ are read from the data root:
-// $SKY_DATA_DIR if set, else the source tree the binary was built from.
+// $SKY_DATA_DIR if set; else, for an installed copy, PREFIX/share/skylayers next to the
+// library or program's PREFIX/lib or PREFIX/bin; else the source tree it was built from.
 #include <filesystem>
 #include <string>
 

@@ -45,17 +45,12 @@ void appendBytes(void* context, void* data, int size) {
 
 }  // namespace
 
-void writePng8(const fs::path& path, int width, int height, std::span<const float> displayRgba,
-               PngQuantize quantize) {
-  if (width <= 0 || height <= 0)
-    internalError("writePng8: " + path.string() + ": image size " + std::to_string(width) + "x" +
-                  std::to_string(height) + " is empty");
-  const size_t values = size_t(width) * size_t(height) * 4;
-  if (displayRgba.size() != values)
-    internalError("writePng8: " + path.string() + ": " + std::to_string(displayRgba.size()) +
-                  " values for a " + std::to_string(width) + "x" + std::to_string(height) +
-                  " RGBA image (expected " + std::to_string(values) + ")");
-
+std::vector<uint8_t> quantize8(int width, int height, std::span<const float> displayRgba,
+                               PngQuantize quantize) {
+  const size_t values = size_t(std::max(width, 0)) * size_t(std::max(height, 0)) * 4;
+  if (width <= 0 || height <= 0 || displayRgba.size() != values)
+    internalError("quantize8: " + std::to_string(displayRgba.size()) + " values for a " +
+                  std::to_string(width) + "x" + std::to_string(height) + " RGBA image");
   std::vector<uint8_t> bytes(values);
   for (size_t i = 0; i < values; ++i) {
     float offset = 0.0f;
@@ -69,7 +64,20 @@ void writePng8(const fs::path& path, int width, int height, std::span<const floa
     }
     bytes[i] = toByte(displayRgba[i], offset);
   }
-  writePngCodes(path, width, height, bytes);
+  return bytes;
+}
+
+void writePng8(const fs::path& path, int width, int height, std::span<const float> displayRgba,
+               PngQuantize quantize) {
+  if (width <= 0 || height <= 0)
+    internalError("writePng8: " + path.string() + ": image size " + std::to_string(width) + "x" +
+                  std::to_string(height) + " is empty");
+  const size_t values = size_t(width) * size_t(height) * 4;
+  if (displayRgba.size() != values)
+    internalError("writePng8: " + path.string() + ": " + std::to_string(displayRgba.size()) +
+                  " values for a " + std::to_string(width) + "x" + std::to_string(height) +
+                  " RGBA image (expected " + std::to_string(values) + ")");
+  writePngCodes(path, width, height, quantize8(width, height, displayRgba, quantize));
 }
 
 void writePngCodes(const fs::path& path, int width, int height, std::span<const uint8_t> rgba) {

@@ -21,8 +21,12 @@ struct Image8 {
 // image always gives the same file. Alpha is never dithered.
 enum class PngQuantize { Nearest, Dither };
 
-// Writes interleaved RGBA display values (already through the view transform): each value
-// is clamped to [0, 1] and quantised to 8 bits as `quantize` says (NaN -> 0). Atomic; an
+// Interleaved RGBA display values (already through the view transform) as 8-bit codes: each
+// value clamped to [0, 1] and quantised as `quantize` says (NaN -> 0).
+std::vector<uint8_t> quantize8(int width, int height, std::span<const float> displayRgba,
+                               PngQuantize quantize);
+
+// Writes interleaved RGBA display values as quantize8 makes them codes. Atomic; an
 // unwritable path is a BadInput error naming it.
 void writePng8(const std::filesystem::path& path, int width, int height,
                std::span<const float> displayRgba, PngQuantize quantize);

@@ -54,20 +54,10 @@ std::string frameStem(const std::string& name, int64_t index, int64_t count, boo
   return name + "_" + std::string(width - std::min(width, number.size()), '0') + number;
 }
 
-RenderFiles writeRenderFiles(const std::filesystem::path& dir, const std::string& stem,
-                             const Scene& scene, const RenderedFrame& frame,
-                             const FrameExposure& exposure, const OcioOutput& ocio,
-                             const std::string& deviceName,
-                             const std::optional<std::filesystem::path>& graphPath) {
-  RenderFiles files;
-  files.exr = dir / (stem + ".exr");
-  files.png = dir / (stem + ".png");
-  files.report = dir / (stem + ".json");
-  files.graph = graphPath;
-
-  // Everything that can fail runs before the first rename.
-  std::vector<float> display = displayPixels(frame, scene, exposure, ocio);
-
+nlohmann::ordered_json renderReport(const Scene& scene, const RenderedFrame& frame,
+                                    const FrameExposure& exposure, const OcioOutput& ocio,
+                                    const std::string& deviceName,
+                                    const std::vector<std::string>& debugFiles) {
   nlohmann::ordered_json report;
   report["skylayers_version"] = skylayersVersion();
   report["device"] = deviceName;
@@ -138,17 +128,37 @@ RenderFiles writeRenderFiles(const std::filesystem::path& dir, const std::string
        {{"lat", {region.lat[0], region.lat[1]}}, {"lon", {region.lon[0], region.lon[1]}}}},
       {"given", scene.weather.region.has_value()},
       {"texels", {frame.weatherTexels.x, frame.weatherTexels.y}}};
-  for (const DebugImage& d : frame.debug)
-    files.debug.push_back(dir / (stem + "." + d.info.name + ".exr"));
-  nlohmann::ordered_json debug = nlohmann::ordered_json::array();
-  for (const std::filesystem::path& p : files.debug) debug.push_back(p.filename().string());
-  report["debug_outputs"] = debug;
+  report["debug_outputs"] = debugFiles;
   const CacheStatus& cache = cacheStatus();
   report["cache"] = {{"folder", cache.folder.string()}, {"writable", cache.writable}};
   if (!cache.writable) report["cache"]["not_written_because"] = cache.reason;
   report["process"] = processMemoryJson();
   // Paths resolved, so the report's settings render the same from any folder.
   report["settings"] = sceneToJson(scene.withAbsolutePaths());
+
+  return report;
+}
+
+RenderFiles writeRenderFiles(const std::filesystem::path& dir, const std::string& stem,
+                             const Scene& scene, const RenderedFrame& frame,
+                             const FrameExposure& exposure, const OcioOutput& ocio,
+                             const std::string& deviceName,
+                             const std::optional<std::filesystem::path>& graphPath) {
+  RenderFiles files;
+  files.exr = dir / (stem + ".exr");
+  files.png = dir / (stem + ".png");
+  files.report = dir / (stem + ".json");
+  files.graph = graphPath;
+
+  // Everything that can fail runs before the first rename.
+  std::vector<float> display = displayPixels(frame, scene, exposure, ocio);
+
+  for (const DebugImage& d : frame.debug)
+    files.debug.push_back(dir / (stem + "." + d.info.name + ".exr"));
+  std::vector<std::string> debugFiles;
+  for (const std::filesystem::path& p : files.debug) debugFiles.push_back(p.filename().string());
+  const nlohmann::ordered_json report =
+      renderReport(scene, frame, exposure, ocio, deviceName, debugFiles);
 
   LayeredImage exr = frame.image;
   exr.attributes["skylayers:device"] = deviceName;

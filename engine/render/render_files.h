@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "engine/render/exposure.h"
 #include "engine/render/renderer.h"
 
@@ -35,6 +37,14 @@ RenderFiles writeRenderFiles(const std::filesystem::path& dir, const std::string
                              const FrameExposure& exposure, const OcioOutput& ocio,
                              const std::string& deviceName,
                              const std::optional<std::filesystem::path>& graphPath = std::nullopt);
+
+// The render report, STEM.json's content (docs/outputs.md): the settings, the lighting, each
+// pass's GPU ms, the first frame's costs, the exposure, the caches. `debugFiles` names the
+// debug images' files written beside it.
+nlohmann::ordered_json renderReport(const Scene& scene, const RenderedFrame& frame,
+                                    const FrameExposure& exposure, const OcioOutput& ocio,
+                                    const std::string& deviceName,
+                                    const std::vector<std::string>& debugFiles = {});
 
 // The display-referred RGBA pixels of the main layer: the night look (output.night_look) on
 // the physical values, then the exposure and the OCIO view.

@@ -1,0 +1,188 @@
+#pragma once
+// skylayers: the public C++ API (docs/library.md).
+//
+//   find_package(skylayers CONFIG REQUIRED)
+//   target_link_libraries(app PRIVATE skylayers::skylayers)
+//   #include <skylayers/skylayers.h>
+//
+// A Sky holds one scene and everything made for it on the GPU: the pipelines, the baked
+// textures, the atmosphere LUTs, the noise and the weather map. Each stays from frame to
+// frame and is made again only when what it depends on changes, so make a Sky once and
+// render many frames through it. This header uses the standard library only; the engine's
+// frame graph and Vulkan wrappers stay inside the library.
+//
+// Errors are skylayers::Error: one line saying what and where (a scene file's line and key
+// path, the key of a set() call), with kind() BadInput for anything the caller can fix.
+// A failed call leaves the Sky as it was.
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+// What the shared library exports (it is built with hidden visibility: the engine's own
+// symbols stay inside). Error's type must be the library's too, so a host catches it.
+#define SKYLAYERS_API __attribute__((visibility("default")))
+
+namespace skylayers {
+
+// The library's version ("0.1.0"), the project's CMake version.
+SKYLAYERS_API const char* version();
+// The folder the shaders and configs are read from: $SKY_DATA_DIR, else the installed
+// PREFIX/share/skylayers, else the source tree the library was built from.
+SKYLAYERS_API std::string dataDirectory();
+
+class SKYLAYERS_API Error : public std::runtime_error {
+public:
+  enum class Kind {
+    BadInput,  // a scene, key, value or file the caller can fix
+    Internal,  // the device, the driver, or a bug
+  };
+  Error(Kind kind, const std::string& message) : std::runtime_error(message), mKind(kind) {}
+  Kind kind() const { return mKind; }
+
+private:
+  Kind mKind;
+};
+
+// Where a Sky runs.
+struct DeviceOptions {
+  // "" picks a GPU (discrete, then integrated, then virtual), and the CPU device lavapipe
+  // last; a decimal number picks by index, anything else by a case-insensitive part of the
+  // name (skyrender --gpu).
+  std::string gpu;
+  // Khronos validation layers. Off unless $SKY_VALIDATION=1 asks for them.
+  bool validation = false;
+  bool validationFromEnvironment = true;  // false: `validation` alone decides
+  // The OpenColorIO config of display images: "" is $OCIO, else the installed one.
+  std::string ocioConfig;
+};
+
+// A camera's place and direction on the Earth (WGS84 latitude and longitude, metres above
+// sea level; heading clockwise from north, pitch above the horizon, all in degrees).
+struct GeoPose {
+  double latitudeDeg = 0.0;
+  double longitudeDeg = 0.0;
+  double altitudeM = 0.0;
+  double headingDeg = 0.0;
+  double pitchDeg = 0.0;
+};
+
+// One image of a frame, 32-bit floats, row 0 the top, channels interleaved.
+struct SKYLAYERS_API Image {
+  std::string name;  // "beauty", "sky", "high_clouds", "clouds"
+  int width = 0;
+  int height = 0;
+  std::vector<std::string> channels;  // "R", "G", "B", "A", then any others ("depth")
+  std::vector<float> pixels;          // width * height * channels.size()
+
+  // The value of `channel` at column x, row y; std::out_of_range outside the image or for a
+  // channel it lacks.
+  float at(int x, int y, const std::string& channel) const;
+};
+
+// What render() reads back besides the beauty.
+struct RenderRequest {
+  // The layers the EXR of `skyrender render` holds: "sky" (R,G,B), "high_clouds" (R,G,B,A),
+  // "clouds" (R,G,B,A,depth: the transmittance-weighted distance in metres).
+  bool layers = false;
+  // The display image: scene-linear through the scene's exposure and the OCIO
+  // output.display / output.view, as 8-bit RGBA codes: the codes of `skyrender render`'s
+  // PNG, output.dither included.
+  bool display = false;
+};
+
+struct SKYLAYERS_API Frame {
+  // Scene-linear RGB (1 = 10^4 cd/m^2, docs/outputs.md) and the clouds' coverage in A.
+  Image beauty;
+  std::vector<Image> layers;     // as RenderRequest::layers asked
+  std::vector<uint8_t> display;  // as RenderRequest::display asked: width * height * 4
+  double exposureEv = 0.0;       // the scene's exposure for the frame, in stops
+  double gpuMs = 0.0;            // the frame's GPU time
+  std::string time;              // the instant drawn, ISO 8601
+  // The render report as JSON text, as `skyrender render` writes it beside the EXR
+  // (docs/outputs.md): the settings, the sun and moon, each pass's GPU ms, the costs.
+  std::string report;
+
+  // The layer named `name`, or "beauty"; std::out_of_range when the frame lacks it.
+  const Image& layer(const std::string& name) const;
+};
+
+// A light for the host's own scene, at the camera's place and time.
+struct Light {
+  std::array<double, 3> direction{};  // unit vector toward the body: east, north, up
+  double azimuthDeg = 0.0;            // from north through east
+  double elevationDeg = 0.0;          // apparent (refracted)
+  // Illuminance at the ground on a surface facing the body, after the atmosphere and the
+  // horizon, in lux, per linear Rec.709 channel.
+  std::array<double, 3> illuminanceLux{};
+};
+
+struct Lighting {
+  Light sun;
+  Light moon;
+  // The day<->night interpolation the renderer uses: 1 by day, 0 by night.
+  double dayFactor = 1.0;
+  std::string key;  // the key light: "sun" or "moon"
+};
+
+class SKYLAYERS_API Sky {
+public:
+  // A scene file (YAML or JSON, by its extension); `overrides` are "key.path=value" as
+  // skyrender's --set takes them.
+  static Sky fromFile(const std::string& path, const std::vector<std::string>& overrides = {},
+                      const DeviceOptions& device = {});
+  // Scene text; format "yaml" or "json"; `sourceName` names it in errors. Relative file
+  // paths in it are taken from the working folder.
+  static Sky fromText(const std::string& text, const std::string& format = "yaml",
+                      const std::string& sourceName = "<text>",
+                      const std::vector<std::string>& overrides = {},
+                      const DeviceOptions& device = {});
+  // The built-in default scene (configs/default.yaml).
+  static Sky fromDefault(const std::vector<std::string>& overrides = {},
+                         const DeviceOptions& device = {});
+
+  Sky(Sky&&) noexcept;
+  Sky& operator=(Sky&&) noexcept;
+  ~Sky();
+
+  // Any scene key by its path, with the value as a scene file would write it:
+  // set("clouds.cover", "0.6"), set("weather.file", "gfs.grib2"), set("time",
+  // "2024-06-21T20:30:00+02:00"). The scene is checked as a file is; a bad key or value
+  // throws BadInput naming it, and the Sky keeps its scene.
+  void set(const std::string& keyPath, const std::string& value);
+  // Several at once, as "key.path=value", checked together.
+  void set(const std::vector<std::string>& assignments);
+
+  void setTime(const std::string& iso8601);  // "2024-06-21T12:00:00+02:00"
+  std::string time() const;
+  void setCamera(const GeoPose& pose);
+  GeoPose camera() const;
+  // The image size in pixels and, for a perspective camera, the vertical field of view.
+  void setSize(int width, int height);
+  void setVerticalFov(double degrees);
+
+  // The effective scene (defaults filled in) as YAML; a file of it renders the same.
+  std::string sceneYaml() const;
+
+  // Renders the scene at its time. With clouds.temporal.mode on, frames rendered one after
+  // another reuse each other's clouds, as the window does.
+  Frame render(const RenderRequest& request = {});
+
+  // The sun and moon at the camera's place and time (CPU only, no frame needed).
+  Lighting lighting() const;
+
+  // The name of the device the Sky renders on.
+  std::string deviceName() const;
+  // Vulkan validation messages seen so far (DeviceOptions::validation); each was also
+  // printed to stderr. Tests fail when this moves.
+  uint64_t validationMessages() const;
+
+private:
+  struct Impl;
+  explicit Sky(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> mImpl;
+};
+
+}  // namespace skylayers

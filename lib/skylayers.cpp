@@ -1,0 +1,298 @@
+// The public API (lib/include/skylayers/skylayers.h) over the engine: a Sky is a scene, a
+// Vulkan context, the shader compiler, a Renderer (which keeps the bakes, LUTs, noise and
+// weather map between frames) and the OCIO config. Every change to the scene goes through
+// the scene file's own reader, so a key set here is checked exactly as a file's or
+// skyrender's --set is, and errors name the key the same way.
+#include "skylayers/skylayers.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <optional>
+#include <utility>
+
+#include "apps/common/default_scene.h"
+#include "engine/color/ocio_output.h"
+#include "engine/core/error.h"
+#include "engine/core/paths.h"
+#include "engine/gpu/context.h"
+#include "engine/io/png.h"
+#include "engine/lighting/lighting_state.h"
+#include "engine/render/exposure.h"
+#include "engine/render/render_files.h"
+#include "engine/render/renderer.h"
+#include "engine/scene/scene_io.h"
+#include "engine/shader/shader_compiler.h"
+
+namespace skylayers {
+
+namespace {
+
+// The engine's errors as the API's: the same one line, the same kind.
+template <typename F>
+auto translated(F&& f) -> decltype(f()) {
+  try {
+    return f();
+  } catch (const sky::Error& e) {
+    throw Error(
+        e.kind() == sky::ErrorKind::BadInput ? Error::Kind::BadInput : Error::Kind::Internal,
+        e.what());
+  }
+}
+
+sky::ConfigFormat formatNamed(const std::string& format) {
+  if (format == "yaml" || format == "yml") return sky::ConfigFormat::Yaml;
+  if (format == "json") return sky::ConfigFormat::Json;
+  sky::inputError("scene format '" + format + "': expected yaml or json");
+}
+
+// A Sky draws one instant at a time: a time-lapse scene keeps its first frame (set("time")
+// moves it).
+sky::Scene instant(sky::Scene scene) {
+  scene.time.end.reset();
+  scene.time.stepSeconds = 0.0;
+  return scene;
+}
+
+// "%.17g": a double written so that reading it back gives the same bits.
+std::string exact(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.17g", v);
+  return text;
+}
+
+Image imageOf(const std::string& name, const sky::LayeredImage& frame,
+              const sky::ImageLayer& layer) {
+  Image image;
+  image.name = name;
+  image.width = frame.width;
+  image.height = frame.height;
+  image.channels = layer.channels;
+  image.pixels = layer.pixels;
+  return image;
+}
+
+std::array<double, 3> array3(double x, double y, double z) {
+  return {x, y, z};
+}
+
+// Illuminance in the renderer's units (1 = pi * 10^4 lux, shaders/common/lighting_shared.h)
+// to lux.
+constexpr double kLuxPerUnit = 3.14159265358979323846 * 1.0e4;
+
+Light lightOf(const sky::BodyLight& body, const sky::shared::DirectionalLight& gpu) {
+  Light light;
+  light.direction = array3(body.direction.x, body.direction.y, body.direction.z);
+  light.azimuthDeg = body.azimuthDeg;
+  light.elevationDeg = body.elevationDeg;
+  light.illuminanceLux = array3(gpu.illuminance.x * kLuxPerUnit, gpu.illuminance.y * kLuxPerUnit,
+                                gpu.illuminance.z * kLuxPerUnit);
+  return light;
+}
+
+}  // namespace
+
+const char* version() {
+  return sky::skylayersVersion();
+}
+
+std::string dataDirectory() {
+  return sky::dataRoot().string();
+}
+
+float Image::at(int x, int y, const std::string& channel) const {
+  const auto c = std::find(channels.begin(), channels.end(), channel);
+  if (c == channels.end())
+    throw std::out_of_range("image '" + name + "' has no channel '" + channel + "'");
+  if (x < 0 || y < 0 || x >= width || y >= height)
+    throw std::out_of_range("image '" + name + "': pixel (" + std::to_string(x) + ", " +
+                            std::to_string(y) + ") outside " + std::to_string(width) + "x" +
+                            std::to_string(height));
+  const size_t n = channels.size();
+  return pixels[(static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x)) * n +
+                static_cast<size_t>(c - channels.begin())];
+}
+
+const Image& Frame::layer(const std::string& name) const {
+  if (name == "beauty" || name.empty()) return beauty;
+  for (const Image& image : layers)
+    if (image.name == name) return image;
+  throw std::out_of_range("the frame has no layer '" + name +
+                          "' (RenderRequest::layers reads back sky, high_clouds and clouds)");
+}
+
+struct Sky::Impl {
+  sky::Scene scene;
+  sky::Context context;
+  sky::ShaderCompiler compiler;
+  sky::OcioOutput ocio;
+  sky::Renderer renderer;
+  sky::ExposureMeter exposure;  // a histogram exposure adapts from frame to frame
+
+  Impl(sky::Scene s, const sky::ContextOptions& options, sky::OcioOutput o)
+      : scene(instant(std::move(s))),
+        context(options),
+        ocio(std::move(o)),
+        renderer(context, compiler) {}
+
+  // The scene with `assignments` applied through the scene reader; the current scene is
+  // replaced only when the result is valid (and its display and view exist in the config).
+  void apply(const std::vector<std::string>& assignments) {
+    sky::Scene next;
+    try {
+      next = sky::loadSceneText(sky::writeScene(scene.withAbsolutePaths(), sky::ConfigFormat::Yaml),
+                                sky::ConfigFormat::Yaml, "set", assignments);
+    } catch (const sky::Error& e) {
+      // The reader names an override as skyrender's option ("--set KEY=VALUE: ..."); here it
+      // came from set().
+      std::string message = e.what();
+      if (message.rfind("--set ", 0) == 0) message = "set " + message.substr(6);
+      throw sky::Error(e.kind(), message);
+    }
+    ocio.checkDisplayView(next.output.display, next.output.view);
+    next.baseDir = scene.baseDir;
+    scene = instant(std::move(next));
+  }
+};
+
+namespace {
+
+sky::ContextOptions contextOptions(const DeviceOptions& device) {
+  sky::ContextOptions options = device.validationFromEnvironment
+                                    ? sky::ContextOptions::fromEnvironment()
+                                    : sky::ContextOptions{};
+  if (device.validation) options.validation = true;
+  options.gpu = device.gpu;
+  return options;
+}
+
+sky::OcioOutput ocioFor(const DeviceOptions& device, const sky::Scene& scene) {
+  std::optional<std::filesystem::path> path;
+  if (!device.ocioConfig.empty()) path = device.ocioConfig;
+  sky::OcioOutput ocio = sky::OcioOutput::load(path);
+  ocio.checkDisplayView(scene.output.display, scene.output.view);
+  return ocio;
+}
+
+}  // namespace
+
+Sky::Sky(std::unique_ptr<Impl> impl) : mImpl(std::move(impl)) {}
+Sky::Sky(Sky&&) noexcept = default;
+Sky& Sky::operator=(Sky&&) noexcept = default;
+Sky::~Sky() = default;
+
+Sky Sky::fromFile(const std::string& path, const std::vector<std::string>& overrides,
+                  const DeviceOptions& device) {
+  return translated([&] {
+    sky::Scene scene = sky::loadSceneFile(path, overrides);
+    sky::OcioOutput ocio = ocioFor(device, scene);
+    return Sky(std::make_unique<Impl>(std::move(scene), contextOptions(device), std::move(ocio)));
+  });
+}
+
+Sky Sky::fromText(const std::string& text, const std::string& format, const std::string& sourceName,
+                  const std::vector<std::string>& overrides, const DeviceOptions& device) {
+  return translated([&] {
+    sky::Scene scene = sky::loadSceneText(text, formatNamed(format), sourceName, overrides);
+    sky::OcioOutput ocio = ocioFor(device, scene);
+    return Sky(std::make_unique<Impl>(std::move(scene), contextOptions(device), std::move(ocio)));
+  });
+}
+
+Sky Sky::fromDefault(const std::vector<std::string>& overrides, const DeviceOptions& device) {
+  return fromText(skyDefaultSceneText(), "yaml", "<default scene>", overrides, device);
+}
+
+void Sky::set(const std::string& keyPath, const std::string& value) {
+  set(std::vector<std::string>{keyPath + "=" + value});
+}
+
+void Sky::set(const std::vector<std::string>& assignments) {
+  translated([&] { mImpl->apply(assignments); });
+}
+
+void Sky::setTime(const std::string& iso8601) {
+  set("time", iso8601);
+}
+
+std::string Sky::time() const {
+  return mImpl->scene.time.start.format();
+}
+
+void Sky::setCamera(const GeoPose& pose) {
+  set({"camera.latitude=" + exact(pose.latitudeDeg), "camera.longitude=" + exact(pose.longitudeDeg),
+       "camera.altitude_m=" + exact(pose.altitudeM), "camera.heading=" + exact(pose.headingDeg),
+       "camera.pitch=" + exact(pose.pitchDeg)});
+}
+
+GeoPose Sky::camera() const {
+  const sky::CameraSettings& c = mImpl->scene.camera;
+  return {c.latitude, c.longitude, c.altitudeM, c.heading, c.pitch};
+}
+
+void Sky::setSize(int width, int height) {
+  set({"output.width=" + std::to_string(width), "output.height=" + std::to_string(height)});
+}
+
+void Sky::setVerticalFov(double degrees) {
+  set("camera.vertical_fov", exact(degrees));
+}
+
+std::string Sky::sceneYaml() const {
+  return translated(
+      [&] { return sky::writeScene(mImpl->scene.withAbsolutePaths(), sky::ConfigFormat::Yaml); });
+}
+
+Frame Sky::render(const RenderRequest& request) {
+  return translated([&] {
+    Impl& m = *mImpl;
+    sky::RenderOptions options;
+    options.readBack = request.layers ? sky::ReadBack::Layers : sky::ReadBack::Beauty;
+    const sky::IsoTime& time = m.scene.time.start;
+    sky::RenderedFrame rendered = m.renderer.render(m.scene, time, options);
+
+    Frame frame;
+    frame.time = time.format();
+    frame.gpuMs = rendered.frame.gpuMs;
+    for (const sky::ImageLayer& layer : rendered.image.layers) {
+      if (layer.name.empty())
+        frame.beauty = imageOf("beauty", rendered.image, layer);
+      else if (request.layers)
+        frame.layers.push_back(imageOf(layer.name, rendered.image, layer));
+    }
+    // The PNG's path (engine/render/render_files.h): the scene's exposure, then OCIO, then
+    // the PNG's quantisation.
+    const sky::FrameExposure exposure = m.exposure.expose(m.scene, rendered, time);
+    frame.exposureEv = exposure.ev;
+    if (request.display) {
+      const std::vector<float> px = sky::displayPixels(rendered, m.scene, exposure, m.ocio);
+      frame.display = sky::quantize8(
+          rendered.image.width, rendered.image.height, px,
+          m.scene.output.dither ? sky::PngQuantize::Dither : sky::PngQuantize::Nearest);
+    }
+    frame.report =
+        sky::renderReport(m.scene, rendered, exposure, m.ocio, m.context.deviceName()).dump(2);
+    return frame;
+  });
+}
+
+Lighting Sky::lighting() const {
+  return translated([&] {
+    const sky::LightingState state = sky::computeLighting(mImpl->scene, mImpl->scene.time.start);
+    Lighting lighting;
+    lighting.sun = lightOf(state.sun, state.gpu.sun);
+    lighting.moon = lightOf(state.moon, state.gpu.moon);
+    lighting.dayFactor = state.dayFactor;
+    lighting.key = state.key;
+    return lighting;
+  });
+}
+
+std::string Sky::deviceName() const {
+  return mImpl->context.deviceName();
+}
+
+uint64_t Sky::validationMessages() const {
+  return mImpl->context.validationMessageCount();
+}
+
+}  // namespace skylayers

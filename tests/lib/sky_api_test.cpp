@@ -1,0 +1,200 @@
+// The public API: a Sky renders what skyrender renders, the same bits every time, keeps its
+// scene when a key is wrong, and gives the host the lights of its scene.
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <skylayers/skylayers.h>
+
+#include <nlohmann/json.hpp>
+
+#include "engine/core/files.h"
+#include "engine/io/exr.h"
+#include "engine/io/png.h"
+
+namespace {
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+
+// Small frames: the API's own cost is what is tested, not the clouds'.
+std::string readText(const fs::path& path) {
+  return sky::readTextFile(path);
+}
+
+const std::vector<std::string> kSmall = {"output.width=32", "output.height=18"};
+
+skylayers::Sky defaultSky(std::vector<std::string> extra = {}) {
+  std::vector<std::string> overrides = kSmall;
+  overrides.insert(overrides.end(), extra.begin(), extra.end());
+  return skylayers::Sky::fromDefault(overrides);
+}
+
+TEST(SkylayersApi, RendersTheBeautyLayersAndDisplayOfTheDefaultScene) {
+  // Looking north at noon, away from the sun.
+  skylayers::Sky sky = defaultSky({"camera.heading=0", "camera.pitch=30"});
+  const skylayers::Frame frame = sky.render({.layers = true, .display = true});
+  ASSERT_EQ(frame.beauty.width, 32);
+  ASSERT_EQ(frame.beauty.height, 18);
+  EXPECT_EQ(frame.beauty.channels, (std::vector<std::string>{"R", "G", "B", "A"}));
+  ASSERT_EQ(frame.beauty.pixels.size(), 32u * 18u * 4u);
+  for (float v : frame.beauty.pixels) ASSERT_TRUE(std::isfinite(v));
+  // A blue noon sky away from the sun (the sky layer: the sky without the clouds).
+  EXPECT_GT(frame.layer("sky").at(16, 0, "B"), 1.3 * frame.layer("sky").at(16, 0, "R"));
+  for (const char* name : {"sky", "high_clouds", "clouds"})
+    EXPECT_EQ(frame.layer(name).pixels.size(), 32u * 18u * frame.layer(name).channels.size())
+        << name;
+  EXPECT_EQ(frame.layer("clouds").channels.back(), "depth");
+  EXPECT_THROW(frame.layer("nonsense"), std::out_of_range);
+  EXPECT_THROW(frame.beauty.at(32, 0, "R"), std::out_of_range);
+  ASSERT_EQ(frame.display.size(), 32u * 18u * 4u);
+  EXPECT_EQ(frame.display[3], 255);
+  EXPECT_GT(frame.gpuMs, 0.0);
+  EXPECT_EQ(sky.validationMessages(), 0u);
+}
+
+TEST(SkylayersApi, AFrameIsTheSameBitsEveryTimeAndInEverySky) {
+  skylayers::Sky a = defaultSky();
+  skylayers::Sky b = defaultSky();
+  const skylayers::Frame first = a.render({.layers = true});
+  const skylayers::Frame again = a.render({.layers = true});
+  const skylayers::Frame other = b.render({.layers = true});
+  EXPECT_EQ(first.beauty.pixels, again.beauty.pixels);
+  EXPECT_EQ(first.beauty.pixels, other.beauty.pixels);
+  ASSERT_EQ(first.layers.size(), other.layers.size());
+  for (size_t i = 0; i < first.layers.size(); ++i)
+    EXPECT_EQ(first.layers[i].pixels, other.layers[i].pixels) << first.layers[i].name;
+}
+
+TEST(SkylayersApi, TheBeautyDisplayAndReportAreSkyrendersForTheSameScene) {
+  skylayers::Sky sky = defaultSky({"time=2024-06-21T18:30:00+02:00", "camera.heading=270"});
+  const skylayers::Frame frame = sky.render({.display = true});
+  const fs::path dir = fs::temp_directory_path() / ("skylayers-api-" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const fs::path scene = dir / "scene.yaml";
+  {
+    std::FILE* f = std::fopen(scene.c_str(), "w");
+    ASSERT_NE(f, nullptr);
+    const std::string text = sky.sceneYaml();
+    std::fwrite(text.data(), 1, text.size(), f);
+    std::fclose(f);
+  }
+  const std::string cmd = std::string(std::getenv("SKY_SKYRENDER")) + " render " + scene.string() +
+                          " --out " + dir.string() + " >/dev/null";
+  const int status = std::system(cmd.c_str());
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << cmd;
+  const sky::LayeredImage exr = sky::readExr(dir / "sky.exr");
+  const sky::Image8 png = sky::readPng(dir / "sky.png");
+  const nlohmann::json report = nlohmann::json::parse(readText(dir / "sky.json"));
+  fs::remove_all(dir);
+  // The display codes are the PNG's, dither and all.
+  ASSERT_EQ(png.channels, 4);
+  EXPECT_EQ(png.pixels, frame.display);
+  // The report says what skyrender's says, but for the wall times and memory.
+  const nlohmann::json ours = nlohmann::json::parse(frame.report);
+  for (const char* key : {"time", "sun", "moon", "light", "exposure", "settings"})
+    EXPECT_EQ(ours.at(key), report.at(key)) << key;
+  EXPECT_EQ(ours.at("passes").size(), report.at("passes").size());
+  const sky::ImageLayer* beauty = exr.find("");
+  ASSERT_NE(beauty, nullptr);
+  ASSERT_EQ(beauty->pixels.size(), frame.beauty.pixels.size());
+  // The EXR is half float: 11 bits of mantissa.
+  double worst = 0.0;
+  for (size_t i = 0; i < beauty->pixels.size(); ++i) {
+    const double a = frame.beauty.pixels[i], b = beauty->pixels[i];
+    worst = std::max(worst, std::abs(a - b) / std::max(std::abs(a), 1e-4));
+  }
+  EXPECT_LT(worst, 1.0e-3);
+}
+
+TEST(SkylayersApi, AWrongKeyOrValueNamesItAndKeepsTheScene) {
+  skylayers::Sky sky = defaultSky();
+  const std::string before = sky.sceneYaml();
+  try {
+    sky.set("camera.latitud", "10");
+    FAIL() << "a wrong key was taken";
+  } catch (const skylayers::Error& e) {
+    EXPECT_EQ(e.kind(), skylayers::Error::Kind::BadInput);
+    EXPECT_THAT(e.what(), HasSubstr("set camera.latitud=10: unknown key"));
+    EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << "one line";
+  }
+  try {
+    sky.setCamera({.latitudeDeg = 95.0, .longitudeDeg = 8.0, .altitudeM = 500.0});
+    FAIL() << "latitude 95 was taken";
+  } catch (const skylayers::Error& e) {
+    EXPECT_THAT(e.what(), HasSubstr("camera.latitude"));
+  }
+  EXPECT_THROW(sky.setTime("yesterday"), skylayers::Error);
+  EXPECT_THROW(sky.setSize(0, 10), skylayers::Error);
+  EXPECT_EQ(sky.sceneYaml(), before);
+  EXPECT_THROW(skylayers::Sky::fromText("camera: {pitch: [", "yaml", "host.yaml"),
+               skylayers::Error);
+  EXPECT_THROW(skylayers::Sky::fromText("{}", "toml"), skylayers::Error);
+  EXPECT_THROW(skylayers::Sky::fromFile("/nonexistent/scene.yaml"), skylayers::Error);
+}
+
+TEST(SkylayersApi, TheCameraTimeAndKeysSetWhatTheyName) {
+  skylayers::Sky sky = defaultSky();
+  sky.setCamera({.latitudeDeg = -33.86,
+                 .longitudeDeg = 151.21,
+                 .altitudeM = 1200.0,
+                 .headingDeg = 45.0,
+                 .pitchDeg = 5.5});
+  const skylayers::GeoPose pose = sky.camera();
+  EXPECT_EQ(pose.latitudeDeg, -33.86);
+  EXPECT_EQ(pose.longitudeDeg, 151.21);
+  EXPECT_EQ(pose.altitudeM, 1200.0);
+  EXPECT_EQ(pose.headingDeg, 45.0);
+  EXPECT_EQ(pose.pitchDeg, 5.5);
+  sky.setTime("2024-12-21T03:00:00Z");
+  EXPECT_EQ(sky.time(), "2024-12-21T03:00:00Z");
+  sky.setVerticalFov(40.0);
+  sky.setSize(20, 10);
+  sky.set("weather.cover_low", "0.25");
+  EXPECT_THAT(sky.sceneYaml(), HasSubstr("vertical_fov: 40"));
+  const skylayers::Frame frame = sky.render();
+  EXPECT_EQ(frame.beauty.width, 20);
+  EXPECT_EQ(frame.beauty.height, 10);
+  EXPECT_EQ(frame.time, "2024-12-21T03:00:00Z");
+}
+
+TEST(SkylayersApi, TheLightsFollowTheClockInLux) {
+  // Zurich, midsummer: noon, then two hours after midnight.
+  skylayers::Sky sky = defaultSky();
+  sky.setCamera({.latitudeDeg = 47.37, .longitudeDeg = 8.54, .altitudeM = 500.0});
+  sky.setTime("2024-06-21T13:30:00+02:00");
+  const skylayers::Lighting noon = sky.lighting();
+  EXPECT_NEAR(noon.sun.elevationDeg, 90.0 - 47.37 + 23.44, 0.5);
+  EXPECT_EQ(noon.key, "sun");
+  EXPECT_NEAR(noon.dayFactor, 1.0, 1e-9);
+  // Direct sunlight at the ground with the sun high: 70-110 klux in every channel.
+  for (double e : noon.sun.illuminanceLux) {
+    EXPECT_GT(e, 70.0e3);
+    EXPECT_LT(e, 120.0e3);
+  }
+  const auto& d = noon.sun.direction;
+  EXPECT_NEAR(d[0] * d[0] + d[1] * d[1] + d[2] * d[2], 1.0, 1e-9);
+  EXPECT_NEAR(std::asin(d[2]) * 180.0 / M_PI, noon.sun.elevationDeg, 1e-6);
+
+  sky.setTime("2024-06-22T02:00:00+02:00");
+  const skylayers::Lighting night = sky.lighting();
+  EXPECT_LT(night.sun.elevationDeg, -15.0);
+  EXPECT_EQ(night.key, "moon");
+  EXPECT_LT(night.dayFactor, 0.05);
+  for (double e : night.sun.illuminanceLux) EXPECT_EQ(e, 0.0);
+}
+
+TEST(SkylayersApi, TheDataComesFromTheSourceTreeHere) {
+  // In the build tree the tests set SKY_DATA_DIR to the source; the install's own lookup is
+  // tests/package's.
+  EXPECT_EQ(fs::path(skylayers::dataDirectory()), fs::path(std::getenv("SKY_DATA_DIR")));
+  EXPECT_STREQ(skylayers::version(), "0.1.0");
+}
+
+}  // namespace

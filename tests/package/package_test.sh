@@ -1,0 +1,51 @@
+#!/bin/sh
+# The installed package as a user meets it (issue 33, 1): `cmake --install` into a fresh
+# prefix, an out-of-tree CMake project that finds it with find_package and renders through
+# <skylayers/skylayers.h>, and the installed skyrender run from another folder. Neither may
+# reach the source tree: SKY_DATA_DIR is unset, so the data must come from the prefix.
+# Usage: package_test.sh CMAKE BUILD_DIR SOURCE_DIR
+set -eu
+cmake=$1
+build=$2
+source=$3
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+work=$(cd "$work" && pwd -P)
+prefix=$work/prefix
+
+fail() {
+  echo "package_test: $*" >&2
+  exit 1
+}
+run() {  # a step's output only when it fails
+  log=$work/step.log
+  "$@" >"$log" 2>&1 || { cat "$log" >&2; fail "failed: $*"; }
+}
+
+run "$cmake" --install "$build" --prefix "$prefix"
+for f in include/skylayers/skylayers.h share/skylayers/shaders/volumetric_clouds.comp \
+  share/skylayers/configs/ocio/config.ocio share/skylayers/configs/stars/bright_star_catalogue.txt \
+  share/skylayers/configs/default.yaml bin/skyrender; do
+  [ -e "$prefix/$f" ] || fail "the install lacks $f"
+done
+[ -e "$prefix/share/skylayers/configs/tests" ] && fail "the install carries the test scenes"
+config=$(find "$prefix" -name skylayersConfig.cmake)
+[ -n "$config" ] || fail "the install lacks skylayersConfig.cmake"
+find "$prefix" -name 'libskylayers.so*' | grep -q . || fail "the install lacks libskylayers.so"
+
+unset SKY_DATA_DIR SKY_SHADER_DIR
+run "$cmake" -S "$source/tests/package/consumer" -B "$work/consumer" -DCMAKE_PREFIX_PATH="$prefix" \
+  -DCMAKE_BUILD_TYPE=Release
+run "$cmake" --build "$work/consumer"
+(cd "$work" && "$work/consumer/consumer") >"$work/consumer.txt" 2>&1 ||
+  { cat "$work/consumer.txt" >&2; fail "the consumer failed"; }
+cat "$work/consumer.txt"
+grep -qx "data $prefix/share/skylayers" "$work/consumer.txt" ||
+  fail "the library did not read its data from the prefix"
+grep -qx "image 24x16 channels 4 display 1536 sum .*" "$work/consumer.txt" || fail "the frame"
+grep -q "^error bad_input: set camera.latitud=10: unknown key" "$work/consumer.txt" || fail "the wrong key's error"
+
+(cd "$work" && "$prefix/bin/skyrender" render --width 24 --height 16 --out "$work/out") \
+  >"$work/skyrender.txt" 2>&1 || { cat "$work/skyrender.txt" >&2; fail "installed skyrender"; }
+ls "$work"/out/*.exr >/dev/null 2>&1 || fail "installed skyrender wrote no EXR"
+echo "package_test: ok"
