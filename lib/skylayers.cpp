@@ -53,6 +53,24 @@ sky::Scene instant(sky::Scene scene) {
   return scene;
 }
 
+// `scene` with `assignments` ("key.path=value") applied through the scene reader, checked as
+// a file is.
+sky::Scene with(const sky::Scene& scene, const std::vector<std::string>& assignments) {
+  sky::Scene next;
+  try {
+    next = sky::loadSceneText(sky::writeScene(scene.withAbsolutePaths(), sky::ConfigFormat::Yaml),
+                              sky::ConfigFormat::Yaml, "set", assignments);
+  } catch (const sky::Error& e) {
+    // The reader names an override as skyrender's option ("--set KEY=VALUE: ..."); here it
+    // came from set().
+    std::string message = e.what();
+    if (message.rfind("--set ", 0) == 0) message = "set " + message.substr(6);
+    throw sky::Error(e.kind(), message);
+  }
+  next.baseDir = scene.baseDir;
+  return instant(std::move(next));
+}
+
 // "%.17g": a double written so that reading it back gives the same bits.
 std::string exact(double v) {
   char text[32];
@@ -137,20 +155,9 @@ struct Sky::Impl {
   // The scene with `assignments` applied through the scene reader; the current scene is
   // replaced only when the result is valid (and its display and view exist in the config).
   void apply(const std::vector<std::string>& assignments) {
-    sky::Scene next;
-    try {
-      next = sky::loadSceneText(sky::writeScene(scene.withAbsolutePaths(), sky::ConfigFormat::Yaml),
-                                sky::ConfigFormat::Yaml, "set", assignments);
-    } catch (const sky::Error& e) {
-      // The reader names an override as skyrender's option ("--set KEY=VALUE: ..."); here it
-      // came from set().
-      std::string message = e.what();
-      if (message.rfind("--set ", 0) == 0) message = "set " + message.substr(6);
-      throw sky::Error(e.kind(), message);
-    }
+    sky::Scene next = with(scene, assignments);
     ocio.checkDisplayView(next.output.display, next.output.view);
-    next.baseDir = scene.baseDir;
-    scene = instant(std::move(next));
+    scene = std::move(next);
   }
 };
 
@@ -275,15 +282,48 @@ Frame Sky::render(const RenderRequest& request) {
   });
 }
 
-Lighting Sky::lighting() const {
+namespace {
+
+Lighting lightingOf(const sky::Scene& scene) {
+  const sky::LightingState state = sky::computeLighting(scene, scene.time.start);
+  Lighting lighting;
+  lighting.sun = lightOf(state.sun, state.gpu.sun);
+  lighting.moon = lightOf(state.moon, state.gpu.moon);
+  lighting.dayFactor = state.dayFactor;
+  lighting.key = state.key;
+  return lighting;
+}
+
+std::vector<std::string> placeAndTime(const std::string& iso8601, double latitudeDeg,
+                                      double longitudeDeg, double altitudeM) {
+  return {"time=" + iso8601, "camera.latitude=" + exact(latitudeDeg),
+          "camera.longitude=" + exact(longitudeDeg), "camera.altitude_m=" + exact(altitudeM)};
+}
+
+}  // namespace
+
+Lighting lightingAt(double latitudeDeg, double longitudeDeg, double altitudeM,
+                    const std::string& iso8601) {
   return translated([&] {
-    const sky::LightingState state = sky::computeLighting(mImpl->scene, mImpl->scene.time.start);
-    Lighting lighting;
-    lighting.sun = lightOf(state.sun, state.gpu.sun);
-    lighting.moon = lightOf(state.moon, state.gpu.moon);
-    lighting.dayFactor = state.dayFactor;
-    lighting.key = state.key;
-    return lighting;
+    return lightingOf(
+        with(sky::loadSceneText(skyDefaultSceneText(), sky::ConfigFormat::Yaml, "<default scene>"),
+             placeAndTime(iso8601, latitudeDeg, longitudeDeg, altitudeM)));
+  });
+}
+
+Lighting Sky::lighting() const {
+  return translated([&] { return lightingOf(mImpl->scene); });
+}
+
+Lighting Sky::lighting(const std::string& iso8601) const {
+  return translated([&] { return lightingOf(with(mImpl->scene, {"time=" + iso8601})); });
+}
+
+Lighting Sky::lighting(const std::string& iso8601, double latitudeDeg, double longitudeDeg,
+                       double altitudeM) const {
+  return translated([&] {
+    return lightingOf(
+        with(mImpl->scene, placeAndTime(iso8601, latitudeDeg, longitudeDeg, altitudeM)));
   });
 }
 

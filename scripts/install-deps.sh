@@ -28,6 +28,9 @@ PACKAGES=(
   # The benchmark harness (benchmarks/run.py) is Python; its plots are matplotlib's. CI runs
   # its smoke configuration, plots included.
   python3 python3-matplotlib
+  # The Python module (python/, `import skylayers`) is pybind11's; its arrays are numpy's and
+  # its tests pytest's.
+  python3-dev pybind11-dev python3-pybind11 python3-numpy python3-pytest
   # skyview's panel is Dear ImGui (Debian's 1.86); its tests open the window under Xvfb.
   # xvfb-run needs xauth, which xvfb only recommends (a fresh machine without it failed the
   # harness's window smoke test: "xvfb-run: error: xauth command not found").

@@ -1,13 +1,15 @@
 #!/bin/sh
 # The installed package as a user meets it (issue 33, 1): `cmake --install` into a fresh
 # prefix, an out-of-tree CMake project that finds it with find_package and renders through
-# <skylayers/skylayers.h>, and the installed skyrender run from another folder. Neither may
-# reach the source tree: SKY_DATA_DIR is unset, so the data must come from the prefix.
-# Usage: package_test.sh CMAKE BUILD_DIR SOURCE_DIR
+# <skylayers/skylayers.h>, the installed skyrender run from another folder, and the installed
+# Python module. None may reach the source tree: SKY_DATA_DIR is unset, so the data must come
+# from the prefix.
+# Usage: package_test.sh CMAKE BUILD_DIR SOURCE_DIR PYTHON
 set -eu
 cmake=$1
 build=$2
 source=$3
+python=$4
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 work=$(cd "$work" && pwd -P)
@@ -48,4 +50,13 @@ grep -q "^error bad_input: set camera.latitud=10: unknown key" "$work/consumer.t
 (cd "$work" && "$prefix/bin/skyrender" render --width 24 --height 16 --out "$work/out") \
   >"$work/skyrender.txt" 2>&1 || { cat "$work/skyrender.txt" >&2; fail "installed skyrender"; }
 ls "$work"/out/*.exr >/dev/null 2>&1 || fail "installed skyrender wrote no EXR"
+module=$(find "$prefix" -path '*dist-packages/skylayers*.so')
+[ -n "$module" ] || fail "the install lacks the Python module"
+(cd "$work" && PYTHONPATH=$(dirname "$module") "$python" -c '
+import skylayers
+frame = skylayers.Sky(None).render(width=8, height=4)
+print("python", skylayers.data_directory(), frame["beauty"].shape)
+') >"$work/python.txt" 2>&1 || { cat "$work/python.txt" >&2; fail "the installed Python module"; }
+grep -qx "python $prefix/share/skylayers (4, 8, 4)" "$work/python.txt" ||
+  { cat "$work/python.txt" >&2; fail "the installed Python module's frame or data"; }
 echo "package_test: ok"

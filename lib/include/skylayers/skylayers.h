@@ -127,6 +127,11 @@ struct Lighting {
   std::string key;  // the key light: "sun" or "moon"
 };
 
+// The sun and moon at a place and instant with the default scene's atmosphere, with no Sky
+// and no GPU: where they are and how much light they give (an ephemeris).
+SKYLAYERS_API Lighting lightingAt(double latitudeDeg, double longitudeDeg, double altitudeM,
+                                  const std::string& iso8601);
+
 class SKYLAYERS_API Sky {
 public:
   // A scene file (YAML or JSON, by its extension); `overrides` are "key.path=value" as
@@ -172,6 +177,11 @@ public:
 
   // The sun and moon at the camera's place and time (CPU only, no frame needed).
   Lighting lighting() const;
+  // The same at another instant or place (altitude in metres above sea level), with this
+  // scene's atmosphere; the Sky's own time and camera stay as they are.
+  Lighting lighting(const std::string& iso8601) const;
+  Lighting lighting(const std::string& iso8601, double latitudeDeg, double longitudeDeg,
+                    double altitudeM) const;
 
   // The name of the device the Sky renders on.
   std::string deviceName() const;

@@ -1,0 +1,255 @@
+// `import skylayers`: the public C++ API (lib/include/skylayers/skylayers.h) for Python, with
+// pybind11 (docs/python.md). A frame's images are numpy arrays over the frame's own memory:
+// each array's base is the Frame object, which keeps the pixels alive with no copy.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <skylayers/skylayers.h>
+
+namespace py = pybind11;
+
+namespace {
+
+// A scene value as a scene file would write it: text as it is, anything else as JSON (a
+// number, true/false, a list: JSON is YAML's subset for these). The scene reader then checks
+// it exactly as a file's value.
+std::string sceneValue(const py::handle& value) {
+  if (py::isinstance<py::str>(value)) return value.cast<std::string>();
+  return py::module_::import("json").attr("dumps")(value).cast<std::string>();
+}
+
+// Sky(scene): a dict (the scene file's structure), a path (str or os.PathLike) of a .yaml,
+// .yml or .json file, YAML text, or None for the built-in default scene.
+skylayers::Sky makeSky(const py::object& scene, const std::vector<std::string>& overrides,
+                       const skylayers::DeviceOptions& device) {
+  if (scene.is_none()) return skylayers::Sky::fromDefault(overrides, device);
+  if (py::isinstance<py::dict>(scene)) {
+    const std::string json = py::module_::import("json").attr("dumps")(scene).cast<std::string>();
+    return skylayers::Sky::fromText(json, "json", "<dict>", overrides, device);
+  }
+  const py::module_ os = py::module_::import("os");
+  if (!py::isinstance<py::str>(scene) && py::hasattr(scene, "__fspath__"))
+    return skylayers::Sky::fromFile(os.attr("fspath")(scene).cast<std::string>(), overrides,
+                                    device);
+  if (!py::isinstance<py::str>(scene))
+    throw skylayers::Error(skylayers::Error::Kind::BadInput,
+                           "Sky(scene): expected a path, YAML text, a dict or None, not " +
+                               py::str(py::type::of(scene).attr("__name__")).cast<std::string>());
+  const std::string text = scene.cast<std::string>();
+  // One line naming a scene file is a path (a missing one is an error naming it); anything
+  // else is the scene's text.
+  const bool oneLine = text.find('\n') == std::string::npos;
+  const auto endsWith = [&](const char* suffix) {
+    const std::string s = suffix;
+    return text.size() >= s.size() && text.compare(text.size() - s.size(), s.size(), s) == 0;
+  };
+  if (oneLine && (endsWith(".yaml") || endsWith(".yml") || endsWith(".json") ||
+                  os.attr("path").attr("isfile")(text).cast<bool>()))
+    return skylayers::Sky::fromFile(text, overrides, device);
+  return skylayers::Sky::fromText(text, "yaml", "<text>", overrides, device);
+}
+
+py::dict lightDict(const skylayers::Light& light) {
+  py::dict d;
+  d["direction"] = py::make_tuple(light.direction[0], light.direction[1], light.direction[2]);
+  d["azimuth_deg"] = light.azimuthDeg;
+  d["elevation_deg"] = light.elevationDeg;
+  d["illuminance_lux"] =
+      py::make_tuple(light.illuminanceLux[0], light.illuminanceLux[1], light.illuminanceLux[2]);
+  return d;
+}
+
+py::dict lightingDict(const skylayers::Lighting& lighting) {
+  py::dict d;
+  d["sun"] = lightDict(lighting.sun);
+  d["moon"] = lightDict(lighting.moon);
+  d["day_factor"] = lighting.dayFactor;
+  d["key"] = lighting.key;
+  return d;
+}
+
+// A rendered frame: maps layer names to (H, W, C) float32 arrays that share its memory.
+class PyFrame {
+public:
+  explicit PyFrame(skylayers::Frame frame) : mFrame(std::move(frame)) {}
+
+  std::vector<std::string> keys() const {
+    std::vector<std::string> names = {"beauty"};
+    for (const skylayers::Image& image : mFrame.layers) names.push_back(image.name);
+    return names;
+  }
+  const skylayers::Image* find(const std::string& name) const {
+    if (name == "beauty") return &mFrame.beauty;
+    for (const skylayers::Image& image : mFrame.layers)
+      if (image.name == name) return &image;
+    return nullptr;
+  }
+  const skylayers::Frame& frame() const { return mFrame; }
+  skylayers::Frame& frame() { return mFrame; }
+
+private:
+  skylayers::Frame mFrame;
+};
+
+py::array imageArray(const skylayers::Image& image, py::handle owner) {
+  const py::ssize_t h = image.height, w = image.width,
+                    c = static_cast<py::ssize_t>(image.channels.size());
+  const py::ssize_t f = sizeof(float);
+  return py::array_t<float>({h, w, c}, {w * c * f, c * f, f}, image.pixels.data(), owner);
+}
+
+}  // namespace
+
+PYBIND11_MODULE(skylayers, m) {
+  m.doc() = "skylayers: real-time sky and cloud rendering from weather data (docs/python.md)";
+  m.attr("__version__") = skylayers::version();
+
+  static py::exception<skylayers::Error> error(m, "Error", PyExc_RuntimeError);
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const skylayers::Error& e) {
+      // One line saying what and where; .kind is "bad_input" (the caller can fix it) or
+      // "internal".
+      py::object instance = py::reinterpret_borrow<py::object>(error)(py::str(e.what()));
+      instance.attr("kind") =
+          e.kind() == skylayers::Error::Kind::BadInput ? "bad_input" : "internal";
+      PyErr_SetObject(error.ptr(), instance.ptr());
+    }
+  });
+
+  m.def("data_directory", &skylayers::dataDirectory,
+        "The folder the shaders and configs are read from.");
+  m.def(
+      "ephemeris",
+      [](double lat, double lon, const std::string& time, double altitudeM) {
+        return lightingDict(skylayers::lightingAt(lat, lon, altitudeM, time));
+      },
+      py::arg("lat"), py::arg("lon"), py::arg("time"), py::arg("altitude_m") = 0.0,
+      "The sun and moon at a place and ISO 8601 instant (no GPU): direction (east, north, up), "
+      "azimuth, apparent elevation, illuminance in lux per linear Rec.709 channel, the "
+      "day factor and the key light.");
+
+  py::class_<PyFrame>(m, "Frame",
+                      "A rendered frame: frame['beauty'] and the other layers as float32 "
+                      "(H, W, C) arrays sharing the frame's memory.")
+      .def("keys", &PyFrame::keys)
+      .def("__iter__", [](const PyFrame& f) { return py::iter(py::cast(f.keys())); })
+      .def("__len__", [](const PyFrame& f) { return f.keys().size(); })
+      .def("__contains__",
+           [](const PyFrame& f, const std::string& name) { return f.find(name) != nullptr; })
+      .def("__getitem__",
+           [](py::object self, const std::string& name) {
+             const PyFrame& f = self.cast<const PyFrame&>();
+             const skylayers::Image* image = f.find(name);
+             if (!image) throw py::key_error("the frame has no layer '" + name + "'");
+             return imageArray(*image, self);
+           })
+      .def("channels",
+           [](const PyFrame& f, const std::string& name) {
+             const skylayers::Image* image = f.find(name);
+             if (!image) throw py::key_error("the frame has no layer '" + name + "'");
+             return image->channels;
+           })
+      .def_property_readonly(
+          "display",
+          [](py::object self) -> py::object {
+            const skylayers::Frame& f = self.cast<const PyFrame&>().frame();
+            if (f.display.empty()) return py::none();
+            const py::ssize_t h = f.beauty.height, w = f.beauty.width;
+            return py::array_t<uint8_t>({h, w, py::ssize_t(4)},
+                                        {w * 4, py::ssize_t(4), py::ssize_t(1)}, f.display.data(),
+                                        self);
+          },
+          "The display image, (H, W, 4) uint8: the codes of skyrender's PNG.")
+      .def_property_readonly(
+          "report",
+          [](const PyFrame& f) {
+            return py::module_::import("json").attr("loads")(f.frame().report);
+          },
+          "The render report as a dict (docs/outputs.md).")
+      .def_property_readonly("time", [](const PyFrame& f) { return f.frame().time; })
+      .def_property_readonly("gpu_ms", [](const PyFrame& f) { return f.frame().gpuMs; })
+      .def_property_readonly("exposure_ev", [](const PyFrame& f) { return f.frame().exposureEv; });
+
+  py::class_<skylayers::Sky>(m, "Sky",
+                             "A scene and everything made for it on the GPU; render many frames "
+                             "through one Sky.")
+      .def(py::init([](const py::object& scene, const std::string& gpu, bool validation,
+                       const std::string& ocio) {
+             skylayers::DeviceOptions device;
+             device.gpu = gpu;
+             device.validation = validation;
+             device.ocioConfig = ocio;
+             return makeSky(scene, {}, device);
+           }),
+           py::arg("scene") = py::none(), py::kw_only(), py::arg("gpu") = "",
+           py::arg("validation") = false, py::arg("ocio") = "",
+           "scene: a path, YAML text, a dict with the scene file's structure, or None for the "
+           "built-in scene. gpu: '' picks one, else an index or part of a name.")
+      .def(
+          "set",
+          [](skylayers::Sky& sky, const std::string& key, const py::handle& value) {
+            sky.set(key, sceneValue(value));
+          },
+          py::arg("key"), py::arg("value"),
+          "Sets a scene key by its path, e.g. set('camera.heading', 305); checked as a scene "
+          "file is. A bad key or value raises skylayers.Error and keeps the scene.")
+      .def(
+          "render",
+          [](skylayers::Sky& sky, std::optional<int> width, std::optional<int> height,
+             std::optional<std::string> time, bool display, const py::kwargs& keys) {
+            std::vector<std::string> assignments;
+            if (width) assignments.push_back("output.width=" + std::to_string(*width));
+            if (height) assignments.push_back("output.height=" + std::to_string(*height));
+            if (time) assignments.push_back("time=" + *time);
+            for (const auto& [key, value] : keys)
+              assignments.push_back(key.cast<std::string>() + "=" + sceneValue(value));
+            if (!assignments.empty()) sky.set(assignments);
+            skylayers::Frame frame;
+            {
+              py::gil_scoped_release release;
+              frame = sky.render({.layers = true, .display = display});
+            }
+            return PyFrame(std::move(frame));
+          },
+          py::arg("width") = py::none(), py::arg("height") = py::none(),
+          py::arg("time") = py::none(), py::kw_only(), py::arg("display") = true,
+          "Renders a frame. width, height, time and any scene keys given as "
+          "**{'key.path': value} are set first (and stay set).")
+      .def(
+          "lighting",
+          [](const skylayers::Sky& sky, std::optional<std::string> time,
+             std::optional<std::tuple<double, double, double>> position) {
+            const std::string at = time.value_or(sky.time());
+            if (position) {
+              const auto [lat, lon, alt] = *position;
+              return lightingDict(sky.lighting(at, lat, lon, alt));
+            }
+            return lightingDict(time ? sky.lighting(at) : sky.lighting());
+          },
+          py::arg("time") = py::none(), py::arg("position") = py::none(),
+          "The sun and moon at the camera (or position=(lat, lon, altitude_m)) and the scene's "
+          "time (or time=ISO 8601), as a dict; the Sky's own time and camera stay.")
+      .def("scene_yaml", &skylayers::Sky::sceneYaml, "The effective scene as YAML.")
+      .def_property_readonly("time", &skylayers::Sky::time)
+      .def_property_readonly("device_name", &skylayers::Sky::deviceName)
+      .def_property_readonly("validation_messages", &skylayers::Sky::validationMessages)
+      .def_property_readonly("camera", [](const skylayers::Sky& sky) {
+        const skylayers::GeoPose p = sky.camera();
+        py::dict d;
+        d["latitude"] = p.latitudeDeg;
+        d["longitude"] = p.longitudeDeg;
+        d["altitude_m"] = p.altitudeM;
+        d["heading"] = p.headingDeg;
+        d["pitch"] = p.pitchDeg;
+        return d;
+      });
+}

@@ -1,0 +1,110 @@
+"""`import skylayers` as a script uses it (docs/python.md): scenes from a path, text or a
+dict; keys set by path; frames as numpy arrays over the frame's memory; lights; errors."""
+import math
+import os
+import sys
+
+import numpy as np
+import pytest
+
+import skylayers
+
+
+def test_a_render_gives_the_layers_as_arrays(small_sky):
+    frame = small_sky.render()
+    assert frame.keys() == ["beauty", "sky", "high_clouds", "clouds"]
+    beauty = frame["beauty"]
+    assert beauty.dtype == np.float32 and beauty.shape == (18, 32, 4)
+    assert np.isfinite(beauty).all() and beauty[..., :3].max() > 0
+    assert frame["clouds"].shape == (18, 32, 5)
+    assert frame.channels("clouds") == ["R", "G", "B", "A", "depth"]
+    assert frame.display.dtype == np.uint8 and frame.display.shape == (18, 32, 4)
+    assert (frame.display[..., 3] == 255).all()
+    assert frame.report["size"] == [32, 18]
+    assert [p["name"] for p in frame.report["passes"]]
+    with pytest.raises(KeyError):
+        frame["nonsense"]
+
+
+def test_arrays_share_the_frames_memory_and_keep_it_alive(small_sky):
+    frame = small_sky.render()
+    a = frame["beauty"]
+    b = frame["beauty"]
+    # No copy: both views are the same memory, owned by the frame.
+    assert a.__array_interface__["data"][0] == b.__array_interface__["data"][0]
+    assert not a.flags["OWNDATA"]
+    expected = a.copy()
+    del frame, b
+    for _ in range(3):
+        small_sky.render()  # would reuse freed memory if the array did not hold the frame
+    assert np.array_equal(a, expected)
+    assert sys.getrefcount(a.base) >= 2
+
+
+def test_the_same_scene_gives_the_same_bits(small_sky):
+    first = small_sky.render()["beauty"].copy()
+    again = small_sky.render()["beauty"]
+    assert np.array_equal(first, again)
+
+
+def test_render_sets_size_time_and_keys(small_sky):
+    frame = small_sky.render(width=20, height=10, time="2024-06-21T20:00:00+02:00",
+                             **{"camera.heading": 300, "weather.cover_low": 0.2})
+    assert frame["beauty"].shape == (10, 20, 4)
+    assert frame.time == "2024-06-21T20:00:00+02:00"
+    assert small_sky.camera["heading"] == 300
+    assert "cover_low: 0.2" in small_sky.scene_yaml()
+
+
+def test_a_scene_from_a_dict_text_or_path(tmp_path):
+    scene = {"output": {"width": 16, "height": 8}, "camera": {"heading": 90, "pitch": 20}}
+    sky = skylayers.Sky(scene)
+    assert sky.camera["heading"] == 90
+    text = sky.scene_yaml()
+    assert skylayers.Sky(text).camera["pitch"] == 20
+    path = tmp_path / "scene.yaml"
+    path.write_text(text)
+    assert skylayers.Sky(path).camera["heading"] == 90
+    assert skylayers.Sky(str(path)).render()["beauty"].shape == (8, 16, 4)
+
+
+def test_bad_input_is_one_line_naming_it_and_keeps_the_scene(small_sky):
+    before = small_sky.scene_yaml()
+    with pytest.raises(skylayers.Error) as e:
+        small_sky.set("camera.latitud", 10)
+    assert e.value.kind == "bad_input"
+    assert "set camera.latitud=10: unknown key" in str(e.value)
+    assert "\n" not in str(e.value)
+    with pytest.raises(skylayers.Error, match="camera.pitch"):
+        small_sky.set("camera.pitch", float("nan"))
+    with pytest.raises(skylayers.Error):
+        small_sky.render(**{"camera.latitude": 95})
+    assert small_sky.scene_yaml() == before
+    with pytest.raises(skylayers.Error, match="nonexistent"):
+        skylayers.Sky("/nonexistent/scene.yaml")
+    with pytest.raises(skylayers.Error):
+        skylayers.Sky(42)
+
+
+def test_lighting_and_ephemeris_in_lux():
+    # Zurich at midsummer noon: the sun 66 degrees up, direct light 70-120 klux.
+    noon = skylayers.ephemeris(47.37, 8.54, "2024-06-21T13:30:00+02:00", altitude_m=500)
+    assert noon["key"] == "sun" and noon["day_factor"] == pytest.approx(1.0)
+    assert noon["sun"]["elevation_deg"] == pytest.approx(90 - 47.37 + 23.44, abs=0.5)
+    assert all(70e3 < e < 120e3 for e in noon["sun"]["illuminance_lux"])
+    d = noon["sun"]["direction"]
+    assert math.degrees(math.asin(d[2])) == pytest.approx(noon["sun"]["elevation_deg"])
+    night = skylayers.ephemeris(47.37, 8.54, "2024-06-22T02:00:00+02:00")
+    assert night["key"] == "moon" and night["sun"]["illuminance_lux"] == (0.0, 0.0, 0.0)
+
+
+def test_a_skys_lighting_elsewhere_leaves_it_as_it_was(small_sky):
+    here = small_sky.lighting()
+    sydney = small_sky.lighting(time="2024-06-21T12:00:00+10:00", position=(-33.86, 151.21, 0))
+    assert sydney["sun"]["elevation_deg"] == pytest.approx(90 - 33.86 - 23.44, abs=0.5)
+    assert small_sky.lighting() == here
+
+
+def test_the_module_says_where_its_data_is():
+    assert skylayers.__version__ == "0.1.0"
+    assert os.path.samefile(skylayers.data_directory(), os.environ["SKY_DATA_DIR"])
