@@ -5,6 +5,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -103,6 +104,22 @@ py::array imageArray(const skylayers::Image& image, py::handle owner) {
                     c = static_cast<py::ssize_t>(image.channels.size());
   const py::ssize_t f = sizeof(float);
   return py::array_t<float>({h, w, c}, {w * c * f, c * f, f}, image.pixels.data(), owner);
+}
+
+// (..., 3) arrays of (latitude, longitude, altitude m) as points, with their leading shape.
+std::vector<skylayers::GeoPoint> geoPoints(
+    const py::array_t<double, py::array::c_style | py::array::forcecast>& a, const char* name,
+    std::vector<py::ssize_t>& shape) {
+  if (a.ndim() < 1 || a.shape(a.ndim() - 1) != 3)
+    throw skylayers::Error(skylayers::Error::Kind::BadInput,
+                           std::string(name) +
+                               ": expected an array of shape (..., 3): latitude, longitude, "
+                               "altitude in metres");
+  shape.assign(a.shape(), a.shape() + a.ndim() - 1);
+  const double* v = a.data();
+  std::vector<skylayers::GeoPoint> points(static_cast<size_t>(a.size() / 3));
+  for (size_t i = 0; i < points.size(); ++i) points[i] = {v[3 * i], v[3 * i + 1], v[3 * i + 2]};
+  return points;
 }
 
 }  // namespace
@@ -238,6 +255,105 @@ PYBIND11_MODULE(skylayers, m) {
           py::arg("time") = py::none(), py::arg("position") = py::none(),
           "The sun and moon at the camera (or position=(lat, lon, altitude_m)) and the scene's "
           "time (or time=ISO 8601), as a dict; the Sky's own time and camera stay.")
+      .def(
+          "transmittance",
+          [](skylayers::Sky& sky,
+             const py::array_t<double, py::array::c_style | py::array::forcecast>& a,
+             const py::array_t<double, py::array::c_style | py::array::forcecast>& b,
+             const std::string& through, bool rgb) {
+            std::vector<py::ssize_t> shapeA, shapeB;
+            const std::vector<skylayers::GeoPoint> from = geoPoints(a, "transmittance a", shapeA);
+            const std::vector<skylayers::GeoPoint> to = geoPoints(b, "transmittance b", shapeB);
+            if (shapeA != shapeB)
+              throw skylayers::Error(skylayers::Error::Kind::BadInput,
+                                     "transmittance: a and b must have the same shape");
+            if (through != "all" && through != "cloud" && through != "air")
+              throw skylayers::Error(
+                  skylayers::Error::Kind::BadInput,
+                  "transmittance: through='" + through + "': expected 'all', 'cloud' or 'air'");
+            std::vector<std::array<skylayers::GeoPoint, 2>> lines(from.size());
+            for (size_t i = 0; i < lines.size(); ++i) lines[i] = {from[i], to[i]};
+            std::vector<skylayers::Transmittance> t;
+            {
+              py::gil_scoped_release release;
+              t = sky.transmittance(lines);
+            }
+            std::vector<py::ssize_t> shape = shapeA;
+            if (rgb) shape.push_back(3);
+            py::array_t<double> out(shape);
+            double* o = out.mutable_data();
+            for (size_t i = 0; i < t.size(); ++i) {
+              std::array<double, 3> v =
+                  through == "cloud" ? std::array<double, 3>{t[i].cloud, t[i].cloud, t[i].cloud}
+                  : through == "air" ? t[i].air
+                                     : t[i].total();
+              if (rgb)
+                for (int c = 0; c < 3; ++c) o[3 * i + c] = v[c];
+              else  // Rec.709 luminance weights
+                o[i] = 0.2126 * v[0] + 0.7152 * v[1] + 0.0722 * v[2];
+            }
+            return out;
+          },
+          py::arg("a"), py::arg("b"), py::kw_only(), py::arg("through") = "all",
+          py::arg("rgb") = false,
+          "Transmittance along straight lines from a to b, arrays of shape (..., 3) of "
+          "(latitude, longitude, altitude m): shape (...), or (..., 3) with rgb=True. "
+          "through='cloud' or 'air' for one medium alone; the air's is weighted by Rec.709 "
+          "luminance unless rgb. On the CPU, from the field the GPU marches.")
+      .def(
+          "first_cloud",
+          [](skylayers::Sky& sky,
+             const py::array_t<double, py::array::c_style | py::array::forcecast>& a,
+             const py::array_t<double, py::array::c_style | py::array::forcecast>& b,
+             double opticalDepth) {
+            std::vector<py::ssize_t> shapeA, shapeB;
+            const std::vector<skylayers::GeoPoint> from = geoPoints(a, "first_cloud a", shapeA);
+            const std::vector<skylayers::GeoPoint> to = geoPoints(b, "first_cloud b", shapeB);
+            if (shapeA != shapeB)
+              throw skylayers::Error(skylayers::Error::Kind::BadInput,
+                                     "first_cloud: a and b must have the same shape");
+            py::array_t<double> out(shapeA);
+            double* o = out.mutable_data();
+            for (size_t i = 0; i < from.size(); ++i) {
+              const double d = sky.firstCloud(from[i], to[i], opticalDepth);
+              o[i] = d < 0.0 ? std::numeric_limits<double>::quiet_NaN() : d;
+            }
+            return out;
+          },
+          py::arg("a"), py::arg("b"), py::arg("optical_depth") = 0.1,
+          "Metres from a toward b at which the cloud optical depth passes optical_depth; NaN "
+          "where it does not before b.")
+      .def(
+          "cloud_extinction",
+          [](skylayers::Sky& sky,
+             const py::array_t<double, py::array::c_style | py::array::forcecast>& p) {
+            std::vector<py::ssize_t> shape;
+            const std::vector<skylayers::GeoPoint> points = geoPoints(p, "cloud_extinction", shape);
+            py::array_t<double> out(shape);
+            double* o = out.mutable_data();
+            for (size_t i = 0; i < points.size(); ++i) o[i] = sky.cloudExtinction(points[i]);
+            return out;
+          },
+          py::arg("points"), "Extinction through cloud (1/m) at points of shape (..., 3).")
+      .def(
+          "cover",
+          [](skylayers::Sky& sky, double lat, double lon) {
+            const skylayers::CloudCover c = sky.cover(lat, lon);
+            py::dict d;
+            d["low"] = c.low;
+            d["mid"] = c.mid;
+            d["type"] = c.type;
+            return d;
+          },
+          py::arg("lat"), py::arg("lon"), "The weather map's low and mid cover and type there.")
+      .def(
+          "pixel_point",
+          [](const skylayers::Sky& sky, double x, double y, double distance) {
+            const skylayers::GeoPoint p = sky.pixelPoint(x, y, distance);
+            return py::make_tuple(p.latitudeDeg, p.longitudeDeg, p.altitudeM);
+          },
+          py::arg("x"), py::arg("y"), py::arg("distance_m"),
+          "(lat, lon, altitude m) distance_m along the camera's ray through pixel (x, y).")
       .def("scene_yaml", &skylayers::Sky::sceneYaml, "The effective scene as YAML.")
       .def_property_readonly("time", &skylayers::Sky::time)
       .def_property_readonly("device_name", &skylayers::Sky::deviceName)

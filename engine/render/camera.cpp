@@ -8,8 +8,9 @@
 
 namespace sky {
 namespace {
-constexpr double kDeg = 3.14159265358979323846 / 180.0;
-}
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kDeg = kPi / 180.0;
+}  // namespace
 
 glm::vec3 directionFromAzEl(double az, double el) {
   return glm::vec3(enuDirection(az, el));
@@ -47,6 +48,21 @@ shared::ViewState makeViewState(const CameraSettings& cam, uint32_t width, uint3
   v.forward = glm::vec4(forward, static_cast<float>(2.0 * tanV / height));
   v.size = glm::uvec4(width, height, VIEW_PROJECTION_PERSPECTIVE, 0);
   return v;
+}
+
+glm::dvec3 viewDirection(const shared::ViewState& view, double x, double y) {
+  const glm::dvec2 uv(x / double(view.size.x), y / double(view.size.y));
+  const glm::dvec3 right(view.right), up(view.up), forward(view.forward);
+  if (view.size.z == VIEW_PROJECTION_TOPDOWN) return glm::dvec3(0.0, 0.0, -1.0);
+  if (view.size.z == VIEW_PROJECTION_EQUIRECTANGULAR) {
+    const double azimuth = (uv.x - 0.5) * 2.0 * kPi;  // clockwise from the heading
+    const double elevation = (0.5 - uv.y) * kPi;
+    const glm::dvec3 horizontal = std::cos(azimuth) * forward + std::sin(azimuth) * right;
+    return std::cos(elevation) * horizontal + std::sin(elevation) * up;
+  }
+  const glm::dvec2 ndc = uv * 2.0 - 1.0;
+  return glm::normalize(forward + ndc.x * double(view.right.w) * right -
+                        ndc.y * double(view.up.w) * up);
 }
 
 }  // namespace sky

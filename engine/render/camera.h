@@ -14,5 +14,8 @@ namespace sky {
 glm::vec3 directionFromAzEl(double azimuthDeg, double elevationDeg);
 // The view rays of an image of width x height pixels seen by `camera`.
 shared::ViewState makeViewState(const CameraSettings& camera, uint32_t width, uint32_t height);
+// The unit east-north-up direction through `pixel` (centres at integer + 0.5, row 0 the
+// top): the twin of viewDirection in shaders/common/view.glsl, in double.
+glm::dvec3 viewDirection(const shared::ViewState& view, double x, double y);
 
 }  // namespace sky

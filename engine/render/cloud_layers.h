@@ -55,6 +55,8 @@ public:
   const Sampler& weatherSampler() const { return mWeather.sampler(); }
 
   const CloudNoise::Activity& noiseActivity() const { return mNoise.lastActivity(); }
+  // The noise as it is now (its CPU copies: engine/render/cloud_field.h reads them).
+  const CloudNoise& noise() const { return mNoise; }
   // How many coverage tables were calibrated in the last addTo (0 when cached).
   int lastCalibrations() const { return mLastCalibrations; }
 

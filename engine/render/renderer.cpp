@@ -623,4 +623,37 @@ CloudVolume Renderer::exportCloudVolume(const Scene& scene, const IsoTime& time,
                          std::move(result.output("cloud_volume").pixels));
 }
 
+CloudField Renderer::cloudField(const Scene& scene, const IsoTime& time) {
+  const CloudSetup setup = cloudSetup(scene, time);
+  if (setup.geometry.topDown)
+    inputError(
+        "cloud queries: camera.mode geographic_topdown has no observer to place the clouds "
+        "around (use camera.mode observer)");
+  CloudFieldInputs in;
+  in.camera = {setup.geometry.latDeg, setup.geometry.lonDeg, setup.geometry.altitudeM};
+  in.weather = *setup.weather;
+  in.air = atmosphereParams(physicalAtmosphere(scene));
+  const glm::vec2 maxCover = setup.weather->maxCover();
+  in.anyCover = maxCover.x > 0.0f || maxCover.y > 0.0f;
+  if (in.anyCover) {
+    // As exportCloudVolume: the textures and tables a frame would import, then the
+    // raymarch's own uniforms.
+    FrameGraph graph(mRuntime);
+    const CloudLayers::Frame cloudFrame = mClouds.addTo(graph, setup.cloudScene, time);
+    const shared::ViewState view =
+        makeViewState(scene.camera, static_cast<uint32_t>(scene.output.width),
+                      static_cast<uint32_t>(scene.output.height));
+    in.params = cloudParams(setup.volumetric, setup.lighting, time, view, cloudFrame.maxCover,
+                            cloudFrame.coverage, cloudFrame.noiseMeans);
+    const CloudVariant variant = cloudVariant(setup.volumetric, cloudFrame.lowRolls);
+    in.tang = variant.model == CloudModel::Tang2019;
+    in.calibrated = variant.coverage == CloudCoverageMode::Calibrated;
+    in.rolls = variant.rolls == CloudRolls::On;
+    in.shape = mClouds.noise().shapeVolume();
+    in.detail = mClouds.noise().detailVolume();
+    in.curl = mClouds.noise().curlPlane();
+  }
+  return CloudField(std::move(in));
+}
+
 }  // namespace sky

@@ -17,6 +17,7 @@
 #include "engine/weather/local_weather.h"
 #include "engine/scene/scene.h"
 #include "passes/atmosphere_composite/atmosphere_composite.h"
+#include "engine/render/cloud_field.h"
 #include "engine/render/cloud_layers.h"
 #include "engine/render/cloud_volume.h"
 #include "passes/atmosphere_luts/atmosphere_luts.h"
@@ -163,6 +164,12 @@ public:
   // without low or mid clouds, or a grid too large.
   CloudVolume exportCloudVolume(const Scene& scene, const IsoTime& time,
                                 const std::optional<CloudVolumeBox>& box, double voxelM);
+
+  // The cloud density field of `scene` at `time` on the CPU (engine/render/cloud_field.h):
+  // the raymarch's own parameters, weather map and noise (baked or loaded as a frame would),
+  // and the physical atmosphere's air. A scene without low or mid cover gives an empty field.
+  // BadInput for a top-down camera (its frame has no observer to hold the field around).
+  CloudField cloudField(const Scene& scene, const IsoTime& time);
 
 private:
   // What the clouds of a frame see: the scene with the weather map's region and layer

@@ -125,7 +125,8 @@ void CloudNoise::load(CloudModel model) {
     uploadNow(mRuntime, {{&mShape, {}, entry->shape.rgba},
                          {&mDetail, {}, entry->detail.rgba},
                          {&mCurl, {}, entry->curl}});
-    setVolumes(std::move(entry->shape), std::move(entry->detail));
+    setVolumes(std::move(entry->shape), std::move(entry->detail),
+               {CLOUD_NOISE_CURL_SIZE, std::move(entry->curl)});
     mActivity.loadedCache = true;
     return;
   }
@@ -162,13 +163,15 @@ void CloudNoise::bake(uint32_t modelId, const std::string& key, const fs::path& 
     // An unwritable cache folder costs a bake next time, not the render; the report says so.
     noteCacheWriteFailed(e.what());
   }
-  setVolumes(std::move(entry.shape), std::move(entry.detail));
+  setVolumes(std::move(entry.shape), std::move(entry.detail),
+             {CLOUD_NOISE_CURL_SIZE, std::move(entry.curl)});
   mActivity.baked = true;
 }
 
-void CloudNoise::setVolumes(NoiseVolume shape, NoiseVolume detail) {
+void CloudNoise::setVolumes(NoiseVolume shape, NoiseVolume detail, NoiseVolume curl) {
   mShapeVolume = std::move(shape);
   mDetailVolume = std::move(detail);
+  mCurlPlane = std::move(curl);
   mShapeMean = channelMeans(mShapeVolume);
   mDetailMean = channelMeans(mDetailVolume);
 }

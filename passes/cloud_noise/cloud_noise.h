@@ -59,6 +59,8 @@ public:
   // cache), valid until the next addTo with another model.
   const NoiseVolume& shapeVolume() const { return mShapeVolume; }
   const NoiseVolume& detailVolume() const { return mDetailVolume; }
+  // The curl texture's texels: `size`^2 RGBA8 (one slice; NoiseVolume's layout, z = 0).
+  const NoiseVolume& curlPlane() const { return mCurlPlane; }
   // Their channel means (channelMeans), computed once when the volumes change: what the
   // raymarch's level of detail fades each octave to.
   glm::vec4 shapeMean() const { return mShapeMean; }
@@ -70,7 +72,7 @@ private:
   // Creates the images unless they already have these sizes.
   void allocate(uint32_t detailSize);
   void addTimings(const FrameResult& result);
-  void setVolumes(NoiseVolume shape, NoiseVolume detail);
+  void setVolumes(NoiseVolume shape, NoiseVolume detail, NoiseVolume curl);
 
   const Context& mCtx;
   GraphRuntime& mRuntime;
@@ -82,6 +84,7 @@ private:
   PersistentImage mCurl;
   NoiseVolume mShapeVolume;
   NoiseVolume mDetailVolume;
+  NoiseVolume mCurlPlane;
   glm::vec4 mShapeMean{0.0f}, mDetailMean{0.0f};
   std::optional<CloudModel> mModel;  // what the images hold now
   Activity mActivity;

@@ -108,3 +108,28 @@ def test_a_skys_lighting_elsewhere_leaves_it_as_it_was(small_sky):
 def test_the_module_says_where_its_data_is():
     assert skylayers.__version__ == "0.1.0"
     assert os.path.samefile(skylayers.data_directory(), os.environ["SKY_DATA_DIR"])
+
+
+def test_line_of_sight_queries_through_the_clouds(small_sky):
+    cam = small_sky.camera
+    lats = cam["latitude"] + 0.005 * np.arange(40)
+    a = np.stack([lats, np.full(40, cam["longitude"]), np.full(40, 1000.0)], axis=-1)
+    b = a.copy()
+    b[:, 2] = 4000.0  # straight up through the low layer
+    cloud = small_sky.transmittance(a, b, through="cloud")
+    assert cloud.shape == (40,)
+    assert (cloud < 0.4).any() and (cloud == 1.0).any()
+    rgb = small_sky.transmittance(a, b, rgb=True)
+    assert rgb.shape == (40, 3) and (rgb[:, 2] <= rgb[:, 0]).all()  # the air dims blue most
+    assert np.allclose(small_sky.transmittance(a, b), cloud * small_sky.transmittance(
+        a, b, through="air"), rtol=1e-3)
+    d = small_sky.first_cloud(a, b)
+    assert np.isnan(d[cloud == 1.0]).all() and (d[cloud < 0.4] > 0).all()
+    assert small_sky.transmittance(a.reshape(4, 10, 3), b.reshape(4, 10, 3)).shape == (4, 10)
+    ext = small_sky.cloud_extinction(a + [0, 0, 1000.0])
+    assert ext.shape == (40,) and (ext >= 0).all()
+    assert small_sky.cover(cam["latitude"], cam["longitude"])["low"] >= 0.0
+    lat, lon, alt = small_sky.pixel_point(16, 9, 1000.0)
+    assert alt > cam["altitude_m"]  # the default camera looks up
+    with pytest.raises(skylayers.Error, match="shape"):
+        small_sky.transmittance(a[:, :2], b[:, :2])

@@ -127,6 +127,30 @@ struct Lighting {
   std::string key;  // the key light: "sun" or "moon"
 };
 
+// A place: latitude and longitude (degrees, WGS84 taken as a sphere) and metres above sea
+// level.
+struct GeoPoint {
+  double latitudeDeg = 0.0;
+  double longitudeDeg = 0.0;
+  double altitudeM = 0.0;
+};
+
+// What a straight line between two points lets through.
+struct Transmittance {
+  double cloud = 1.0;                        // through the clouds alone: e^-cloudOpticalDepth
+  double cloudOpticalDepth = 0.0;            // tau through the clouds
+  std::array<double, 3> air{1.0, 1.0, 1.0};  // through the air alone, per Rec.709 channel
+  // Both together, per channel.
+  std::array<double, 3> total() const { return {cloud * air[0], cloud * air[1], cloud * air[2]}; }
+};
+
+// The weather map at a place.
+struct CloudCover {
+  double low = 0.0;   // cover of the low layer, 0..1
+  double mid = 0.0;   // of the mid layer
+  double type = 0.0;  // 0 stratiform, 0.5 cellular, 1 convective
+};
+
 // The sun and moon at a place and instant with the default scene's atmosphere, with no Sky
 // and no GPU: where they are and how much light they give (an ephemeris).
 SKYLAYERS_API Lighting lightingAt(double latitudeDeg, double longitudeDeg, double altitudeM,
@@ -182,6 +206,27 @@ public:
   Lighting lighting(const std::string& iso8601) const;
   Lighting lighting(const std::string& iso8601, double latitudeDeg, double longitudeDeg,
                     double altitudeM) const;
+
+  // --- Queries, on the CPU ---
+  // From the same density field the GPU marches (engine/render/cloud_field.h: the twin of
+  // shaders/common/cloud_field.glsl at full detail) at the scene's time, and the physical
+  // atmosphere's air. The field is made at the first query after the scene changes (the
+  // noise and weather map as a frame makes them) and kept. Queries integrate along their
+  // lines every `kQueryStepM`: for a line of sight or a swarm, not for every pixel of every
+  // frame. Points outside the weather map's region have no cloud.
+  static constexpr double kQueryStepM = 10.0;
+  Transmittance transmittance(const GeoPoint& from, const GeoPoint& to);
+  // Many lines at once, spread over the machine's cores.
+  std::vector<Transmittance> transmittance(const std::vector<std::array<GeoPoint, 2>>& lines);
+  // Extinction through cloud at a point, 1/m.
+  double cloudExtinction(const GeoPoint& point);
+  CloudCover cover(double latitudeDeg, double longitudeDeg);
+  // How far (m) from `from` toward `to` the line's cloud optical depth passes `opticalDepth`;
+  // -1 when it does not before `to`.
+  double firstCloud(const GeoPoint& from, const GeoPoint& to, double opticalDepth = 0.1);
+  // The point `distanceM` from the camera along the ray through pixel (x, y) of the image
+  // (pixel centres at integer + 0.5, row 0 the top).
+  GeoPoint pixelPoint(double x, double y, double distanceM) const;
 
   // The name of the device the Sky renders on.
   std::string deviceName() const;
