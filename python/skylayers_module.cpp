@@ -64,6 +64,7 @@ py::dict lightDict(const skylayers::Light& light) {
   d["elevation_deg"] = light.elevationDeg;
   d["illuminance_lux"] =
       py::make_tuple(light.illuminanceLux[0], light.illuminanceLux[1], light.illuminanceLux[2]);
+  d["cloud_transmittance"] = light.cloudTransmittance;
   return d;
 }
 
@@ -142,6 +143,22 @@ PYBIND11_MODULE(skylayers, m) {
     }
   });
 
+  m.def(
+      "irradiance",
+      [](const py::array_t<double, py::array::c_style | py::array::forcecast>& sh,
+         std::array<double, 3> normal) {
+        if (sh.ndim() != 2 || sh.shape(0) != 9 || sh.shape(1) != 3)
+          throw skylayers::Error(skylayers::Error::Kind::BadInput,
+                                 "irradiance: expected spherical harmonics of shape (9, 3)");
+        skylayers::SphericalHarmonics c;
+        for (int i = 0; i < 9; ++i)
+          for (int k = 0; k < 3; ++k) c[i][k] = sh.at(i, k);
+        const std::array<double, 3> e = skylayers::irradiance(c, normal);
+        return py::make_tuple(e[0], e[1], e[2]);
+      },
+      py::arg("sh"), py::arg("normal"),
+      "Illuminance (lux, R, G, B) on a surface with unit normal (east, north, up) under "
+      "Sky.ambient()'s radiance.");
   m.def("data_directory", &skylayers::dataDirectory,
         "The folder the shaders and configs are read from.");
   m.def(
@@ -354,6 +371,22 @@ PYBIND11_MODULE(skylayers, m) {
           },
           py::arg("x"), py::arg("y"), py::arg("distance_m"),
           "(lat, lon, altitude m) distance_m along the camera's ray through pixel (x, y).")
+      .def(
+          "ambient",
+          [](skylayers::Sky& sky) {
+            skylayers::SphericalHarmonics sh;
+            {
+              py::gil_scoped_release release;
+              sh = sky.ambient();
+            }
+            py::array_t<double> out({py::ssize_t(9), py::ssize_t(3)});
+            for (int i = 0; i < 9; ++i)
+              for (int c = 0; c < 3; ++c) out.mutable_at(i, c) = sh[i][c];
+            return out;
+          },
+          "The light around the camera without the sun's and moon's discs: (9, 3) spherical "
+          "harmonic coefficients of the radiance in cd/m^2 (docs/library.md). Renders the "
+          "sphere at 64 x 32.")
       .def("scene_yaml", &skylayers::Sky::sceneYaml, "The effective scene as YAML.")
       .def_property_readonly("time", &skylayers::Sky::time)
       .def_property_readonly("device_name", &skylayers::Sky::deviceName)

@@ -133,3 +133,15 @@ def test_line_of_sight_queries_through_the_clouds(small_sky):
     assert alt > cam["altitude_m"]  # the default camera looks up
     with pytest.raises(skylayers.Error, match="shape"):
         small_sky.transmittance(a[:, :2], b[:, :2])
+
+
+def test_the_ambient_light_as_spherical_harmonics(small_sky):
+    small_sky.set("time", "2024-06-21T13:30:00+02:00")
+    small_sky.set("weather.cover_low", 0)
+    small_sky.set("high_clouds.cover", 0)
+    sh = small_sky.ambient()
+    assert sh.shape == (9, 3)
+    up = skylayers.irradiance(sh, (0, 0, 1))
+    assert all(5e3 < e < 3e4 for e in up) and up[2] > up[0]
+    with pytest.raises(skylayers.Error, match="9, 3"):
+        skylayers.irradiance(sh[:4], (0, 0, 1))

@@ -165,8 +165,8 @@ TEST(SkylayersApi, TheCameraTimeAndKeysSetWhatTheyName) {
 }
 
 TEST(SkylayersApi, TheLightsFollowTheClockInLux) {
-  // Zurich, midsummer: noon, then two hours after midnight.
-  skylayers::Sky sky = defaultSky();
+  // Zurich, midsummer: noon, then two hours after midnight; no low cloud in the way.
+  skylayers::Sky sky = defaultSky({"weather.cover_low=0"});
   sky.setCamera({.latitudeDeg = 47.37, .longitudeDeg = 8.54, .altitudeM = 500.0});
   sky.setTime("2024-06-21T13:30:00+02:00");
   const skylayers::Lighting noon = sky.lighting();
@@ -188,6 +188,43 @@ TEST(SkylayersApi, TheLightsFollowTheClockInLux) {
   EXPECT_EQ(night.key, "moon");
   EXPECT_LT(night.dayFactor, 0.05);
   for (double e : night.sun.illuminanceLux) EXPECT_EQ(e, 0.0);
+}
+
+TEST(SkylayersApi, TheSunBehindACloudIsDimmedByIt) {
+  // The default cumulus drift over the camera with the wind: every 10 minutes of an
+  // afternoon, the sun's light is the clear sky's times the clouds' transmittance toward it,
+  // which is the query's along the same line.
+  skylayers::Sky sky = defaultSky();
+  const skylayers::GeoPose pose = sky.camera();
+  const skylayers::GeoPoint camera{pose.latitudeDeg, pose.longitudeDeg, pose.altitudeM};
+  int shaded = 0, clear = 0;
+  for (int minute = 0; minute < 240 && (shaded == 0 || clear == 0); minute += 10) {
+    char time[40];
+    std::snprintf(time, sizeof time, "2024-06-21T%02d:%02d:00+02:00", 13 + minute / 60,
+                  minute % 60);
+    sky.setTime(time);
+    const skylayers::Lighting light = sky.lighting();
+    const skylayers::Lighting open =
+        skylayers::lightingAt(pose.latitudeDeg, pose.longitudeDeg, pose.altitudeM, time);
+    const double t = light.sun.cloudTransmittance;
+    for (int c = 0; c < 3; ++c)
+      EXPECT_NEAR(light.sun.illuminanceLux[c], open.sun.illuminanceLux[c] * t,
+                  1e-9 * open.sun.illuminanceLux[c]);
+    // The same line as a query: the camera turned to the sun, its centre pixel's ray.
+    const double up = std::sin(light.sun.elevationDeg * M_PI / 180.0);
+    const double length = (3500.0 - pose.altitudeM + 500.0) / up;
+    char heading[64], pitch[64];
+    std::snprintf(heading, sizeof heading, "camera.heading=%.9f", light.sun.azimuthDeg);
+    std::snprintf(pitch, sizeof pitch, "camera.pitch=%.9f", light.sun.elevationDeg);
+    sky.set(std::vector<std::string>{heading, pitch});
+    const double q = sky.transmittance(camera, sky.pixelPoint(16.0, 9.0, length)).cloud;
+    sky.setCamera(pose);
+    EXPECT_NEAR(t, q, 0.01 + 0.02 * q) << time;
+    shaded += t < 0.5;
+    clear += t == 1.0;
+  }
+  EXPECT_GT(shaded, 0) << "the sun was never behind a cloud";
+  EXPECT_GT(clear, 0) << "the sun was never clear";
 }
 
 TEST(SkylayersApi, AQuerysTransmittanceAlongAPixelsRayIsThatPixelsCloudCoverage) {
@@ -262,6 +299,67 @@ TEST(SkylayersApi, QueriesSeeTheCloudsAndTheAir) {
   EXPECT_GT(clear, 0);
   // Above every layer there is no cloud.
   EXPECT_EQ(sky.cloudExtinction({pose.latitudeDeg, pose.longitudeDeg, 12000.0}), 0.0);
+}
+
+// The illuminance on level ground from the sky above the horizon, integrated directly over
+// an equirectangular frame of the sphere (no spherical harmonics).
+std::array<double, 3> upwardIlluminance(skylayers::Sky& sky) {
+  skylayers::Sky probe = skylayers::Sky::fromText(
+      sky.sceneYaml(), "yaml", "probe",
+      {"camera.projection=equirectangular", "camera.heading=0", "output.width=64",
+       "output.height=32", "sun.disc_scale=0", "moon.disc_scale=0"});
+  const skylayers::Image beauty = probe.render().beauty;
+  std::array<double, 3> e{0.0, 0.0, 0.0};
+  for (int y = 0; y < beauty.height / 2; ++y) {
+    const double elevation = (0.5 - (y + 0.5) / beauty.height) * M_PI;
+    const double omega = (2.0 * M_PI / beauty.width) * (M_PI / beauty.height) * std::cos(elevation);
+    for (int x = 0; x < beauty.width; ++x)
+      for (int c = 0; c < 3; ++c)
+        e[c] += beauty.at(x, y, beauty.channels[c]) * 1e4 * std::sin(elevation) * omega;
+  }
+  return e;
+}
+
+TEST(SkylayersApi, TheAmbientIsTheSkysLightAsSphericalHarmonics) {
+  // A clear sky at midsummer noon.
+  skylayers::Sky sky =
+      defaultSky({"time=2024-06-21T13:30:00+02:00", "weather.cover_low=0", "high_clouds.cover=0"});
+  const std::vector<float> before = sky.render().beauty.pixels;
+  const skylayers::SphericalHarmonics clear = sky.ambient();
+  const std::array<double, 3> up = skylayers::irradiance(clear, {0.0, 0.0, 1.0});
+  const std::array<double, 3> down = skylayers::irradiance(clear, {0.0, 0.0, -1.0});
+  const std::array<double, 3> direct = upwardIlluminance(sky);
+  std::printf(
+      "clear noon: up %.0f %.0f %.0f lux (direct sum %.0f %.0f %.0f), down %.0f %.0f %.0f\n", up[0],
+      up[1], up[2], direct[0], direct[1], direct[2], down[0], down[1], down[2]);
+  for (int c = 0; c < 3; ++c) {
+    // Diffuse light on level ground under a clear midsummer noon sky: 5-30 klux.
+    EXPECT_GT(up[c], 5.0e3) << c;
+    EXPECT_LT(up[c], 3.0e4) << c;
+    // Three bands hold the cosine lobe to a few per cent; the ground below adds a little.
+    EXPECT_NEAR(up[c], direct[c], 0.1 * direct[c]) << c;
+  }
+  // From below, the ground (albedo 0.1, 0.12, 0.07) sends back that share of the sun's and
+  // the sky's light on it; the air between adds a little, most in blue, so red and green
+  // are checked.
+  const skylayers::Lighting light = sky.lighting();
+  const double albedo[2] = {0.1, 0.12};
+  for (int c = 0; c < 2; ++c) {
+    const double onGround =
+        light.sun.illuminanceLux[c] * std::sin(light.sun.elevationDeg * M_PI / 180.0) + up[c];
+    EXPECT_NEAR(down[c], albedo[c] * onGround, 0.25 * albedo[c] * onGround) << c;
+  }
+  EXPECT_GT(up[2], 1.3 * up[0]) << "the clear sky's light is blue";
+  // The Sky's own frame is as it was.
+  EXPECT_EQ(sky.render().beauty.pixels, before);
+
+  // Broken sunlit cumulus send down more diffuse light than the clear sky.
+  sky.set("weather.cover_low", "0.35");
+  EXPECT_GT(skylayers::irradiance(sky.ambient(), {0.0, 0.0, 1.0})[1], 1.2 * up[1]);
+
+  sky.setTime("2024-06-22T02:00:00+02:00");
+  const std::array<double, 3> night = skylayers::irradiance(sky.ambient(), {0.0, 0.0, 1.0});
+  for (int c = 0; c < 3; ++c) EXPECT_LT(std::abs(night[c]), 1.0) << c;
 }
 
 TEST(SkylayersApi, TheDataComesFromTheSourceTreeHere) {

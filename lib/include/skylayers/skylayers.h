@@ -114,9 +114,12 @@ struct Light {
   std::array<double, 3> direction{};  // unit vector toward the body: east, north, up
   double azimuthDeg = 0.0;            // from north through east
   double elevationDeg = 0.0;          // apparent (refracted)
-  // Illuminance at the ground on a surface facing the body, after the atmosphere and the
-  // horizon, in lux, per linear Rec.709 channel.
+  // Illuminance on a surface facing the body, after the atmosphere, the horizon and the
+  // clouds between (cloudTransmittance), in lux, per linear Rec.709 channel.
   std::array<double, 3> illuminanceLux{};
+  // The share of the body's light the clouds let through on the line toward it (1: none in
+  // the way), from the same field the queries read. 1 from lightingAt, which knows no clouds.
+  double cloudTransmittance = 1.0;
 };
 
 struct Lighting {
@@ -151,8 +154,20 @@ struct CloudCover {
   double type = 0.0;  // 0 stratiform, 0.5 cellular, 1 convective
 };
 
+// Nine real spherical-harmonic coefficients (bands l = 0, 1, 2) per linear Rec.709 channel,
+// over directions in east-north-up (x east, y north, z up), in the order Y00, Y1-1 (y),
+// Y10 (z), Y11 (x), Y2-2 (xy), Y2-1 (yz), Y20 (3z^2 - 1), Y21 (xz), Y22 (x^2 - y^2), with
+// the usual constants (0.282095, 0.488603, 1.092548, 0.315392, 0.546274).
+using SphericalHarmonics = std::array<std::array<double, 3>, 9>;
+
+// The illuminance (lux, per channel) on a surface with unit normal `normal` (ENU) under
+// radiance `sh` in cd/m^2: the cosine lobe's convolution (Ramamoorthi and Hanrahan 2001:
+// A0 = pi, A1 = 2 pi / 3, A2 = pi / 4).
+SKYLAYERS_API std::array<double, 3> irradiance(const SphericalHarmonics& sh,
+                                               const std::array<double, 3>& normal);
+
 // The sun and moon at a place and instant with the default scene's atmosphere, with no Sky
-// and no GPU: where they are and how much light they give (an ephemeris).
+// and no GPU: where they are and how much light they give under a clear sky (an ephemeris).
 SKYLAYERS_API Lighting lightingAt(double latitudeDeg, double longitudeDeg, double altitudeM,
                                   const std::string& iso8601);
 
@@ -199,13 +214,23 @@ public:
   // another reuse each other's clouds, as the window does.
   Frame render(const RenderRequest& request = {});
 
-  // The sun and moon at the camera's place and time (CPU only, no frame needed).
+  // The sun and moon at the camera's place and time, behind the clouds there: on the CPU,
+  // no frame needed (the clouds' field is made at the first call, as for the queries below).
   Lighting lighting() const;
   // The same at another instant or place (altitude in metres above sea level), with this
-  // scene's atmosphere; the Sky's own time and camera stay as they are.
+  // scene's atmosphere and clouds; the Sky's own time and camera stay as they are. Each call
+  // makes the clouds' field for that instant and place.
   Lighting lighting(const std::string& iso8601) const;
   Lighting lighting(const std::string& iso8601, double latitudeDeg, double longitudeDeg,
                     double altitudeM) const;
+
+  // The light around the camera for the host's ambient: the radiance (cd/m^2) of the whole
+  // sphere as the scene shows it (the sky, the clouds, the ground below the horizon, through
+  // the air) without the sun's and moon's discs, which lighting() gives as directional
+  // lights, projected on spherical harmonics. It renders the sphere at 64 x 32 (about a
+  // second on lavapipe): once per change of time or weather, not every frame. The Sky's own
+  // frames and their temporal reuse are left as they were.
+  SphericalHarmonics ambient();
 
   // --- Queries, on the CPU ---
   // From the same density field the GPU marches (engine/render/cloud_field.h: the twin of
