@@ -50,6 +50,19 @@ grep -q "^error bad_input: set camera.latitud=10: unknown key" "$work/consumer.t
 (cd "$work" && "$prefix/bin/skyrender" render --width 24 --height 16 --out "$work/out") \
   >"$work/skyrender.txt" 2>&1 || { cat "$work/skyrender.txt" >&2; fail "installed skyrender"; }
 ls "$work"/out/*.exr >/dev/null 2>&1 || fail "installed skyrender wrote no EXR"
+# The headless example (examples/headless), as its README comment builds it.
+run "$cmake" -S "$source/examples/headless" -B "$work/headless" -DCMAKE_PREFIX_PATH="$prefix" \
+  -DCMAKE_BUILD_TYPE=Release
+run "$cmake" --build "$work/headless"
+(cd "$work" && "$work/headless/headless" "$work/sunset.png") >"$work/headless.txt" 2>&1 ||
+  { cat "$work/headless.txt" >&2; fail "the headless example failed"; }
+cat "$work/headless.txt"
+[ -s "$work/sunset.png" ] || fail "the headless example wrote no PNG"
+grep -q "^wrote .*sunset.png (320x180, " "$work/headless.txt" || fail "the headless example's output"
+(cd "$work" && "$work/headless/headless" "$work/x.png" /nonexistent.yaml) >"$work/bad.txt" 2>&1 &&
+  fail "the headless example took a missing scene"
+grep -q "nonexistent.yaml" "$work/bad.txt" || fail "the headless example's error does not name the file"
+
 module=$(find "$prefix" -path '*dist-packages/skylayers*.so')
 [ -n "$module" ] || fail "the install lacks the Python module"
 (cd "$work" && PYTHONPATH=$(dirname "$module") "$python" -c '
