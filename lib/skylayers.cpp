@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <filesystem>
 #include <thread>
 #include <cstdio>
 #include <optional>
@@ -26,6 +27,7 @@
 #include "engine/render/render_files.h"
 #include "engine/render/renderer.h"
 #include "engine/scene/scene_io.h"
+#include "engine/weather/forecast_map.h"
 #include "engine/weather/geo.h"
 #include "engine/shader/shader_compiler.h"
 
@@ -121,6 +123,29 @@ const char* version() {
 
 std::string dataDirectory() {
   return sky::dataRoot().string();
+}
+
+WeatherGrid weatherMap(const std::string& file, const std::vector<std::string>& overrides) {
+  return translated([&] {
+    std::vector<std::string> keys = overrides;
+    keys.push_back("weather.source=file");
+    // Quoted so any path reads as a YAML string (skyrender weather does the same).
+    std::string quoted;
+    for (char c : std::filesystem::absolute(file).string())
+      quoted += (c == '"' || c == '\\') ? std::string("\\") + c : std::string(1, c);
+    keys.push_back("weather.file=\"" + quoted + "\"");
+    const sky::Scene scene =
+        sky::loadSceneText(skyDefaultSceneText(), sky::ConfigFormat::Yaml, "<default scene>", keys);
+    sky::WeatherSource source;
+    const sky::ForecastMap forecast = sky::forecastMap(scene, source);
+    WeatherGrid grid;
+    grid.image = imageOf("weather", forecast.image, forecast.image.layers.at(0));
+    grid.southDeg = forecast.map.region.lat[0];
+    grid.northDeg = forecast.map.region.lat[1];
+    grid.westDeg = forecast.map.region.lon[0];
+    grid.eastDeg = forecast.map.region.lon[1];
+    return grid;
+  });
 }
 
 float Image::at(int x, int y, const std::string& channel) const {

@@ -159,6 +159,39 @@ PYBIND11_MODULE(skylayers, m) {
       py::arg("sh"), py::arg("normal"),
       "Illuminance (lux, R, G, B) on a surface with unit normal (east, north, up) under "
       "Sky.ambient()'s radiance.");
+  m.def(
+      "weather",
+      [](const py::object& file, const py::kwargs& keys) {
+        std::vector<std::string> overrides;
+        for (const auto& [key, value] : keys)
+          overrides.push_back(key.cast<std::string>() + "=" + sceneValue(value));
+        const std::string path = py::module_::import("os").attr("fspath")(file).cast<std::string>();
+        skylayers::WeatherGrid grid;
+        {
+          py::gil_scoped_release release;
+          grid = skylayers::weatherMap(path, overrides);
+        }
+        py::dict out;
+        const skylayers::Image& image = grid.image;
+        const size_t n = image.channels.size();
+        for (size_t c = 0; c < n; ++c) {
+          py::array_t<float> a({py::ssize_t(image.height), py::ssize_t(image.width)});
+          float* o = a.mutable_data();
+          for (size_t i = 0; i < size_t(image.width) * size_t(image.height); ++i)
+            o[i] = image.pixels[i * n + c];
+          out[py::str(image.channels[c])] = a;
+        }
+        py::dict region;
+        region["lat"] = py::make_tuple(grid.southDeg, grid.northDeg);
+        region["lon"] = py::make_tuple(grid.westDeg, grid.eastDeg);
+        out["region"] = region;
+        return out;
+      },
+      py::arg("file"),
+      "The cloud map of a GRIB2 or NetCDF forecast file as skyrender weather writes it: a "
+      "dict of (H, W) float32 arrays (cover_low, cover_mid, cover_high, type, and each "
+      "layer's base and top in m; row 0 north) and 'region'. Scene keys as "
+      "**{'weather.region.lat': [0, 55]}.");
   m.def("data_directory", &skylayers::dataDirectory,
         "The folder the shaders and configs are read from.");
   m.def(

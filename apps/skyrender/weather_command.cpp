@@ -18,6 +18,7 @@
 #include "engine/scene/scene_io.h"
 #include "engine/weather/cloud_layers_from_fields.h"
 #include "engine/weather/coverage_metrics.h"
+#include "engine/weather/forecast_map.h"
 #include "engine/weather/weather_map.h"
 #include "engine/weather/weather_source.h"
 
@@ -81,46 +82,17 @@ int weatherCommand(const std::vector<std::string>& argv) {
   OutputFolder folder(args.value("--out").value_or("out"), "--out");
   const fs::path& outDir = folder.path();
 
-  // The map the renderer would draw in the scene's first frame (weather.time, advection and
-  // evolution included).
-  // Without weather.region the map shows the file's whole grid.
+  // The map the renderer would draw in the scene's first frame, with the layers' altitudes
+  // (engine/weather/forecast_map.h).
   WeatherSource source;
-  source.setWholeDataRegion(true);
-  const WeatherInputs inputs = weatherInputs(scene);
-  const WeatherMap map = source.map(inputs, scene.time.start);
+  const ForecastMap forecast = forecastMap(scene, source);
+  const WeatherMap& map = forecast.map;
+  const WeatherInputs& inputs = forecast.inputs;
   const WeatherFields& fields = *source.fields();
-  const double time = weatherTimeUnix(inputs, scene.time.start);
-  const std::array<std::vector<float>, 6> altitudes =
-      layerAltitudeMaps(fields, time, scene.weather, map.region);
+  const double time = forecast.timeUnix;
+  const std::array<std::vector<float>, 6>& altitudes = forecast.altitudes;
+  const LayeredImage& image = forecast.image;
   const int w = int(map.width), h = int(map.height);
-
-  // The map: cover per layer, type, and each layer's base and top altitude per texel (m above
-  // sea level); the altitudes' region means, which the renderer uses, as header attributes.
-  LayeredImage image;
-  image.width = w;
-  image.height = h;
-  ImageLayer layer{"",
-                   {"cover_low", "cover_mid", "cover_high", "type", "low_base_m", "low_top_m",
-                    "mid_base_m", "mid_top_m", "high_base_m", "high_top_m"},
-                   {},
-                   true};  // FLOAT: altitudes in metres want more than half's 11 bits
-  const size_t channels = layer.channels.size();
-  layer.pixels.resize(size_t(w) * h * channels);
-  for (size_t i = 0; i < map.texels.size(); ++i) {
-    float* p = &layer.pixels[i * channels];
-    p[0] = map.texels[i].r;
-    p[1] = map.texels[i].g;
-    p[2] = map.coverHigh.empty() ? 0.0f : map.coverHigh[i];
-    p[3] = map.texels[i].b;
-    for (size_t a = 0; a < 6; ++a) p[4 + a] = altitudes[a][i];
-  }
-  image.layers.push_back(std::move(layer));
-  if (map.layerAltitudesM && map.highAltitudeM) {
-    const glm::dvec4& a = *map.layerAltitudesM;
-    const double means[6] = {a.x, a.y, a.z, a.w, map.highAltitudeM->x, map.highAltitudeM->y};
-    for (size_t i = 0; i < 6; ++i)
-      image.attributes["skylayers:" + image.layers[0].channels[4 + i]] = std::to_string(means[i]);
-  }
   const std::string stem = file.stem().string();
   const fs::path exrPath = outDir / (stem + ".weather.exr");
   const fs::path pngPath = outDir / (stem + ".weather.png");

@@ -145,3 +145,16 @@ def test_the_ambient_light_as_spherical_harmonics(small_sky):
     assert all(5e3 < e < 3e4 for e in up) and up[2] > up[0]
     with pytest.raises(skylayers.Error, match="9, 3"):
         skylayers.irradiance(sh[:4], (0, 0, 1))
+
+
+def test_a_forecasts_cloud_map_as_arrays():
+    grib = os.path.join(os.environ["SKY_DATA_DIR"],
+                        "tests/data/weather/gfs_2p5deg_r_gh_t_tcc_uv500.grib2")
+    m = skylayers.weather(grib, **{"weather.region.lat": [0, 55], "weather.region.lon": [90, 150]})
+    assert m["region"] == {"lat": (0.0, 55.0), "lon": (90.0, 150.0)}
+    low = m["cover_low"]
+    assert low.dtype == np.float32 and low.ndim == 2 and low.shape == m["low_top_m"].shape
+    assert 0.0 <= low.min() and low.max() <= 1.0 and low.max() > 0.1
+    assert (m["low_top_m"] >= m["low_base_m"]).all()
+    with pytest.raises(skylayers.Error, match="nonexistent"):
+        skylayers.weather("/nonexistent/forecast.grib2")

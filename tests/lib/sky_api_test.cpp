@@ -362,6 +362,51 @@ TEST(SkylayersApi, TheAmbientIsTheSkysLightAsSphericalHarmonics) {
   for (int c = 0; c < 3; ++c) EXPECT_LT(std::abs(night[c]), 1.0) << c;
 }
 
+TEST(SkylayersApi, AForecastsCloudMapIsSkyrenderWeathers) {
+  const std::string grib = std::string(std::getenv("SKY_DATA_DIR")) +
+                           "/tests/data/weather/gfs_2p5deg_r_gh_t_tcc_uv500.grib2";
+  const std::vector<std::string> region = {"weather.region.lat=[0,55]",
+                                           "weather.region.lon=[90,150]"};
+  const skylayers::WeatherGrid grid = skylayers::weatherMap(grib, region);
+  EXPECT_EQ(grid.southDeg, 0.0);
+  EXPECT_EQ(grid.northDeg, 55.0);
+  EXPECT_EQ(grid.westDeg, 90.0);
+  EXPECT_EQ(grid.eastDeg, 150.0);
+  ASSERT_EQ(grid.image.channels.size(), 10u);
+  EXPECT_EQ(grid.image.channels[0], "cover_low");
+  EXPECT_EQ(grid.image.channels[9], "high_top_m");
+
+  const fs::path dir =
+      fs::temp_directory_path() / ("skylayers-weather-" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  const std::string cmd = std::string(std::getenv("SKY_SKYRENDER")) + " weather " + grib +
+                          " --set 'weather.region.lat=[0,55]' --set 'weather.region.lon=[90,150]'" +
+                          " --out " + dir.string() + " >/dev/null";
+  const int status = std::system(cmd.c_str());
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << cmd;
+  const sky::LayeredImage exr = sky::readExr(dir / "gfs_2p5deg_r_gh_t_tcc_uv500.weather.exr");
+  fs::remove_all(dir);
+  ASSERT_EQ(exr.width, grid.image.width);
+  ASSERT_EQ(exr.height, grid.image.height);
+  const sky::ImageLayer* layer = exr.find("");
+  ASSERT_NE(layer, nullptr);
+  // The same map, channel by channel (the EXR reader orders them by name).
+  for (size_t c = 0; c < layer->channels.size(); ++c)
+    for (int y = 0; y < exr.height; ++y)
+      for (int x = 0; x < exr.width; ++x)
+        ASSERT_EQ(layer->pixels[(size_t(y) * exr.width + x) * layer->channels.size() + c],
+                  grid.image.at(x, y, layer->channels[c]))
+            << layer->channels[c] << " at " << x << ", " << y;
+
+  try {
+    skylayers::weatherMap("/nonexistent/forecast.grib2");
+    FAIL() << "a missing file was taken";
+  } catch (const skylayers::Error& e) {
+    EXPECT_EQ(e.kind(), skylayers::Error::Kind::BadInput);
+    EXPECT_THAT(e.what(), HasSubstr("/nonexistent/forecast.grib2"));
+  }
+}
+
 TEST(SkylayersApi, TheDataComesFromTheSourceTreeHere) {
   // In the build tree the tests set SKY_DATA_DIR to the source; the install's own lookup is
   // tests/package's.

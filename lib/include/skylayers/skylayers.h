@@ -154,6 +154,23 @@ struct CloudCover {
   double type = 0.0;  // 0 stratiform, 0.5 cellular, 1 convective
 };
 
+// A forecast's cloud map on its lat/lon grid.
+struct WeatherGrid {
+  // Channels cover_low, cover_mid, cover_high (0..1), type (0 stratiform, 0.5 cellular,
+  // 1 convective), then low_base_m, low_top_m, mid_base_m, mid_top_m, high_base_m,
+  // high_top_m (m above sea level); row 0 the north edge, column 0 the west edge, texel
+  // centres at (i + 0.5) / width of the region.
+  Image image;
+  double southDeg = 0.0, northDeg = 0.0, westDeg = 0.0, eastDeg = 0.0;
+};
+
+// The cloud map a GRIB2 or NetCDF forecast file gives, as `skyrender weather FILE` writes
+// it: what the renderer would draw at the default scene's first instant, over the file's
+// whole grid. `overrides` are scene keys: "weather.region.lat=[0,55]", "weather.cover=tcc",
+// "time=...", "weather.time=...". CPU only. BadInput naming the file or the key.
+SKYLAYERS_API WeatherGrid weatherMap(const std::string& file,
+                                     const std::vector<std::string>& overrides = {});
+
 // Nine real spherical-harmonic coefficients (bands l = 0, 1, 2) per linear Rec.709 channel,
 // over directions in east-north-up (x east, y north, z up), in the order Y00, Y1-1 (y),
 // Y10 (z), Y11 (x), Y2-2 (xy), Y2-1 (yz), Y20 (3z^2 - 1), Y21 (xz), Y22 (x^2 - y^2), with
