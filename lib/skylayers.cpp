@@ -4,6 +4,7 @@
 // the scene file's own reader, so a key set here is checked exactly as a file's or
 // skyrender's --set is, and errors name the key the same way.
 #include "skylayers/skylayers.h"
+#include "skylayers/vulkan.h"
 
 #include <algorithm>
 #include <atomic>
@@ -169,9 +170,21 @@ const Image& Frame::layer(const std::string& name) const {
                           "' (RenderRequest::layers reads back sky, high_clouds and clouds)");
 }
 
+namespace {
+
+std::unique_ptr<sky::Context> makeContext(const sky::ContextOptions& options,
+                                          const VulkanDevice* host) {
+  if (!host) return std::make_unique<sky::Context>(options);
+  return std::make_unique<sky::Context>(sky::ExternalDevice{
+      host->instance, host->physicalDevice, host->device, host->queueFamily, host->queueIndex});
+}
+
+}  // namespace
+
 struct Sky::Impl {
   sky::Scene scene;
-  sky::Context context;
+  std::unique_ptr<sky::Context> contextOwner;
+  sky::Context& context;
   sky::ShaderCompiler compiler;
   sky::OcioOutput ocio;
   sky::Renderer renderer;
@@ -190,9 +203,11 @@ struct Sky::Impl {
     return *field;
   }
 
-  Impl(sky::Scene s, const sky::ContextOptions& options, sky::OcioOutput o)
+  Impl(sky::Scene s, const sky::ContextOptions& options, const VulkanDevice* host,
+       sky::OcioOutput o)
       : scene(instant(std::move(s))),
-        context(options),
+        contextOwner(makeContext(options, host)),
+        context(*contextOwner),
         ocio(std::move(o)),
         renderer(context, compiler) {}
 
@@ -236,7 +251,8 @@ Sky Sky::fromFile(const std::string& path, const std::vector<std::string>& overr
   return translated([&] {
     sky::Scene scene = sky::loadSceneFile(path, overrides);
     sky::OcioOutput ocio = ocioFor(device, scene);
-    return Sky(std::make_unique<Impl>(std::move(scene), contextOptions(device), std::move(ocio)));
+    return Sky(std::make_unique<Impl>(std::move(scene), contextOptions(device), device.vulkan,
+                                      std::move(ocio)));
   });
 }
 
@@ -245,7 +261,8 @@ Sky Sky::fromText(const std::string& text, const std::string& format, const std:
   return translated([&] {
     sky::Scene scene = sky::loadSceneText(text, formatNamed(format), sourceName, overrides);
     sky::OcioOutput ocio = ocioFor(device, scene);
-    return Sky(std::make_unique<Impl>(std::move(scene), contextOptions(device), std::move(ocio)));
+    return Sky(std::make_unique<Impl>(std::move(scene), contextOptions(device), device.vulkan,
+                                      std::move(ocio)));
   });
 }
 

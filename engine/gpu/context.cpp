@@ -73,7 +73,8 @@ bool hasLayer(const char* name) {
 
 bool hasInstanceExtension(const char* name) {
   uint32_t count = 0;
-  if (VkResult r = vkEnumerateInstanceExtensionProperties(nullptr, &count, nullptr); r != VK_SUCCESS)
+  if (VkResult r = vkEnumerateInstanceExtensionProperties(nullptr, &count, nullptr);
+      r != VK_SUCCESS)
     loaderFailed(r);
   std::vector<VkExtensionProperties> exts(count);
   if (VkResult r = vkEnumerateInstanceExtensionProperties(nullptr, &count, exts.data());
@@ -149,11 +150,52 @@ Context::Context(const ContextOptions& options) : mOnValidation(options.onValida
   }
 }
 
+Context::Context(const ExternalDevice& host) {
+  if (!host.instance || !host.physicalDevice || !host.device)
+    internalError("a host's Vulkan device: the instance, physical device and device must be given");
+  mExternal = true;
+  mInstance = host.instance;
+  mPhysicalDevice = host.physicalDevice;
+  mDevice = host.device;
+  try {
+    readDeviceProperties();
+    if (mProperties.apiVersion < VK_API_VERSION_1_3)
+      internalError("the host's Vulkan device " + deviceName() + " does not support Vulkan 1.3");
+    uint32_t n = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(mPhysicalDevice, &n, nullptr);
+    std::vector<VkQueueFamilyProperties> families(n);
+    vkGetPhysicalDeviceQueueFamilyProperties(mPhysicalDevice, &n, families.data());
+    if (host.queueFamily >= n || !(families[host.queueFamily].queueFlags & VK_QUEUE_COMPUTE_BIT))
+      internalError("the host's queue family " + std::to_string(host.queueFamily) + " on " +
+                    deviceName() + " cannot run compute shaders");
+    if (host.queueIndex >= families[host.queueFamily].queueCount)
+      internalError("the host's queue family " + std::to_string(host.queueFamily) +
+                    " has no queue " + std::to_string(host.queueIndex));
+    mQueueFamily = host.queueFamily;
+    useQueue(host.queueIndex);
+  } catch (...) {
+    destroy();
+    throw;
+  }
+}
+
 Context::~Context() {
   destroy();
 }
 
 void Context::destroy() {
+  if (mExternal) {
+    // The host's device and instance stay; only what was made here goes, once the queue has
+    // finished this Context's work.
+    if (mDevice && mUploadPool) {
+      if (mQueue) vkQueueWaitIdle(mQueue);
+      vkDestroyCommandPool(mDevice, mUploadPool, nullptr);
+    }
+    mUploadPool = VK_NULL_HANDLE;
+    mDevice = VK_NULL_HANDLE;
+    mInstance = VK_NULL_HANDLE;
+    return;
+  }
   if (mDevice) {
     vkDeviceWaitIdle(mDevice);
     if (mUploadPool) vkDestroyCommandPool(mDevice, mUploadPool, nullptr);
@@ -302,6 +344,10 @@ void Context::pickDevice(const std::string& request) {
                  " does not support Vulkan 1.3 compute");
   }
   mPhysicalDevice = devices[static_cast<size_t>(chosen)];
+  readDeviceProperties();
+}
+
+void Context::readDeviceProperties() {
   vkGetPhysicalDeviceProperties(mPhysicalDevice, &mProperties);
   VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
   VkPhysicalDeviceProperties2 properties{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
@@ -340,7 +386,6 @@ void Context::createDevice(const std::vector<std::string>& extraExtensions) {
     if (families[i].queueFlags & VK_QUEUE_GRAPHICS_BIT) break;
   }
   mQueueFamily = static_cast<uint32_t>(family);
-  mTimestampValidBits = families[mQueueFamily].timestampValidBits;
 
   float priority = 1.0f;
   VkDeviceQueueCreateInfo queue{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
@@ -374,7 +419,16 @@ void Context::createDevice(const std::vector<std::string>& extraExtensions) {
   info.enabledExtensionCount = static_cast<uint32_t>(extensions.size());
   info.ppEnabledExtensionNames = extensions.data();
   SKY_VK(vkCreateDevice(mPhysicalDevice, &info, nullptr, &mDevice));
-  vkGetDeviceQueue(mDevice, mQueueFamily, 0, &mQueue);
+  useQueue(0);
+}
+
+void Context::useQueue(uint32_t index) {
+  uint32_t n = 0;
+  vkGetPhysicalDeviceQueueFamilyProperties(mPhysicalDevice, &n, nullptr);
+  std::vector<VkQueueFamilyProperties> families(n);
+  vkGetPhysicalDeviceQueueFamilyProperties(mPhysicalDevice, &n, families.data());
+  mTimestampValidBits = families[mQueueFamily].timestampValidBits;
+  vkGetDeviceQueue(mDevice, mQueueFamily, index, &mQueue);
 
   VkCommandPoolCreateInfo pool{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
   pool.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;

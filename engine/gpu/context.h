@@ -35,6 +35,19 @@ struct ContextOptions {
   static ContextOptions fromEnvironment();  // validation from $SKY_VALIDATION
 };
 
+// A device that belongs to someone else (a host program embedding the engine): Vulkan 1.3,
+// created with synchronization2 and maintenance4 enabled, and a queue of `queueFamily` that can
+// compute. The Context borrows it: it records, submits on that queue and waits for its own work,
+// and destroys only what it made. The host must keep the objects alive longer than the Context, and
+// not use the queue from another thread while the engine submits.
+struct ExternalDevice {
+  VkInstance instance = VK_NULL_HANDLE;
+  VkPhysicalDevice physicalDevice = VK_NULL_HANDLE;
+  VkDevice device = VK_NULL_HANDLE;
+  uint32_t queueFamily = 0;
+  uint32_t queueIndex = 0;
+};
+
 struct PhysicalDeviceInfo {
   uint32_t index;
   std::string name;
@@ -53,6 +66,10 @@ public:
 class Context {
 public:
   explicit Context(const ContextOptions& options = ContextOptions::fromEnvironment());
+  // On a host's device (ExternalDevice). Validation is the host's instance's business: no
+  // messenger is made, and validationMessageCount() stays 0. Internal error naming what is
+  // missing when the device cannot serve (no Vulkan 1.3, no compute on the family).
+  explicit Context(const ExternalDevice& host);
   ~Context();
   Context(const Context&) = delete;
   Context& operator=(const Context&) = delete;
@@ -103,6 +120,10 @@ private:
   void createInstance(const ContextOptions& options);
   void pickDevice(const std::string& request);
   void createDevice(const std::vector<std::string>& extraExtensions);
+  // The chosen physical device's properties, driver and shader defines.
+  void readDeviceProperties();
+  // The upload command pool and the queue's timestamp bits, for a device in hand.
+  void useQueue(uint32_t index);
   void destroy();
 
   VkInstance mInstance = VK_NULL_HANDLE;
@@ -118,6 +139,7 @@ private:
   VkCommandPool mUploadPool = VK_NULL_HANDLE;
   bool mValidation = false;
   bool mDebugUtils = false;
+  bool mExternal = false;  // the instance and device are the host's: not destroyed here
   PFN_vkSetDebugUtilsObjectNameEXT mSetObjectName = nullptr;
   std::function<void(std::string_view)> mOnValidation;
   std::atomic<uint64_t> mValidationMessages{0};

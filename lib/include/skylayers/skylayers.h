@@ -46,6 +46,9 @@ private:
   Kind mKind;
 };
 
+// The host's own Vulkan device: defined in <skylayers/vulkan.h>.
+struct VulkanDevice;
+
 // Where a Sky runs.
 struct DeviceOptions {
   // "" picks a GPU (discrete, then integrated, then virtual), and the CPU device lavapipe
@@ -57,6 +60,9 @@ struct DeviceOptions {
   bool validationFromEnvironment = true;  // false: `validation` alone decides
   // The OpenColorIO config of display images: "" is $OCIO, else the installed one.
   std::string ocioConfig;
+  // The host's Vulkan device to run on (<skylayers/vulkan.h>), instead of one of the Sky's
+  // own; `gpu` and `validation` are then ignored. Read during the Sky's creation only.
+  const VulkanDevice* vulkan = nullptr;
 };
 
 // A camera's place and direction on the Earth (WGS84 latitude and longitude, metres above
