@@ -289,12 +289,37 @@ std::string Sky::time() const {
 void Sky::setCamera(const GeoPose& pose) {
   set({"camera.latitude=" + exact(pose.latitudeDeg), "camera.longitude=" + exact(pose.longitudeDeg),
        "camera.altitude_m=" + exact(pose.altitudeM), "camera.heading=" + exact(pose.headingDeg),
-       "camera.pitch=" + exact(pose.pitchDeg)});
+       "camera.pitch=" + exact(pose.pitchDeg), "camera.roll=" + exact(pose.rollDeg)});
 }
 
 GeoPose Sky::camera() const {
   const sky::CameraSettings& c = mImpl->scene.camera;
-  return {c.latitude, c.longitude, c.altitudeM, c.heading, c.pitch};
+  return {c.latitude, c.longitude, c.altitudeM, c.heading, c.pitch, c.roll};
+}
+
+void Sky::setCameraAxes(const std::array<double, 3>& forward, const std::array<double, 3>& up) {
+  translated([&] {
+    constexpr double kDegPerRad = 180.0 / 3.14159265358979323846;
+    const glm::dvec3 f(forward[0], forward[1], forward[2]);
+    const glm::dvec3 u(up[0], up[1], up[2]);
+    if (!(glm::length(f) > 0.0) || !(glm::length(u) > 0.0))
+      sky::inputError("setCameraAxes: forward and up must be non-zero vectors");
+    const glm::dvec3 fn = glm::normalize(f);
+    // Up with its part along forward taken off: the camera's true up.
+    const glm::dvec3 ortho = u - glm::dot(u, fn) * fn;
+    if (glm::length(ortho) < 1e-9 * glm::length(u))
+      sky::inputError("setCameraAxes: up lies along forward");
+    const glm::dvec3 un = glm::normalize(ortho);
+    const double heading = std::atan2(fn.x, fn.y) * kDegPerRad;
+    const double pitch = std::asin(std::clamp(fn.z, -1.0, 1.0)) * kDegPerRad;
+    // makeViewState's unrolled axes for that heading and pitch, then the roll between them
+    // (engine/render/camera.cpp: up = sin(roll) level + cos(roll) levelUp).
+    const glm::dvec3 level(sky::directionFromAzEl(heading + 90.0, 0.0));
+    const glm::dvec3 levelUp = glm::normalize(glm::cross(level, fn));
+    const double roll = std::atan2(glm::dot(un, level), glm::dot(un, levelUp)) * kDegPerRad;
+    mImpl->apply({"camera.heading=" + exact(heading), "camera.pitch=" + exact(pitch),
+                  "camera.roll=" + exact(roll)});
+  });
 }
 
 void Sky::setSize(int width, int height) {

@@ -420,6 +420,9 @@ PYBIND11_MODULE(skylayers, m) {
           "The light around the camera without the sun's and moon's discs: (9, 3) spherical "
           "harmonic coefficients of the radiance in cd/m^2 (docs/library.md). Renders the "
           "sphere at 64 x 32.")
+      .def("set_camera_axes", &skylayers::Sky::setCameraAxes, py::arg("forward"), py::arg("up"),
+           "Points the camera along `forward` with `up` (east, north, up vectors, e.g. the "
+           "columns of a host's camera matrix): sets camera.heading, pitch and roll.")
       .def("scene_yaml", &skylayers::Sky::sceneYaml, "The effective scene as YAML.")
       .def_property_readonly("time", &skylayers::Sky::time)
       .def_property_readonly("device_name", &skylayers::Sky::deviceName)
@@ -432,6 +435,7 @@ PYBIND11_MODULE(skylayers, m) {
         d["altitude_m"] = p.altitudeM;
         d["heading"] = p.headingDeg;
         d["pitch"] = p.pitchDeg;
+        d["roll"] = p.rollDeg;
         return d;
       });
 }

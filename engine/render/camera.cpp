@@ -38,8 +38,13 @@ shared::ViewState makeViewState(const CameraSettings& cam, uint32_t width, uint3
   const glm::vec3 forward = directionFromAzEl(cam.heading, cam.pitch);
   // Looking straight up or down the heading still defines "right"; the cross product with
   // the zenith does not.
-  glm::vec3 right = directionFromAzEl(cam.heading + 90.0, 0.0);
-  const glm::vec3 up = glm::normalize(glm::cross(right, forward));
+  const glm::vec3 level = directionFromAzEl(cam.heading + 90.0, 0.0);
+  const glm::vec3 levelUp = glm::normalize(glm::cross(level, forward));
+  // Roll banks the camera right: its right side goes down, its top toward the old right.
+  const float c = static_cast<float>(std::cos(cam.roll * kDeg));
+  const float s = static_cast<float>(std::sin(cam.roll * kDeg));
+  const glm::vec3 right = c * level - s * levelUp;
+  const glm::vec3 up = s * level + c * levelUp;
   const double tanV = std::tan(0.5 * cam.verticalFov * kDeg);
   const double tanH = tanV * width / height;
   shared::ViewState v{};

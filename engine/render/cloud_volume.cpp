@@ -97,6 +97,7 @@ CloudVolume makeCloudVolume(const Scene& cloudScene, const LightingState& lighti
   m["camera_altitude_m"] = cam.altitudeM;
   m["camera_heading_deg"] = cam.heading;
   m["camera_pitch_deg"] = cam.pitch;
+  m["camera_roll_deg"] = cam.roll;
   m["camera_vertical_fov_deg"] = cam.verticalFov;
   m["camera_projection"] = std::string(enumName(cam.projection));
   m["camera_width"] = int64_t(view.size.x);

@@ -135,7 +135,7 @@ constexpr double kHistoryMaxMoveM = 5000.0;
 // light volume compare to see whether anything else changed.
 std::string settingsWithoutPose(const Scene& scene) {
   Scene s = scene;
-  s.camera.heading = s.camera.pitch = 0.0;
+  s.camera.heading = s.camera.pitch = s.camera.roll = 0.0;
   s.camera.latitude = s.camera.longitude = s.camera.altitudeM = 0.0;
   s.time.start = IsoTime{};
   s.time.end.reset();

@@ -47,7 +47,7 @@ struct OutputSettings {
 };
 
 // camera.projection: a pinhole, or the whole sphere (360 x 180 degrees centred on `heading`;
-// pitch and vertical_fov are ignored).
+// pitch, roll and vertical_fov are ignored).
 enum class CameraProjection { Perspective, Equirectangular };
 constexpr auto enumNames(CameraProjection) {
   return std::to_array<EnumName<CameraProjection>>(
@@ -69,6 +69,7 @@ struct CameraSettings {
   double altitudeM = 500.0;   // metres above sea level, -500..100000
   double heading = 180.0;     // degrees clockwise from north, -360..360
   double pitch = 15.0;        // degrees above the horizon, -90..90
+  double roll = 0.0;          // degrees about the view direction, -180..180, + banks right
   double verticalFov = 60.0;  // degrees, 1..179 (perspective)
   CameraProjection projection = CameraProjection::Perspective;
   // Observer: a camera at latitude/longitude/altitude_m looking along heading/pitch.

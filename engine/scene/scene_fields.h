@@ -59,11 +59,14 @@ void describe(V& v, CameraSettings& s) {
   v.field("heading", s.heading, NumberRange{-360, 360},
           "view direction in degrees clockwise from north");
   v.field("pitch", s.pitch, NumberRange{-90, 90}, "view direction in degrees above the horizon");
+  v.field("roll", s.roll, NumberRange{-180, 180},
+          "rotation about the view direction in degrees: positive banks the camera right, as an "
+          "aircraft, so the image turns counter-clockwise (perspective)");
   v.field("vertical_fov", s.verticalFov, NumberRange{1, 179},
           "vertical field of view in degrees (perspective)");
   v.field("projection", s.projection,
           "perspective (a pinhole camera) or equirectangular (the whole sphere, 360 x 180 "
-          "degrees centred on heading; pitch and vertical_fov are ignored)");
+          "degrees centred on heading; pitch, roll and vertical_fov are ignored)");
   v.field("mode", s.mode,
           "observer (a camera at latitude, longitude and altitude_m) or geographic_topdown (the "
           "weather region mapped exactly onto the image, row 0 north, column 0 west, looking "

@@ -407,6 +407,51 @@ TEST(SkylayersApi, AForecastsCloudMapIsSkyrenderWeathers) {
   }
 }
 
+TEST(SkylayersApi, ARolledCameraTurnsTheImage) {
+  // Banked 90 degrees right, the right wing down: the image's right edge looks down at the
+  // ground, its left edge up (the world turns counter-clockwise in the image).
+  skylayers::Sky sky = defaultSky({"camera.pitch=0", "camera.heading=90"});
+  sky.set("camera.roll", "90");
+  const skylayers::GeoPose pose = sky.camera();
+  EXPECT_EQ(pose.rollDeg, 90.0);
+  EXPECT_LT(sky.pixelPoint(31.5, 9.0, 1000.0).altitudeM, pose.altitudeM - 400.0);
+  EXPECT_GT(sky.pixelPoint(0.5, 9.0, 1000.0).altitudeM, pose.altitudeM + 400.0);
+  // Rolled 180 degrees, the sky is the unrolled image turned upside down: pixel (x, y) is
+  // pixel (W - 1 - x, H - 1 - y) of the level camera.
+  sky.set("camera.pitch", "20");
+  sky.set("camera.roll", "0");
+  const skylayers::Frame level = sky.render({.layers = true});
+  sky.set("camera.roll", "180");
+  const skylayers::Frame turned = sky.render({.layers = true});
+  const skylayers::Image& a = level.layer("sky");
+  const skylayers::Image& b = turned.layer("sky");
+  double worst = 0.0;
+  for (int y = 0; y < a.height; ++y)
+    for (int x = 0; x < a.width; ++x)
+      for (const char* c : {"R", "G", "B"}) {
+        const double u = a.at(x, y, c), v = b.at(a.width - 1 - x, a.height - 1 - y, c);
+        worst = std::max(worst, std::abs(u - v) / std::max(std::abs(u), 1e-3));
+      }
+  EXPECT_LT(worst, 1e-3);
+  // From a host's axes: looking north-east 10 degrees up, banked 30 degrees left.
+  const double h = 45.0 * M_PI / 180.0, p = 10.0 * M_PI / 180.0, r = -30.0 * M_PI / 180.0;
+  const std::array<double, 3> f = {std::sin(h) * std::cos(p), std::cos(h) * std::cos(p),
+                                   std::sin(p)};
+  const std::array<double, 3> level3 = {std::cos(h), -std::sin(h), 0.0};
+  // levelUp = level x forward; up = sin(r) level + cos(r) levelUp.
+  const std::array<double, 3> levelUp = {level3[1] * f[2] - level3[2] * f[1],
+                                         level3[2] * f[0] - level3[0] * f[2],
+                                         level3[0] * f[1] - level3[1] * f[0]};
+  std::array<double, 3> up;
+  for (int i = 0; i < 3; ++i) up[i] = std::sin(r) * level3[i] + std::cos(r) * levelUp[i];
+  sky.setCameraAxes(f,
+                    {2.0 * up[0] + 0.3 * f[0], 2.0 * up[1] + 0.3 * f[1], 2.0 * up[2] + 0.3 * f[2]});
+  EXPECT_NEAR(sky.camera().headingDeg, 45.0, 1e-9);
+  EXPECT_NEAR(sky.camera().pitchDeg, 10.0, 1e-9);
+  EXPECT_NEAR(sky.camera().rollDeg, -30.0, 1e-6);
+  EXPECT_THROW(sky.setCameraAxes(f, f), skylayers::Error);
+}
+
 TEST(SkylayersApi, TheDataComesFromTheSourceTreeHere) {
   // In the build tree the tests set SKY_DATA_DIR to the source; the install's own lookup is
   // tests/package's.

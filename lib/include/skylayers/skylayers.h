@@ -66,13 +66,15 @@ struct DeviceOptions {
 };
 
 // A camera's place and direction on the Earth (WGS84 latitude and longitude, metres above
-// sea level; heading clockwise from north, pitch above the horizon, all in degrees).
+// sea level; heading clockwise from north, pitch above the horizon, roll about the view
+// direction, positive banking right as an aircraft does; all in degrees).
 struct GeoPose {
   double latitudeDeg = 0.0;
   double longitudeDeg = 0.0;
   double altitudeM = 0.0;
   double headingDeg = 0.0;
   double pitchDeg = 0.0;
+  double rollDeg = 0.0;
 };
 
 // One image of a frame, 32-bit floats, row 0 the top, channels interleaved.
@@ -226,6 +228,11 @@ public:
   std::string time() const;
   void setCamera(const GeoPose& pose);
   GeoPose camera() const;
+  // The camera's direction from a host's own camera axes: its forward (the view direction)
+  // and up vectors in the camera's east-north-up frame (the columns of a local camera
+  // matrix), which need not be unit or exactly orthogonal. Sets heading, pitch and roll;
+  // BadInput for a zero vector or an up along forward.
+  void setCameraAxes(const std::array<double, 3>& forward, const std::array<double, 3>& up);
   // The image size in pixels and, for a perspective camera, the vertical field of view.
   void setSize(int width, int height);
   void setVerticalFov(double degrees);
