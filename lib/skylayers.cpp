@@ -330,6 +330,33 @@ void Sky::setVerticalFov(double degrees) {
   set("camera.vertical_fov", exact(degrees));
 }
 
+void Sky::setProjectionMatrix(const std::array<double, 16>& m) {
+  translated([&] {
+    // m[c * 4 + r]: column c, row r. A symmetric perspective matrix has m[0][0], m[1][1] on
+    // the diagonal, w = -z or z in the third column's last row, and no off-centre terms.
+    const double sx = m[0], sy = m[5], offX = m[8], offY = m[9], w = m[11], last = m[15];
+    if (!(std::abs(std::abs(w) - 1.0) < 1e-9) || last != 0.0)
+      sky::inputError("setProjectionMatrix: not a perspective matrix (m[2][3] = " + exact(w) +
+                      ", m[3][3] = " + exact(last) + ")");
+    if (std::abs(offX) > 1e-9 || std::abs(offY) > 1e-9 || m[1] != 0.0 || m[4] != 0.0)
+      sky::inputError(
+          "setProjectionMatrix: an off-centre or skewed frustum is not supported (the camera "
+          "is a symmetric pinhole: give the vertical field of view)");
+    if (!(std::abs(sx) > 0.0) || !(std::abs(sy) > 0.0) || !std::isfinite(sx) || !std::isfinite(sy))
+      sky::inputError("setProjectionMatrix: the matrix has no field of view");
+    const sky::OutputSettings& out = mImpl->scene.output;
+    const double aspect = std::abs(sy) / std::abs(sx);
+    const double image = double(out.width) / double(out.height);
+    if (std::abs(aspect / image - 1.0) > 1e-3)
+      sky::inputError("setProjectionMatrix: its aspect " + exact(aspect) + " is not the image's " +
+                      std::to_string(out.width) + "x" + std::to_string(out.height) +
+                      " (setSize first)");
+    constexpr double kDegPerRad = 180.0 / 3.14159265358979323846;
+    mImpl->apply({"camera.vertical_fov=" + exact(2.0 * std::atan(1.0 / std::abs(sy)) * kDegPerRad),
+                  "camera.projection=perspective"});
+  });
+}
+
 std::string Sky::sceneYaml() const {
   return translated(
       [&] { return sky::writeScene(mImpl->scene.withAbsolutePaths(), sky::ConfigFormat::Yaml); });

@@ -423,6 +423,21 @@ PYBIND11_MODULE(skylayers, m) {
       .def("set_camera_axes", &skylayers::Sky::setCameraAxes, py::arg("forward"), py::arg("up"),
            "Points the camera along `forward` with `up` (east, north, up vectors, e.g. the "
            "columns of a host's camera matrix): sets camera.heading, pitch and roll.")
+      .def(
+          "set_projection_matrix",
+          [](skylayers::Sky& sky,
+             const py::array_t<double, py::array::c_style | py::array::forcecast>& matrix) {
+            if (matrix.ndim() != 2 || matrix.shape(0) != 4 || matrix.shape(1) != 4)
+              throw skylayers::Error(skylayers::Error::Kind::BadInput,
+                                     "set_projection_matrix: expected a (4, 4) matrix");
+            std::array<double, 16> columnMajor;
+            for (int c = 0; c < 4; ++c)
+              for (int r = 0; r < 4; ++r) columnMajor[size_t(c * 4 + r)] = matrix.at(r, c);
+            sky.setProjectionMatrix(columnMajor);
+          },
+          py::arg("matrix"),
+          "The vertical field of view from a symmetric perspective matrix, (4, 4) indexed "
+          "[row, column] as written in maths (OpenGL or Vulkan clip conventions).")
       .def("scene_yaml", &skylayers::Sky::sceneYaml, "The effective scene as YAML.")
       .def_property_readonly("time", &skylayers::Sky::time)
       .def_property_readonly("device_name", &skylayers::Sky::deviceName)

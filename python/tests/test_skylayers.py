@@ -158,3 +158,19 @@ def test_a_forecasts_cloud_map_as_arrays():
     assert (m["low_top_m"] >= m["low_base_m"]).all()
     with pytest.raises(skylayers.Error, match="nonexistent"):
         skylayers.weather("/nonexistent/forecast.grib2")
+
+
+def test_a_hosts_camera_axes_and_projection_matrix(small_sky):
+    # Looking east, level, banked 20 degrees right; then a 50 degree perspective matrix.
+    r = math.radians(20)
+    small_sky.set_camera_axes((1, 0, 0), (0, -math.sin(r), math.cos(r)))
+    cam = small_sky.camera
+    assert cam["heading"] == pytest.approx(90) and cam["pitch"] == pytest.approx(0)
+    assert cam["roll"] == pytest.approx(20)
+    f = 1 / math.tan(math.radians(25))
+    m = np.zeros((4, 4))
+    m[0, 0], m[1, 1], m[2, 2], m[2, 3], m[3, 2] = f * 18 / 32, f, -1.0, -0.2, -1.0
+    small_sky.set_projection_matrix(m)
+    assert "vertical_fov: 50" in small_sky.scene_yaml()
+    with pytest.raises(skylayers.Error, match="4, 4"):
+        small_sky.set_projection_matrix(np.eye(3))

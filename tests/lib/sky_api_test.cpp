@@ -452,6 +452,39 @@ TEST(SkylayersApi, ARolledCameraTurnsTheImage) {
   EXPECT_THROW(sky.setCameraAxes(f, f), skylayers::Error);
 }
 
+TEST(SkylayersApi, AHostsProjectionMatrixSetsTheFieldOfView) {
+  skylayers::Sky sky = defaultSky();  // 32 x 18
+  // glm::perspective(45 degrees, 32 / 18, 0.1, 1000), column-major.
+  const double f = 1.0 / std::tan(0.5 * 45.0 * M_PI / 180.0), aspect = 32.0 / 18.0;
+  const double n = 0.1, far = 1000.0;
+  std::array<double, 16> m{};
+  m[0] = f / aspect;
+  m[5] = f;
+  m[10] = -(far + n) / (far - n);
+  m[11] = -1.0;
+  m[14] = -2.0 * far * n / (far - n);
+  sky.setProjectionMatrix(m);
+  EXPECT_THAT(sky.sceneYaml(), HasSubstr("vertical_fov: 45"));
+  // Vulkan's flipped y (m[1][1] < 0) is the same field of view.
+  m[5] = -f;
+  sky.setProjectionMatrix(m);
+  EXPECT_THAT(sky.sceneYaml(), HasSubstr("vertical_fov: 45"));
+  std::array<double, 16> offCentre = m;
+  offCentre[8] = 0.2;
+  EXPECT_THROW(sky.setProjectionMatrix(offCentre), skylayers::Error);
+  std::array<double, 16> wide = m;
+  wide[0] = f;  // square pixels of a square image, not 32 x 18
+  try {
+    sky.setProjectionMatrix(wide);
+    FAIL() << "a matrix of another aspect was taken";
+  } catch (const skylayers::Error& e) {
+    EXPECT_THAT(e.what(), HasSubstr("32x18"));
+  }
+  std::array<double, 16> ortho{};
+  ortho[0] = ortho[5] = ortho[10] = ortho[15] = 1.0;
+  EXPECT_THROW(sky.setProjectionMatrix(ortho), skylayers::Error);
+}
+
 TEST(SkylayersApi, TheDataComesFromTheSourceTreeHere) {
   // In the build tree the tests set SKY_DATA_DIR to the source; the install's own lookup is
   // tests/package's.

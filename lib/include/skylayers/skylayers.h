@@ -236,6 +236,11 @@ public:
   // The image size in pixels and, for a perspective camera, the vertical field of view.
   void setSize(int width, int height);
   void setVerticalFov(double degrees);
+  // The field of view from a host's projection matrix (column-major, OpenGL or Vulkan clip
+  // conventions alike): a symmetric perspective frustum, whose m[1][1] = 1 / tan(fov / 2).
+  // BadInput for an orthographic or off-centre matrix, or one whose aspect (m[1][1] /
+  // m[0][0]) differs from the image's by more than 0.1 %.
+  void setProjectionMatrix(const std::array<double, 16>& columnMajor);
 
   // The effective scene (defaults filled in) as YAML; a file of it renders the same.
   std::string sceneYaml() const;
