@@ -9,10 +9,10 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
-#include <filesystem>
-#include <thread>
 #include <cstdio>
+#include <filesystem>
 #include <optional>
+#include <thread>
 #include <utility>
 
 #include "apps/common/default_scene.h"
@@ -28,23 +28,29 @@
 #include "engine/render/render_files.h"
 #include "engine/render/renderer.h"
 #include "engine/scene/scene_io.h"
+#include "engine/shader/shader_compiler.h"
 #include "engine/weather/forecast_map.h"
 #include "engine/weather/geo.h"
-#include "engine/shader/shader_compiler.h"
 
 namespace skylayers {
 
 namespace {
 
-// The engine's errors as the API's: the same one line, the same kind.
+// The engine's errors as the API's: the same one line, the same kind. Anything else a
+// library underneath throws (a filesystem error, out of memory) is Internal, so a host
+// catches skylayers::Error alone.
 template <typename F>
 auto translated(F&& f) -> decltype(f()) {
   try {
     return f();
+  } catch (const Error&) {
+    throw;
   } catch (const sky::Error& e) {
     throw Error(
         e.kind() == sky::ErrorKind::BadInput ? Error::Kind::BadInput : Error::Kind::Internal,
         e.what());
+  } catch (const std::exception& e) {
+    throw Error(Error::Kind::Internal, e.what());
   }
 }
 
