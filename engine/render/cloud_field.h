@@ -5,7 +5,7 @@
 // and the density slice read it), made from the frame's own CloudParams, weather map and
 // baked noise, so it is the field the raymarch marches through. The air between two points
 // is the physical atmosphere's medium (shaders/common/atmosphere.glsl atmosphereMedium).
-// tests/render/cloud_field_test.cpp compares it with the GPU's density export.
+// tests/cloud_volume/cloud_field_test.cpp compares it with the GPU's density export.
 #include <optional>
 
 #include <glm/vec3.hpp>
