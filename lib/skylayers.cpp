@@ -135,12 +135,7 @@ std::string dataDirectory() {
 WeatherGrid weatherMap(const std::string& file, const std::vector<std::string>& overrides) {
   return translated([&] {
     std::vector<std::string> keys = overrides;
-    keys.push_back("weather.source=file");
-    // Quoted so any path reads as a YAML string (skyrender weather does the same).
-    std::string quoted;
-    for (char c : std::filesystem::absolute(file).string())
-      quoted += (c == '"' || c == '\\') ? std::string("\\") + c : std::string(1, c);
-    keys.push_back("weather.file=\"" + quoted + "\"");
+    for (std::string& k : sky::forecastFileOverrides(file)) keys.push_back(std::move(k));
     const sky::Scene scene =
         sky::loadSceneText(skyDefaultSceneText(), sky::ConfigFormat::Yaml, "<default scene>", keys);
     sky::WeatherSource source;
@@ -195,16 +190,17 @@ struct Sky::Impl {
   sky::OcioOutput ocio;
   sky::Renderer renderer;
   sky::ExposureMeter exposure;  // a histogram exposure adapts from frame to frame
-  // The queries' density field and the scene it was made for (the scene written out).
+  // Counts the scene's changes (apply()); the queries' density field is made again when it
+  // moves, and not on every query.
+  uint64_t sceneRevision = 0;
   std::optional<sky::CloudField> field;
-  std::string fieldScene;
+  uint64_t fieldRevision = 0;
 
   const sky::CloudField& cloudField() {
-    std::string key = sky::writeScene(scene.withAbsolutePaths(), sky::ConfigFormat::Yaml);
-    if (!field || key != fieldScene) {
+    if (!field || fieldRevision != sceneRevision) {
       field.reset();
       field.emplace(renderer.cloudField(scene, scene.time.start));
-      fieldScene = std::move(key);
+      fieldRevision = sceneRevision;
     }
     return *field;
   }
@@ -223,6 +219,7 @@ struct Sky::Impl {
     sky::Scene next = with(scene, assignments);
     ocio.checkDisplayView(next.output.display, next.output.view);
     scene = std::move(next);
+    ++sceneRevision;
   }
 };
 

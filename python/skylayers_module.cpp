@@ -107,10 +107,12 @@ py::array imageArray(const skylayers::Image& image, py::handle owner) {
   return py::array_t<float>({h, w, c}, {w * c * f, c * f, f}, image.pixels.data(), owner);
 }
 
+// Points given as numpy arrays, converted to float64 and made contiguous as needed.
+using PointArray = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
 // (..., 3) arrays of (latitude, longitude, altitude m) as points, with their leading shape.
-std::vector<skylayers::GeoPoint> geoPoints(
-    const py::array_t<double, py::array::c_style | py::array::forcecast>& a, const char* name,
-    std::vector<py::ssize_t>& shape) {
+std::vector<skylayers::GeoPoint> geoPoints(const PointArray& a, const char* name,
+                                           std::vector<py::ssize_t>& shape) {
   if (a.ndim() < 1 || a.shape(a.ndim() - 1) != 3)
     throw skylayers::Error(skylayers::Error::Kind::BadInput,
                            std::string(name) +
@@ -121,6 +123,22 @@ std::vector<skylayers::GeoPoint> geoPoints(
   std::vector<skylayers::GeoPoint> points(static_cast<size_t>(a.size() / 3));
   for (size_t i = 0; i < points.size(); ++i) points[i] = {v[3 * i], v[3 * i + 1], v[3 * i + 2]};
   return points;
+}
+
+// The lines from a to b of two (..., 3) arrays of the same shape, and that leading shape.
+struct Lines {
+  std::vector<skylayers::GeoPoint> from, to;
+  std::vector<py::ssize_t> shape;
+};
+Lines geoLines(const PointArray& a, const PointArray& b, const std::string& call) {
+  Lines lines;
+  std::vector<py::ssize_t> shapeB;
+  lines.from = geoPoints(a, (call + " a").c_str(), lines.shape);
+  lines.to = geoPoints(b, (call + " b").c_str(), shapeB);
+  if (lines.shape != shapeB)
+    throw skylayers::Error(skylayers::Error::Kind::BadInput,
+                           call + ": a and b must have the same shape");
+  return lines;
 }
 
 }  // namespace
@@ -145,8 +163,7 @@ PYBIND11_MODULE(skylayers, m) {
 
   m.def(
       "irradiance",
-      [](const py::array_t<double, py::array::c_style | py::array::forcecast>& sh,
-         std::array<double, 3> normal) {
+      [](const PointArray& sh, std::array<double, 3> normal) {
         if (sh.ndim() != 2 || sh.shape(0) != 9 || sh.shape(1) != 3)
           throw skylayers::Error(skylayers::Error::Kind::BadInput,
                                  "irradiance: expected spherical harmonics of shape (9, 3)");
@@ -307,28 +324,21 @@ PYBIND11_MODULE(skylayers, m) {
           "time (or time=ISO 8601), as a dict; the Sky's own time and camera stay.")
       .def(
           "transmittance",
-          [](skylayers::Sky& sky,
-             const py::array_t<double, py::array::c_style | py::array::forcecast>& a,
-             const py::array_t<double, py::array::c_style | py::array::forcecast>& b,
+          [](skylayers::Sky& sky, const PointArray& a, const PointArray& b,
              const std::string& through, bool rgb) {
-            std::vector<py::ssize_t> shapeA, shapeB;
-            const std::vector<skylayers::GeoPoint> from = geoPoints(a, "transmittance a", shapeA);
-            const std::vector<skylayers::GeoPoint> to = geoPoints(b, "transmittance b", shapeB);
-            if (shapeA != shapeB)
-              throw skylayers::Error(skylayers::Error::Kind::BadInput,
-                                     "transmittance: a and b must have the same shape");
+            const Lines given = geoLines(a, b, "transmittance");
             if (through != "all" && through != "cloud" && through != "air")
               throw skylayers::Error(
                   skylayers::Error::Kind::BadInput,
                   "transmittance: through='" + through + "': expected 'all', 'cloud' or 'air'");
-            std::vector<std::array<skylayers::GeoPoint, 2>> lines(from.size());
-            for (size_t i = 0; i < lines.size(); ++i) lines[i] = {from[i], to[i]};
+            std::vector<std::array<skylayers::GeoPoint, 2>> lines(given.from.size());
+            for (size_t i = 0; i < lines.size(); ++i) lines[i] = {given.from[i], given.to[i]};
             std::vector<skylayers::Transmittance> t;
             {
               py::gil_scoped_release release;
               t = sky.transmittance(lines);
             }
-            std::vector<py::ssize_t> shape = shapeA;
+            std::vector<py::ssize_t> shape = given.shape;
             if (rgb) shape.push_back(3);
             py::array_t<double> out(shape);
             double* o = out.mutable_data();
@@ -352,17 +362,11 @@ PYBIND11_MODULE(skylayers, m) {
           "luminance unless rgb. On the CPU, from the field the GPU marches.")
       .def(
           "first_cloud",
-          [](skylayers::Sky& sky,
-             const py::array_t<double, py::array::c_style | py::array::forcecast>& a,
-             const py::array_t<double, py::array::c_style | py::array::forcecast>& b,
-             double opticalDepth) {
-            std::vector<py::ssize_t> shapeA, shapeB;
-            const std::vector<skylayers::GeoPoint> from = geoPoints(a, "first_cloud a", shapeA);
-            const std::vector<skylayers::GeoPoint> to = geoPoints(b, "first_cloud b", shapeB);
-            if (shapeA != shapeB)
-              throw skylayers::Error(skylayers::Error::Kind::BadInput,
-                                     "first_cloud: a and b must have the same shape");
-            py::array_t<double> out(shapeA);
+          [](skylayers::Sky& sky, const PointArray& a, const PointArray& b, double opticalDepth) {
+            const Lines lines = geoLines(a, b, "first_cloud");
+            const std::vector<skylayers::GeoPoint>& from = lines.from;
+            const std::vector<skylayers::GeoPoint>& to = lines.to;
+            py::array_t<double> out(lines.shape);
             double* o = out.mutable_data();
             for (size_t i = 0; i < from.size(); ++i) {
               const double d = sky.firstCloud(from[i], to[i], opticalDepth);
@@ -375,8 +379,7 @@ PYBIND11_MODULE(skylayers, m) {
           "where it does not before b.")
       .def(
           "cloud_extinction",
-          [](skylayers::Sky& sky,
-             const py::array_t<double, py::array::c_style | py::array::forcecast>& p) {
+          [](skylayers::Sky& sky, const PointArray& p) {
             std::vector<py::ssize_t> shape;
             const std::vector<skylayers::GeoPoint> points = geoPoints(p, "cloud_extinction", shape);
             py::array_t<double> out(shape);
@@ -425,8 +428,7 @@ PYBIND11_MODULE(skylayers, m) {
            "columns of a host's camera matrix): sets camera.heading, pitch and roll.")
       .def(
           "set_projection_matrix",
-          [](skylayers::Sky& sky,
-             const py::array_t<double, py::array::c_style | py::array::forcecast>& matrix) {
+          [](skylayers::Sky& sky, const PointArray& matrix) {
             if (matrix.ndim() != 2 || matrix.shape(0) != 4 || matrix.shape(1) != 4)
               throw skylayers::Error(skylayers::Error::Kind::BadInput,
                                      "set_projection_matrix: expected a (4, 4) matrix");

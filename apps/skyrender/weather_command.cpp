@@ -67,12 +67,7 @@ int weatherCommand(const std::vector<std::string>& argv) {
   args.expectPositionals(1, 1, "one forecast file");
   const fs::path file = fs::absolute(args.positional()[0]);
   std::vector<std::string> overrides = args.values("--set");
-  overrides.push_back("weather.source=file");
-  // Quoted so any path reads as a YAML string.
-  std::string quoted;
-  for (char c : file.string())
-    quoted += (c == '"' || c == '\\') ? std::string("\\") + c : std::string(1, c);
-  overrides.push_back("weather.file=\"" + quoted + "\"");
+  for (std::string& o : forecastFileOverrides(file)) overrides.push_back(std::move(o));
   Scene scene;
   if (auto scenePath = args.value("--scene")) {
     scene = loadSceneFile(*scenePath, overrides);

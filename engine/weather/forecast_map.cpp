@@ -6,6 +6,13 @@
 
 namespace sky {
 
+std::vector<std::string> forecastFileOverrides(const std::filesystem::path& file) {
+  std::string quoted;
+  for (char c : std::filesystem::absolute(file).string())
+    quoted += (c == '"' || c == '\\') ? std::string("\\") + c : std::string(1, c);
+  return {"weather.source=file", "weather.file=\"" + quoted + "\""};
+}
+
 ForecastMap forecastMap(const Scene& scene, WeatherSource& source) {
   ForecastMap out;
   // Without weather.region the map shows the file's whole grid.

@@ -4,6 +4,8 @@
 // (weather.time, advection and evolution included), over weather.region or, without one,
 // the file's whole grid, with each layer's base and top altitude per texel.
 #include <array>
+#include <filesystem>
+#include <string>
 #include <vector>
 
 #include "engine/io/exr.h"
@@ -24,6 +26,10 @@ struct ForecastMap {
   // mean altitudes, which the renderer uses, as "skylayers:<channel>" attributes.
   LayeredImage image;
 };
+
+// The overrides that read `file` as the scene's forecast: weather.source file and
+// weather.file, its absolute path quoted so any path reads as a YAML string.
+std::vector<std::string> forecastFileOverrides(const std::filesystem::path& file);
 
 // `scene` must have weather.source file. `source` reads the file and keeps its fields
 // (source.fields()) for the caller. BadInput naming weather.<key> and the file.
