@@ -18,6 +18,11 @@
 // Likewise per band of rows (AtmosphereCompositeBand): ATMOSPHERE_COMPOSITE_GROUND only where
 // a row can see below the horizon, ATMOSPHERE_COMPOSITE_CLOUD_AIR only where a row can see
 // the volumetric clouds.
+//
+// ATMOSPHERE_COMPOSITE_HOST draws into a host's own scene-linear colour image as well
+// (skylayers::Sky::record): where its depth image (ATMOSPHERE_COMPOSITE_HOST_DEPTH) holds no
+// geometry, the frame; where it does, the host's pixel seen through the air to it, behind the
+// volumetric clouds whose transmittance-weighted depth lies nearer.
 #include "common/params_block.glsl"
 #include "common/atmosphere_composite_shared.h"
 #include "common/view.glsl"
@@ -40,6 +45,15 @@ layout(local_size_x = ATMOSPHERE_COMPOSITE_GROUP_X, local_size_y = ATMOSPHERE_CO
 #ifndef ATMOSPHERE_COMPOSITE_CLOUD_AIR
 #define ATMOSPHERE_COMPOSITE_CLOUD_AIR 1
 #endif
+#ifndef ATMOSPHERE_COMPOSITE_HOST
+#define ATMOSPHERE_COMPOSITE_HOST 0
+#endif
+#ifndef ATMOSPHERE_COMPOSITE_HOST_DEPTH
+#define ATMOSPHERE_COMPOSITE_HOST_DEPTH 0
+#endif
+#ifndef ATMOSPHERE_COMPOSITE_HOST_FORMAT
+#define ATMOSPHERE_COMPOSITE_HOST_FORMAT rgba16f
+#endif
 
 layout(push_constant) uniform Push {
   AtmosphereCompositeBand band;
@@ -57,6 +71,13 @@ layout(binding = ATMOSPHERE_COMPOSITE_BINDING_CLOUDS, rgba32f) uniform readonly 
 layout(binding = ATMOSPHERE_COMPOSITE_BINDING_CLOUD_DEPTH, rg32f) uniform readonly image2D
     cloudDepthImage;
 layout(binding = ATMOSPHERE_COMPOSITE_BINDING_CLOUD_SHADOW) uniform sampler2D cloudShadow;
+#endif
+#if ATMOSPHERE_COMPOSITE_HOST
+layout(binding = ATMOSPHERE_COMPOSITE_BINDING_HOST_COLOUR, ATMOSPHERE_COMPOSITE_HOST_FORMAT)
+uniform image2D hostColour;
+#if ATMOSPHERE_COMPOSITE_HOST_DEPTH
+layout(binding = ATMOSPHERE_COMPOSITE_BINDING_HOST_DEPTH) uniform sampler2D hostDepth;
+#endif
 #endif
 #if ATMOSPHERE_COMPOSITE_PHYSICAL
 layout(std140, binding = ATMOSPHERE_COMPOSITE_BINDING_ATMOSPHERE) uniform AtmosphereBlock {
@@ -303,16 +324,17 @@ void main() {
 
   // Premultiplied "over": what lies beyond each cloud layer shows through its clear share.
   vec4 clouds = vec4(0.0);
+  float cloudDepth = 0.0;
 #if ATMOSPHERE_COMPOSITE_CLOUDS
   clouds = imageLoad(cloudImage, ivec2(p));
 #if ATMOSPHERE_COMPOSITE_CLOUD_AIR
   if (params.observer != 0u && clouds.a > 0.0) {
     // At the clouds' transmittance-weighted depth.
-    float depth = imageLoad(cloudDepthImage, ivec2(p)).r;
+    cloudDepth = imageLoad(cloudDepthImage, ivec2(p)).r;
 #if ATMOSPHERE_COMPOSITE_PHYSICAL
-    Air air = airTo(V, depth, uv, sky);
+    Air air = airTo(V, cloudDepth, uv, sky);
 #else
-    Air air = airTo(V, depth, horizon);
+    Air air = airTo(V, cloudDepth, horizon);
 #endif
     clouds.rgb = clouds.rgb * air.transmittance + clouds.a * air.inScattered;
   }
@@ -324,5 +346,41 @@ void main() {
     farther = highClouds;
   }
   beyond = beyond * (1.0 - farther.a) + farther.rgb;
-  imageStore(beautyImage, ivec2(p), vec4(beyond * (1.0 - nearer.a) + nearer.rgb, 1.0));
+  vec3 frame = beyond * (1.0 - nearer.a) + nearer.rgb;
+  imageStore(beautyImage, ivec2(p), vec4(frame, 1.0));
+
+#if ATMOSPHERE_COMPOSITE_HOST
+  vec4 host = vec4(frame, 1.0);
+#if ATMOSPHERE_COMPOSITE_HOST_DEPTH
+  float d = texelFetch(hostDepth, ivec2(p), 0).r;
+  HostDepth hd = params.host;
+  float along = hd.depthB / (d + hd.depthA);  // metres along the view axis
+  if (d != hd.emptyDepth && along > 0.0) {
+    float t = along / max(dot(V, params.view.forward.xyz), 1e-6);
+    host = imageLoad(hostColour, ivec2(p));
+    // The host's pixel through the air in front of it.
+#if ATMOSPHERE_COMPOSITE_PHYSICAL
+    Air air = airTo(V, t, uv, sky);
+#else
+    Air air = airTo(V, t, horizon);
+#endif
+    vec3 object = host.rgb * air.transmittance + air.inScattered;
+    // The volumetric clouds hide it as far as they lie in front of it: by their
+    // transmittance-weighted depth, blended over a fifth of it (50 m at least) so an object
+    // moving into a cloud fades rather than pops. (The march does not stop at the host's
+    // depth: a thin veil in front of an opaque cloud behind the object counts as in front.)
+    vec4 front = vec4(0.0);
+#if ATMOSPHERE_COMPOSITE_CLOUDS
+    if (params.observer != 0u && clouds.a > 0.0) {
+      float depth = cloudDepth > 0.0 ? cloudDepth : imageLoad(cloudDepthImage, ivec2(p)).r;
+      front = clouds * clamp((t - depth) / max(0.2 * depth, 50.0) + 0.5, 0.0, 1.0);
+    }
+#endif
+    // Above the high clouds they lie in front of everything the host draws below them.
+    if (params.aboveHighClouds != 0u) front = highClouds + front * (1.0 - highClouds.a);
+    host.rgb = object * (1.0 - front.a) + front.rgb;
+  }
+#endif
+  imageStore(hostColour, ivec2(p), host);
+#endif
 }

@@ -122,6 +122,16 @@ Image::Image(const Context& ctx, const ImageDesc& desc, bool allocate) : mCtx(&c
   createView();
 }
 
+Image Image::borrow(const Context& ctx, const ImageDesc& desc, VkImage image) {
+  Image wrapped;
+  wrapped.mCtx = &ctx;
+  wrapped.mDesc = desc;
+  wrapped.mImage = image;
+  wrapped.mBorrowed = true;
+  wrapped.createView();
+  return wrapped;
+}
+
 Image& Image::operator=(Image&& o) noexcept {
   if (this != &o) {
     reset();
@@ -130,6 +140,7 @@ Image& Image::operator=(Image&& o) noexcept {
     mImage = std::exchange(o.mImage, VK_NULL_HANDLE);
     mView = std::exchange(o.mView, VK_NULL_HANDLE);
     mOwnedMemory = std::exchange(o.mOwnedMemory, VK_NULL_HANDLE);
+    mBorrowed = std::exchange(o.mBorrowed, false);
   }
   return *this;
 }
@@ -142,11 +153,12 @@ void Image::reset() {
   if (!mCtx) return;
   VkDevice d = mCtx->device();
   if (mView) vkDestroyImageView(d, mView, nullptr);
-  if (mImage) vkDestroyImage(d, mImage, nullptr);
+  if (mImage && !mBorrowed) vkDestroyImage(d, mImage, nullptr);
   if (mOwnedMemory) vkFreeMemory(d, mOwnedMemory, nullptr);
   mView = VK_NULL_HANDLE;
   mImage = VK_NULL_HANDLE;
   mOwnedMemory = VK_NULL_HANDLE;
+  mBorrowed = false;
 }
 
 VkMemoryRequirements Image::memoryRequirements() const {
@@ -166,6 +178,9 @@ void Image::createView() {
   info.viewType = mDesc.dim == ImageDim::Tex3D ? VK_IMAGE_VIEW_TYPE_3D : VK_IMAGE_VIEW_TYPE_2D;
   info.format = mDesc.format;
   info.subresourceRange = range();
+  // A depth-stencil image is sampled through its depth alone.
+  if (mDesc.aspect & VK_IMAGE_ASPECT_DEPTH_BIT)
+    info.subresourceRange.aspectMask = VK_IMAGE_ASPECT_DEPTH_BIT;
   SKY_VK(vkCreateImageView(mCtx->device(), &info, nullptr, &mView));
 }
 

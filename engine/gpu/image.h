@@ -34,6 +34,9 @@ struct ImageDesc {
   DebugView view = DebugView::Color;
   std::string channels;
   std::string about;
+  // The image's aspects, which its barriers cover: colour, or a host's depth image (depth, and
+  // stencil for a format that has it; its view shows the depth alone).
+  VkImageAspectFlags aspect = VK_IMAGE_ASPECT_COLOR_BIT;
 };
 
 // Bytes per texel of the formats the engine uses; 0 for anything else.
@@ -50,6 +53,9 @@ public:
   Image() = default;
   // Creates the image; with `allocate` it also gets dedicated device-local memory and a view.
   Image(const Context& ctx, const ImageDesc& desc, bool allocate = true);
+  // Wraps `image`, which the host owns (skylayers::Sky::record): makes a view of it (its depth
+  // alone for a depth image) and destroys only that view. `desc` must say what the image is.
+  static Image borrow(const Context& ctx, const ImageDesc& desc, VkImage image);
   ~Image();
   Image(Image&& o) noexcept { *this = std::move(o); }
   Image& operator=(Image&& o) noexcept;
@@ -63,7 +69,8 @@ public:
   const ImageDesc& desc() const { return mDesc; }
   VkImage image() const { return mImage; }
   VkImageView view() const { return mView; }
-  VkImageSubresourceRange range() const { return {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1}; }
+  // Every aspect: what a barrier covers.
+  VkImageSubresourceRange range() const { return {mDesc.aspect, 0, 1, 0, 1}; }
   explicit operator bool() const { return mImage != VK_NULL_HANDLE; }
 
 private:
@@ -75,6 +82,7 @@ private:
   VkImage mImage = VK_NULL_HANDLE;
   VkImageView mView = VK_NULL_HANDLE;
   VkDeviceMemory mOwnedMemory = VK_NULL_HANDLE;
+  bool mBorrowed = false;  // mImage is the host's: not destroyed here
 };
 
 }  // namespace sky

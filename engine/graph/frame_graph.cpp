@@ -41,6 +41,14 @@ ImageId FrameGraph::importImage(PersistentImage& image) {
   return {addResource(std::move(node), {&image, nullptr, -1}), 0};
 }
 
+ImageId FrameGraph::importExternal(PersistentImage& image, VkImageLayout hostLayout) {
+  // Whatever the host did to it before may be any access at any stage.
+  image.state = {hostLayout, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT};
+  const ImageId id = importImage(image);
+  mExternals.push_back({id.id, hostLayout});
+  return id;
+}
+
 void HistoryImage::ensure(const Context& ctx, const ImageDesc& wanted) {
   ImageDesc desc = wanted;
   desc.usage =

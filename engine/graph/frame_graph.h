@@ -24,6 +24,7 @@ class Context;
 class FrameGraph;
 class GraphRuntime;
 class PassContext;
+class TimestampPool;
 
 // A resource that outlives frames (baked noise, weather map, LUTs): imported into each
 // frame's graph, which keeps `state` current so the next frame synchronises correctly.
@@ -160,6 +161,10 @@ public:
   // Imports both images of `history` (see HistoryImage); ensure() it first.
   HistoryIds importHistory(HistoryImage& history);
   BufferId importBuffer(PersistentBuffer& buffer);
+  // An image the host owns, for this frame (skylayers::Sky::record; `image` borrows it): the
+  // frame finds it in `hostLayout` after any host work before, waits for all of that, and
+  // leaves it in `hostLayout` again with its writes made available to any host work after.
+  ImageId importExternal(PersistentImage& image, VkImageLayout hostLayout);
   // A transfer pass `name` that fills the whole of `image` with `pixels`: interleaved floats,
   // formatChannelCount per texel, row 0 the top, converted to the image's format (rgba16f,
   // rgba32f, r16f, r32f, r8, rgba8 unorm). The texels are staged at once in a host-visible
@@ -200,6 +205,13 @@ public:
   const CompiledGraph& compile();
   // Compiles if needed, records, submits, waits and reads back. Once per graph.
   FrameResult execute();
+  // Compiles if needed and records the frame into `cmd`, the host's command buffer in the
+  // recording state, without submitting it (skylayers::Sky::record). Nothing is read back and
+  // nothing timed (the passes' gpuMs are 0). The host must submit `cmd`, and it must have
+  // completed before the runtime records or executes its next frame: the descriptors,
+  // uniforms, transient images and upload staging the frame uses are reused then. Once per
+  // graph; a graph with requested outputs is an internal error.
+  FrameResult record(VkCommandBuffer cmd);
   // Graphviz text of the graph (compiled: order, culled passes, memory slots, timings).
   std::string toDot(const FrameResult* timings = nullptr) const;
 
@@ -217,6 +229,13 @@ private:
   uint32_t declare(uint32_t pass, uint32_t resource, uint32_t version, Access access,
                    ResourceKind kind);
   uint32_t addResource(ResourceNode node, ResourceRecord record);
+  // execute() and record(): the transient memory for this graph's shape (kept from the
+  // frame before when the shape is the same).
+  void allocateTransients();
+  // execute() and record(): the passes and their barriers into `cmd`, timed when `timestamps`.
+  void recordPasses(VkCommandBuffer cmd, TimestampPool* timestamps);
+  // After the frame ran or was recorded: the persistent states, histories and uploads.
+  void finishFrame();
 
   GraphRuntime* mRuntime = nullptr;
   GraphUse mUse = GraphUse::Frame;
@@ -229,6 +248,11 @@ private:
   };
   std::vector<Output> mOutputs;
   std::vector<HistoryImage*> mHistories;  // flipped after execute
+  struct External {
+    uint32_t resource = 0;
+    VkImageLayout hostLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+  };
+  std::vector<External> mExternals;  // importExternal's, returned to the host's layout
   std::vector<std::unique_ptr<Buffer>> mStaging;  // upload()'s texels, until execute ends
   std::vector<std::function<void()>> mAfterExecute;
   std::optional<CompiledGraph> mCompiled;

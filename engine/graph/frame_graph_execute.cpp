@@ -98,13 +98,9 @@ const CompiledGraph& FrameGraph::compile() {
   return *mCompiled;
 }
 
-FrameResult FrameGraph::execute() {
-  if (mExecuted) internalError("frame graph executed twice; build a new graph per frame");
-  mExecuted = true;
-  if (!mRuntime) internalError("frame graph built without a GPU runtime cannot execute");
+void FrameGraph::allocateTransients() {
   GraphRuntime& runtime = *mRuntime;
-  const auto start = std::chrono::steady_clock::now();
-  const CompiledGraph& c = compile();
+  const CompiledGraph& c = *mCompiled;
   const Context& ctx = runtime.gpu();
   GraphRuntime::Transients& t = runtime.transients(mUse);
 
@@ -148,26 +144,14 @@ FrameResult FrameGraph::execute() {
     }
     t.key = key;
   }
+}
 
-  // Host-visible buffers for the requested outputs.
-  std::vector<Buffer>& readback = runtime.readback(mUse);
-  readback.resize(mOutputs.size());
-  for (size_t i = 0; i < mOutputs.size(); ++i) {
-    const ResourceNode& n = mDesc.resources[mOutputs[i].resource];
-    const VkDeviceSize bytes = n.kind == ResourceKind::Buffer
-                                   ? VkDeviceSize(n.buffer.image.width) * n.buffer.image.height * 4
-                                   : texelBytes(n.image);
-    if (!readback[i] || readback[i].size() != bytes)
-      readback[i] = Buffer(ctx, {"readback " + mOutputs[i].label, bytes,
-                                 VK_BUFFER_USAGE_TRANSFER_DST_BIT, BufferMemory::HostVisible});
-  }
-
-  VkCommandBuffer cmd = runtime.beginFrame();
-  TimestampPool timestamps(ctx, static_cast<uint32_t>(c.order.size()));
-  timestamps.reset(cmd);
+void FrameGraph::recordPasses(VkCommandBuffer cmd, TimestampPool* timestamps) {
+  const CompiledGraph& c = *mCompiled;
+  GraphRuntime::Transients& t = mRuntime->transients(mUse);
   for (size_t pos = 0; pos < c.order.size(); ++pos) {
     const uint32_t pass = c.order[pos];
-    timestamps.begin(cmd, static_cast<uint32_t>(pos));
+    if (timestamps) timestamps->begin(cmd, static_cast<uint32_t>(pos));
     std::vector<VkImageMemoryBarrier2> images;
     std::vector<VkBufferMemoryBarrier2> buffers;
     for (const Barrier& b : c.barriers.before[pos]) {
@@ -183,7 +167,7 @@ FrameResult FrameGraph::execute() {
         ib.srcQueueFamilyIndex = ib.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
         ib.image =
             n.imported ? mResources[b.resource].image->image.image() : t.images[b.resource].image();
-        ib.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+        ib.subresourceRange = {n.image.aspect, 0, 1, 0, 1};
         images.push_back(ib);
       } else {
         VkBufferMemoryBarrier2 bb{VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER_2};
@@ -208,8 +192,97 @@ FrameResult FrameGraph::execute() {
     }
     PassContext pc(*this, pass, cmd);
     mPasses[pass].execute(pc);
-    timestamps.end(cmd, static_cast<uint32_t>(pos));
+    if (timestamps) timestamps->end(cmd, static_cast<uint32_t>(pos));
   }
+  // The host's images go back to its layouts, everything written made available to it.
+  std::vector<VkImageMemoryBarrier2> back;
+  for (const External& e : mExternals) {
+    if (!c.lifetimes[e.resource].used()) continue;
+    VkImageMemoryBarrier2 ib{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
+    ib.srcStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+    ib.srcAccessMask = VK_ACCESS_2_MEMORY_WRITE_BIT;
+    ib.dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+    ib.dstAccessMask = VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT;
+    ib.oldLayout = c.barriers.finalState[e.resource].layout;
+    ib.newLayout = e.hostLayout;
+    ib.srcQueueFamilyIndex = ib.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    ib.image = mResources[e.resource].image->image.image();
+    ib.subresourceRange = mResources[e.resource].image->image.range();
+    back.push_back(ib);
+  }
+  if (!back.empty()) {
+    VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+    dep.imageMemoryBarrierCount = static_cast<uint32_t>(back.size());
+    dep.pImageMemoryBarriers = back.data();
+    vkCmdPipelineBarrier2(cmd, &dep);
+  }
+}
+
+void FrameGraph::finishFrame() {
+  const CompiledGraph& c = *mCompiled;
+  for (uint32_t r = 0; r < mDesc.resources.size(); ++r) {
+    if (!mDesc.resources[r].imported || !c.lifetimes[r].used()) continue;
+    if (mResources[r].image) mResources[r].image->state = c.barriers.finalState[r];
+    if (mResources[r].buffer) mResources[r].buffer->state = c.barriers.finalState[r];
+  }
+  // This frame's results become the next frame's history.
+  for (HistoryImage* h : mHistories) {
+    h->mWrite = 1 - h->mWrite;
+    h->mValid = true;
+  }
+  // Uploads landed (or, recorded, will have when the host runs the frame): tell the images'
+  // owners.
+  for (const std::function<void()>& done : mAfterExecute) done();
+}
+
+FrameResult FrameGraph::record(VkCommandBuffer cmd) {
+  if (mExecuted) internalError("frame graph executed twice; build a new graph per frame");
+  mExecuted = true;
+  if (!mRuntime) internalError("frame graph built without a GPU runtime cannot record");
+  if (!mOutputs.empty()) internalError("frame graph: a recorded frame reads nothing back");
+  const auto start = std::chrono::steady_clock::now();
+  const CompiledGraph& c = compile();
+  mRuntime->beginHostFrame();
+  allocateTransients();
+  recordPasses(cmd, nullptr);
+  FrameResult result;
+  for (uint32_t pass : c.order) result.passes.push_back({mDesc.passes[pass].name, 0.0, 0});
+  // The uploads' staging lives until the host has run the frame (the next frame frees it).
+  for (std::unique_ptr<Buffer>& b : mStaging) mRuntime->mHostStaging.push_back(std::move(b));
+  mStaging.clear();
+  finishFrame();
+  result.wallMs =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+FrameResult FrameGraph::execute() {
+  if (mExecuted) internalError("frame graph executed twice; build a new graph per frame");
+  mExecuted = true;
+  if (!mRuntime) internalError("frame graph built without a GPU runtime cannot execute");
+  GraphRuntime& runtime = *mRuntime;
+  const auto start = std::chrono::steady_clock::now();
+  const CompiledGraph& c = compile();
+  const Context& ctx = runtime.gpu();
+  allocateTransients();
+
+  // Host-visible buffers for the requested outputs.
+  std::vector<Buffer>& readback = runtime.readback(mUse);
+  readback.resize(mOutputs.size());
+  for (size_t i = 0; i < mOutputs.size(); ++i) {
+    const ResourceNode& n = mDesc.resources[mOutputs[i].resource];
+    const VkDeviceSize bytes = n.kind == ResourceKind::Buffer
+                                   ? VkDeviceSize(n.buffer.image.width) * n.buffer.image.height * 4
+                                   : texelBytes(n.image);
+    if (!readback[i] || readback[i].size() != bytes)
+      readback[i] = Buffer(ctx, {"readback " + mOutputs[i].label, bytes,
+                                 VK_BUFFER_USAGE_TRANSFER_DST_BIT, BufferMemory::HostVisible});
+  }
+
+  VkCommandBuffer cmd = runtime.beginFrame();
+  TimestampPool timestamps(ctx, static_cast<uint32_t>(c.order.size()));
+  timestamps.reset(cmd);
+  recordPasses(cmd, &timestamps);
   if (!mOutputs.empty()) {
     // The copies must be visible to the host reading the mapped buffers after the fence.
     VkMemoryBarrier2 host{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
@@ -266,24 +339,13 @@ FrameResult FrameGraph::execute() {
     out.pixels = texelsToFloat(d.format, {static_cast<const uint8_t*>(buf.mapped()), buf.size()});
     result.outputs.push_back(std::move(out));
   }
-  for (uint32_t r = 0; r < mDesc.resources.size(); ++r) {
-    if (!mDesc.resources[r].imported || !c.lifetimes[r].used()) continue;
-    if (mResources[r].image) mResources[r].image->state = c.barriers.finalState[r];
-    if (mResources[r].buffer) mResources[r].buffer->state = c.barriers.finalState[r];
-  }
   // A bake's memory is freed at once (GraphUse).
   if (mUse == GraphUse::Bake) {
     runtime.releaseTransients(GraphUse::Bake);
     readback.clear();
   }
-  // This frame's results become the next frame's history.
-  for (HistoryImage* h : mHistories) {
-    h->mWrite = 1 - h->mWrite;
-    h->mValid = true;
-  }
-  // Uploads landed: free their staging memory and tell the images' owners.
-  mStaging.clear();
-  for (const std::function<void()>& done : mAfterExecute) done();
+  mStaging.clear();  // the uploads landed
+  finishFrame();
   result.wallMs =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return result;

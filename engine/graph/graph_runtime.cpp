@@ -47,10 +47,15 @@ void GraphRuntime::releaseTransients(GraphUse use) {
   t.bytes = 0;
 }
 
-VkCommandBuffer GraphRuntime::beginFrame() {
+void GraphRuntime::beginHostFrame() {
   mDescriptors.reset();
   mUniformChunk = 0;
   mUniformOffset = 0;
+  mHostStaging.clear();
+}
+
+VkCommandBuffer GraphRuntime::beginFrame() {
+  beginHostFrame();
   SKY_VK(vkResetCommandBuffer(mCmd, 0));
   VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
   begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;

@@ -47,6 +47,11 @@ private:
 
   // Frame start: the previous frame has completed, so arenas can be reused.
   VkCommandBuffer beginFrame();
+  // The same for a frame recorded into a host's command buffer (FrameGraph::record): the
+  // arenas reset, and the staging of the frame the host last ran freed.
+  void beginHostFrame();
+  // A recorded frame's upload staging, kept until the next frame: the host runs it later.
+  std::vector<std::unique_ptr<Buffer>> mHostStaging;
   void submitAndWait();
   UniformRange uploadUniform(const void* data, VkDeviceSize size);
 

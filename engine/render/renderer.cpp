@@ -85,6 +85,7 @@ Renderer::Renderer(const Context& ctx, ShaderCompiler& compiler)
       mLightVolume(ctx, compiler),
       mDisplay(ctx, compiler),
       mHistorySampler(ctx, SamplerWrap::Clamp),
+      mHostDepthSampler(ctx, SamplerWrap::Clamp, false),
       mSlice(ctx, compiler),
       mVolumeExport(ctx, compiler),
       mComposite(ctx, compiler) {
@@ -459,6 +460,15 @@ Renderer::FramePlan Renderer::buildFrame(FrameGraph& graph, const Scene& scene, 
   if (sky.stars) composite.starFlux = sky.stars->flux;
   composite.sky = sky.sky.sky;
   composite.highClouds = sky.sky.highClouds;
+  if (const HostTarget* host = options.host) {
+    AtmosphereCompositePass::Host h;
+    h.colour = graph.importExternal(*host->colour, host->colourLayout);
+    h.colourFormat = host->colour->image.desc().format;
+    if (host->depth) h.depth = graph.importExternal(*host->depth, host->depthLayout);
+    h.depthMapping = host->depthMapping;
+    h.depthSampler = &mHostDepthSampler;
+    composite.host = h;
+  }
   plan.beauty = graph.add(mComposite, composite).beauty;
   plan.sky = sky.sky.sky;
   plan.highClouds = sky.sky.highClouds;
@@ -466,7 +476,7 @@ Renderer::FramePlan Renderer::buildFrame(FrameGraph& graph, const Scene& scene, 
     plan.clouds = clouds->clouds;
     plan.cloudsDepth = clouds->depth;
   }
-  if (options.gpuDisplay) {
+  if (options.gpuDisplay && !options.host) {
     if (scene.output.exposure == ExposureMode::Histogram)
       internalError("the GPU display path has no histogram exposure (it meters the frame)");
     DisplayTransformPass::Inputs d;
@@ -555,8 +565,12 @@ RenderedFrame Renderer::render(const Scene& scene, const IsoTime& time,
   FrameGraph graph(mRuntime);
   FramePlan plan = buildFrame(graph, scene, time, options, out);
   try {
-    requestOutputs(graph, plan, options);
-    out.frame = graph.execute();
+    if (options.host) {
+      out.frame = graph.record(options.host->cmd);
+    } else {
+      requestOutputs(graph, plan, options);
+      out.frame = graph.execute();
+    }
   } catch (...) {
     mLightVolume.invalidate();  // they may not have been made
     mShadow.invalidate();
@@ -564,7 +578,7 @@ RenderedFrame Renderer::render(const Scene& scene, const IsoTime& time,
   }
   if (plan.pendingHistory) mHistory = std::move(*plan.pendingHistory);
   out.graphDot = graph.toDot(&out.frame);
-  collectOutputs(out, graph, plan, options);
+  if (!options.host) collectOutputs(out, graph, plan, options);
   for (const PassTiming& t : out.frame.passes)
     if (t.name == AtmosphereLuts::kTransmittanceName ||
         t.name == AtmosphereLuts::kMultiScatteringName)

@@ -61,6 +61,18 @@ enum class ReadBack {
   Display,  // RenderedFrame::display alone (needs RenderOptions::gpuDisplay)
 };
 
+// Drawing a frame into the host's own images (skylayers::Sky::record, docs/library.md): the
+// frame is recorded into the host's command buffer, not submitted, and reads nothing back.
+// The images are borrowed (Image::borrow), the size of the scene's output.
+struct HostTarget {
+  VkCommandBuffer cmd = VK_NULL_HANDLE;  // recording
+  PersistentImage* colour = nullptr;     // scene-linear rgba16f or rgba32f, storage usage
+  VkImageLayout colourLayout = VK_IMAGE_LAYOUT_UNDEFINED;  // before and after the frame
+  PersistentImage* depth = nullptr;  // optional; sampled usage
+  VkImageLayout depthLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+  shared::HostDepth depthMapping{};  // how its values map to distance
+};
+
 struct RenderOptions {
   // Images of the frame's graph to read back by name (Renderer::debugImages lists them);
   // a name the frame does not have is an UnknownImageName error (BadInput).
@@ -72,6 +84,10 @@ struct RenderOptions {
   // night look and exposure (auto or fixed; a histogram exposure meters the read-back frame
   // and needs the CPU path). The config must outlive the call.
   const OcioOutput* gpuDisplay = nullptr;
+  // Draw into the host's images instead (readBack, debugOutputs and gpuDisplay are ignored:
+  // nothing is read back). The target must outlive the call; its images, until the host's
+  // command buffer has run.
+  const HostTarget* host = nullptr;
 };
 
 struct DebugImage {
@@ -244,6 +260,7 @@ private:
   CloudLightVolumePass mLightVolume;
   DisplayTransformPass mDisplay;
   Sampler mHistorySampler;     // linear, clamp
+  Sampler mHostDepthSampler;   // nearest, clamp: a host's depth, fetched texel by texel
   HistoryImage mCloudHistory;  // RGBA32F: premultiplied radiance and opacity, the view's size
   HistoryImage mDepthHistory;  // RG32F: transmittance-weighted distance (m) in r
   CloudHistory mHistory;       // the frame they hold

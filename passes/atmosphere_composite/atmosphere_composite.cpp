@@ -147,6 +147,17 @@ AtmosphereCompositePass::Outputs AtmosphereCompositePass::setup(GraphBuilder& b,
       discReachesView(in.params.view, glm::vec3(L.sun.direction), L.sun.direction.w);
   const bool moonDisc =
       discReachesView(in.params.view, glm::vec3(L.moon.direction), L.moon.direction.w);
+  const char* hostFormat = "rgba16f";
+  if (in.host) {
+    if (in.host->colourFormat == VK_FORMAT_R32G32B32A32_SFLOAT)
+      hostFormat = "rgba32f";
+    else if (in.host->colourFormat != VK_FORMAT_R16G16B16A16_SFLOAT)
+      internalError("atmosphere_composite: a host colour format other than rgba16f or rgba32f");
+    if (in.host->depth && !in.host->depthSampler)
+      internalError("atmosphere_composite: no host depth sampler");
+    mInputs.params.host = in.host->depthMapping;
+    mInputs.params.host.present = in.host->depth ? 1u : 0u;
+  }
   mBands.clear();
   for (const CompositeBand& band :
        compositeBands(mInputs.params, in.clouds.has_value(), in.clouds && in.clouds->belowBase,
@@ -158,7 +169,10 @@ AtmosphereCompositePass::Outputs AtmosphereCompositePass::setup(GraphBuilder& b,
                               flag("ATMOSPHERE_COMPOSITE_SUN_DISC", sunDisc),
                               flag("ATMOSPHERE_COMPOSITE_MOON_DISC", moonDisc),
                               flag("ATMOSPHERE_COMPOSITE_GROUND", band.ground),
-                              flag("ATMOSPHERE_COMPOSITE_CLOUD_AIR", band.cloudAir)}));
+                              flag("ATMOSPHERE_COMPOSITE_CLOUD_AIR", band.cloudAir),
+                              flag("ATMOSPHERE_COMPOSITE_HOST", in.host.has_value()),
+                              flag("ATMOSPHERE_COMPOSITE_HOST_DEPTH", in.host && in.host->depth),
+                              {"ATMOSPHERE_COMPOSITE_HOST_FORMAT", hostFormat}}));
   if (in.starFlux) b.read(*in.starFlux, Access::StorageReadCompute);
   b.read(in.sky, Access::StorageReadCompute);
   b.read(in.highClouds, Access::StorageReadCompute);
@@ -182,6 +196,12 @@ AtmosphereCompositePass::Outputs AtmosphereCompositePass::setup(GraphBuilder& b,
   desc.name = "beauty";
   desc.about = "the frame: sky, clouds and ground through the atmosphere (scene-linear)";
   mOutputs.beauty = b.write(b.create(desc), Access::StorageWriteCompute);
+  mOutputs.host = {};
+  if (in.host) {
+    if (in.host->depth) b.read(*in.host->depth, Access::SampledCompute);
+    mOutputs.host = b.write(in.host->colour, Access::StorageReadWriteCompute);
+    b.sideEffect();  // the host reads it, after the frame
+  }
   return mOutputs;
 }
 
@@ -210,6 +230,12 @@ void AtmosphereCompositePass::execute(PassContext& ctx) const {
         Binding::of(ATMOSPHERE_COMPOSITE_BINDING_TRANSMITTANCE, a->transmittance, a->sampler));
     bindings.push_back(Binding::of(ATMOSPHERE_COMPOSITE_BINDING_AERIAL_PERSPECTIVE,
                                    a->aerialPerspective, a->sampler));
+  }
+  if (const auto& h = mInputs.host) {
+    bindings.push_back(Binding::of(ATMOSPHERE_COMPOSITE_BINDING_HOST_COLOUR, mOutputs.host));
+    if (h->depth)
+      bindings.push_back(
+          Binding::of(ATMOSPHERE_COMPOSITE_BINDING_HOST_DEPTH, *h->depth, h->depthSampler));
   }
   for (const auto& [band, pipeline] : mBands) {
     const shared::AtmosphereCompositeBand rows{glm::uvec4(band.firstRow, band.rows, 0u, 0u)};

@@ -81,6 +81,16 @@ public:
     ImageId transmittance, aerialPerspective;
     const Sampler* sampler = nullptr;
   };
+  // Drawing into the host's own images (skylayers::Sky::record): the sky behind the host's
+  // geometry, the volumetric clouds in front of it or behind it by their depth, and the
+  // host's pixels seen through the aerial perspective by theirs.
+  struct Host {
+    ImageId colour;                // the host's scene-linear colour: read and written
+    std::optional<ImageId> depth;  // the host's depth; none: the sky everywhere
+    VkFormat colourFormat = VK_FORMAT_R16G16B16A16_SFLOAT;  // rgba16f or rgba32f
+    shared::HostDepth depthMapping{};                       // present is set by setup
+    const Sampler* depthSampler = nullptr;                  // nearest, clamp to edge
+  };
   struct Inputs {
     shared::AtmosphereCompositeParams params;  // atmosphereCompositeParams
     shared::LightingState lighting;            // this frame's lights and palette
@@ -89,9 +99,11 @@ public:
     ImageId highClouds;                        // from SkyHighCloudsPass
     std::optional<Clouds> clouds;              // none: no volumetric clouds
     std::optional<Atmosphere> atmosphere;      // none: sky.model kozlov
+    std::optional<Host> host;                  // none: the frame is the beauty alone
   };
   struct Outputs {
-    ImageId beauty;  // RGBA16F scene-linear, alpha 1
+    ImageId beauty;  // RGBA32F scene-linear, alpha 1
+    ImageId host;    // with Inputs::host: the host's colour, drawn into
   };
 
   // The shader's variants (physical or kozlov; clouds, stars, each disc or not; ground and

@@ -27,6 +27,9 @@
 #define ATMOSPHERE_COMPOSITE_BINDING_ATMOSPHERE 9
 #define ATMOSPHERE_COMPOSITE_BINDING_TRANSMITTANCE 10
 #define ATMOSPHERE_COMPOSITE_BINDING_AERIAL_PERSPECTIVE 11
+// Drawing into a host's images (ATMOSPHERE_COMPOSITE_HOST 1, skylayers::Sky::record):
+#define ATMOSPHERE_COMPOSITE_BINDING_HOST_COLOUR 12  // read and written: the host's colour
+#define ATMOSPHERE_COMPOSITE_BINDING_HOST_DEPTH 13   // sampled: the host's depth (optional)
 
 // Kasten & Czeplak (1980): under full overcast the ground receives a quarter of the clear
 // sky's global irradiance (light::overcastGlobalShare(1)), all of it diffuse light the clouds
@@ -34,6 +37,19 @@
 #define CLOUD_DIFFUSE_TRANSMISSION 0.25
 
 SKY_SHARED_BEGIN
+
+// How the host's depth buffer maps to distance (ATMOSPHERE_COMPOSITE_HOST). A perspective
+// projection P in Vulkan's clip space (depth 0..1, w = -z of the view; column-major) stores
+// d = B / z - A for a point z metres in front of the camera along its axis, with A = P[2][2]
+// and B = P[3][2]; so z = B / (d + A), and the distance along a pixel's ray is
+// z / dot(ray, forward). Standard depth (near 0, far 1) and reverse-Z alike, an infinite far
+// plane included.
+struct HostDepth {
+  float depthA;
+  float depthB;
+  float emptyDepth;  // the value where the host drew nothing (its far plane: 1, or 0 reverse-Z)
+  uint present;      // 1: a depth image is bound; 0: the host drew nothing yet, all is sky
+};
 
 struct AtmosphereCompositeParams {
   ViewState view;
@@ -60,6 +76,7 @@ struct AtmosphereCompositeParams {
   // scale height (m) of the air molecules and of the aerosols.
   vec4 hazeRayleigh;  // rgb: 1/m; w: scale height (m)
   vec4 hazeAerosol;   // rgb: 1/m; w: scale height (m)
+  HostDepth host;     // ATMOSPHERE_COMPOSITE_HOST only
 };
 
 // Push constants: the band of rows one dispatch draws.
@@ -72,7 +89,7 @@ SKY_SHARED_END
 #ifdef __cplusplus
 static_assert(sizeof(sky::shared::AtmosphereCompositeBand) == 16,
               "layout of AtmosphereCompositeBand");
-static_assert(sizeof(sky::shared::AtmosphereCompositeParams) == 64 + 48 + 2 * 16 + 5 * 16,
+static_assert(sizeof(sky::shared::AtmosphereCompositeParams) == 64 + 48 + 2 * 16 + 5 * 16 + 16,
               "std140 layout of AtmosphereCompositeParams");
 #endif
 #endif

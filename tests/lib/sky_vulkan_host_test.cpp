@@ -138,6 +138,71 @@ TEST(SkylayersVulkanHost, ASkyOnTheHostsDeviceRendersTheSameFrameAndLeavesNothin
   EXPECT_EQ(gMessages.load(), 0) << "validation messages on the host's instance (stderr)";
 }
 
+// record()'s input errors, each one line naming what is wrong, before anything is recorded
+// (examples/vulkan_host draws real frames, run by ctest as Example.VulkanHost*).
+TEST(SkylayersVulkanHost, RecordRejectsWhatItCannotDrawInto) {
+  const auto expectBadInput = [](skylayers::Sky& sky, const skylayers::HostFrame& frame,
+                                 const std::string& says) {
+    try {
+      sky.record(frame);
+      ADD_FAILURE() << "record() took a frame it should refuse (" << says << ")";
+    } catch (const skylayers::Error& e) {
+      EXPECT_EQ(e.kind(), skylayers::Error::Kind::BadInput) << e.what();
+      EXPECT_NE(std::string(e.what()).find(says), std::string::npos) << e.what();
+      EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << "one line";
+    }
+  };
+  std::string name;
+  {
+    skylayers::Sky own = skylayers::Sky::fromDefault({"output.width=32", "output.height=18"});
+    name = own.deviceName();
+    expectBadInput(own, {}, "DeviceOptions::vulkan");
+  }
+  gMessages = 0;
+  Host host(name);
+  ASSERT_NE(host.device, VK_NULL_HANDLE);
+  {
+    const skylayers::VulkanDevice device{host.instance, host.physical, host.device, host.family, 0};
+    skylayers::DeviceOptions options;
+    options.vulkan = &device;
+    skylayers::Sky sky =
+        skylayers::Sky::fromDefault({"output.width=32", "output.height=18"}, options);
+    VkCommandPool pool;
+    VkCommandPoolCreateInfo p{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+    p.queueFamilyIndex = host.family;
+    ASSERT_EQ(vkCreateCommandPool(host.device, &p, nullptr, &pool), VK_SUCCESS);
+    VkCommandBuffer cmd;
+    VkCommandBufferAllocateInfo a{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+    a.commandPool = pool;
+    a.commandBufferCount = 1;
+    ASSERT_EQ(vkAllocateCommandBuffers(host.device, &a, &cmd), VK_SUCCESS);
+
+    skylayers::HostFrame frame;
+    expectBadInput(sky, frame, "commandBuffer");
+    frame.commandBuffer = cmd;
+    expectBadInput(sky, frame, "colour.image");
+    // Handles the checks refuse before they are used.
+    frame.colour = {reinterpret_cast<VkImage>(uint64_t(1)), VK_FORMAT_R8G8B8A8_UNORM,
+                    VK_IMAGE_LAYOUT_GENERAL, 32, 18};
+    expectBadInput(sky, frame, "R16G16B16A16_SFLOAT or R32G32B32A32_SFLOAT");
+    frame.colour.format = VK_FORMAT_R16G16B16A16_SFLOAT;
+    frame.depth = {reinterpret_cast<VkImage>(uint64_t(2)), VK_FORMAT_R32_SFLOAT,
+                   VK_IMAGE_LAYOUT_GENERAL, 32, 18};
+    expectBadInput(sky, frame, "not a depth format");
+    frame.depth.format = VK_FORMAT_D32_SFLOAT;
+    frame.depth.width = 64;
+    expectBadInput(sky, frame, "depth is 64x18, the colour 32x18");
+    frame.depth.width = 32;
+    frame.depthConvention.nearM = 0.0;
+    expectBadInput(sky, frame, "need 0 < near < far");
+    frame.depthConvention = {};
+    frame.depthConvention.useProjection = true;  // all zeros: no perspective
+    expectBadInput(sky, frame, "not a perspective one");
+    vkDestroyCommandPool(host.device, pool, nullptr);
+  }
+  EXPECT_EQ(gMessages.load(), 0) << "validation messages on the host's instance (stderr)";
+}
+
 TEST(SkylayersVulkanHost, AnIncompleteHostDeviceIsAnError) {
   skylayers::VulkanDevice none{};
   skylayers::DeviceOptions options;

@@ -62,6 +62,15 @@ grep -q "^wrote .*sunset.png (320x180, " "$work/headless.txt" || fail "the headl
 (cd "$work" && "$work/headless/headless" "$work/x.png" /nonexistent.yaml) >"$work/bad.txt" 2>&1 &&
   fail "the headless example took a missing scene"
 grep -q "nonexistent.yaml" "$work/bad.txt" || fail "the headless example's error does not name the file"
+# The Vulkan host example (examples/vulkan_host): its boxes, the sky drawn around them in its
+# own images and command buffer; it checks what it sees, and fails on a validation message.
+run "$cmake" -S "$source/examples/vulkan_host" -B "$work/vulkan_host" -DCMAKE_PREFIX_PATH="$prefix" \
+  -DCMAKE_BUILD_TYPE=Release
+run "$cmake" --build "$work/vulkan_host"
+(cd "$work" && "$work/vulkan_host/vulkan_host" --validate --size 160x90 "$work/host.png") \
+  >"$work/vulkan_host.txt" 2>&1 || { cat "$work/vulkan_host.txt" >&2; fail "the Vulkan host example failed"; }
+cat "$work/vulkan_host.txt"
+[ -s "$work/host.png" ] || fail "the Vulkan host example wrote no PNG"
 
 module=$(find "$prefix" -path '*dist-packages/skylayers*.so')
 [ -n "$module" ] || fail "the install lacks the Python module"

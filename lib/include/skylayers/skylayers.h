@@ -46,8 +46,9 @@ private:
   Kind mKind;
 };
 
-// The host's own Vulkan device: defined in <skylayers/vulkan.h>.
+// The host's own Vulkan device and a frame in its images: defined in <skylayers/vulkan.h>.
 struct VulkanDevice;
+struct HostFrame;
 
 // Where a Sky runs.
 struct DeviceOptions {
@@ -248,6 +249,20 @@ public:
   // Renders the scene at its time. With clouds.temporal.mode on, frames rendered one after
   // another reuse each other's clouds, as the window does.
   Frame render(const RenderRequest& request = {});
+  // Draws the frame into the host's own images (<skylayers/vulkan.h>, docs/library.md, "Into
+  // the host's images"): records into the host's command buffer, submits nothing. The Sky
+  // must be on the host's device (DeviceOptions::vulkan). Where the host's depth holds no
+  // geometry its colour becomes the frame render() gives; where it does, the host's pixel is
+  // seen through the air to it and behind the clouds in front of it. The camera is the
+  // Sky's (setCamera or setCameraAxes, setVerticalFov or setProjectionMatrix); the colour's
+  // size becomes the Sky's. The returned Frame has no images, only its time, exposure and
+  // report (GPU times 0: the host times its own queue). The host must submit the command
+  // buffer, and it must have completed before the Sky's next record() or render(). The Sky
+  // keeps a view of the images until then (or forgetHostImages()).
+  Frame record(const HostFrame& frame);
+  // Drops the Sky's views of the images of the last record(), which must have completed:
+  // before the host destroys them (a swapchain that is made again).
+  void forgetHostImages();
 
   // The sun and moon at the camera's place and time, behind the clouds there: on the CPU,
   // no frame needed (the clouds' field is made at the first call, as for the queries below).
