@@ -5,7 +5,9 @@
 // mode) without either paying the other's start-up. benchmarks/README.md has the protocol:
 //
 //   {"op":"open","case":"a","scene":"configs/default.yaml","set":["k=v"],"width":640,
-//    "height":360,"heading_deg_per_frame":0.2,"seconds_per_frame":0.1,"first_frame":0}
+//    "height":360,"heading_deg_per_frame":0.2,"seconds_per_frame":0.1,"first_frame":0,
+//    "views":4,"views_mode":"one_frame"}   (views: a rig of N cameras 360/N degrees apart,
+//                                           in one frame graph or as N separate renders)
 //   {"op":"frame","case":"a"}      renders the case's next frame: timings per pass
 //   {"op":"quality","case":"a","reference":"r"}   PSNR and max error of the display images
 //   {"op":"save","case":"a","png":"out.png"}      the last frame's display image
@@ -57,6 +59,8 @@ struct Case {
   double headingDegPerFrame = 0.0;  // the camera pans by this much each frame
   double secondsPerFrame = 0.0;     // and the scene's time advances by this much
   int64_t next = 0;                 // the frame the next "frame" request renders
+  int views = 1;                    // cameras in a rig, 360 / views degrees apart
+  bool oneFrame = true;             // the views in one frame graph, or rendered one by one
   std::vector<float> display;       // the last frame's display-referred RGBA
   bool quantized = false;           // display came as 8-bit codes (the GPU display path)
   int width = 0, height = 0;
@@ -108,6 +112,12 @@ private:
     c.headingDegPerFrame = r.value("heading_deg_per_frame", 0.0);
     c.secondsPerFrame = r.value("seconds_per_frame", 0.0);
     c.next = r.value("first_frame", int64_t{0});
+    c.views = r.value("views", 1);
+    if (c.views < 1 || c.views > 16) inputError("open: views must be 1..16");
+    const std::string mode = r.value("views_mode", std::string("one_frame"));
+    if (mode != "one_frame" && mode != "separate")
+      inputError("open: views_mode must be one_frame or separate");
+    c.oneFrame = mode == "one_frame";
     c.renderer = std::make_unique<Renderer>(mCtx, mCompiler);
     mCases.erase(name);
     mCases.emplace(name, std::move(c));
@@ -124,11 +134,39 @@ private:
     // A viewer's frame: the display image alone, through the GPU display path (a histogram
     // exposure meters the beauty on the CPU, so such a scene reads the beauty back instead).
     RenderOptions options;
-    const bool gpu = scene.output.exposure != ExposureMode::Histogram;
+    const bool gpu = scene.output.exposure != ExposureMode::Histogram && c.views == 1;
     options.readBack = gpu ? ReadBack::Display : ReadBack::Beauty;
     if (gpu) options.gpuDisplay = &mOcio;
     const auto start = std::chrono::steady_clock::now();
-    RenderedFrame f = c.renderer->render(scene, time, options);
+    RenderedFrame f;
+    if (c.views == 1) {
+      f = c.renderer->render(scene, time, options);
+    } else {
+      // A rig: the beauty of each view (the first is shown), in one frame or one by one.
+      options = {};
+      options.readBack = ReadBack::Beauty;
+      std::vector<FrameView> views;
+      for (int k = 0; k < c.views; ++k)
+        views.push_back({std::fmod(heading + 360.0 * k / c.views, 360.0), scene.camera.pitch,
+                         scene.camera.roll, scene.camera.verticalFov, scene.camera.projection,
+                         uint32_t(scene.output.width), uint32_t(scene.output.height)});
+      if (c.oneFrame) {
+        f = std::move(c.renderer->render(scene, time, views, options).front());
+      } else {
+        for (int k = 0; k < c.views; ++k) {
+          Scene one = scene;
+          one.camera.heading = views[k].headingDeg;
+          RenderedFrame v = c.renderer->render(one, time, options);
+          if (k == 0) {
+            f = std::move(v);
+            continue;
+          }
+          f.frame.gpuMs += v.frame.gpuMs;
+          f.frame.wallMs += v.frame.wallMs;
+          f.frame.passes.insert(f.frame.passes.end(), v.frame.passes.begin(), v.frame.passes.end());
+        }
+      }
+    }
     const double renderMs = elapsedMs(start);
     const auto displayStart = std::chrono::steady_clock::now();
     if (gpu) {

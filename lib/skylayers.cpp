@@ -369,36 +369,87 @@ std::string Sky::sceneYaml() const {
       [&] { return sky::writeScene(mImpl->scene.withAbsolutePaths(), sky::ConfigFormat::Yaml); });
 }
 
+namespace {
+
+// A rendered frame of `scene` as the API gives it: the PNG's path for the display
+// (engine/render/render_files.h: the scene's exposure, then OCIO, then the PNG's
+// quantisation) and skyrender's report.
+Frame frameOf(sky::RenderedFrame& rendered, const sky::Scene& scene, const sky::IsoTime& time,
+              const RenderRequest& request, sky::ExposureMeter& meter, const sky::OcioOutput& ocio,
+              const std::string& device) {
+  Frame frame;
+  frame.time = time.format();
+  frame.gpuMs = rendered.frame.gpuMs;
+  for (const sky::ImageLayer& layer : rendered.image.layers) {
+    if (layer.name.empty())
+      frame.beauty = imageOf("beauty", rendered.image, layer);
+    else if (request.layers)
+      frame.layers.push_back(imageOf(layer.name, rendered.image, layer));
+  }
+  const sky::FrameExposure exposure = meter.expose(scene, rendered, time);
+  frame.exposureEv = exposure.ev;
+  if (request.display) {
+    const std::vector<float> px = sky::displayPixels(rendered, scene, exposure, ocio);
+    frame.display =
+        sky::quantize8(rendered.image.width, rendered.image.height, px,
+                       scene.output.dither ? sky::PngQuantize::Dither : sky::PngQuantize::Nearest);
+  }
+  frame.report = sky::renderReport(scene, rendered, exposure, ocio, device).dump(2);
+  return frame;
+}
+
+sky::ReadBack readBackOf(const RenderRequest& request) {
+  return request.layers ? sky::ReadBack::Layers : sky::ReadBack::Beauty;
+}
+
+}  // namespace
+
 Frame Sky::render(const RenderRequest& request) {
   return translated([&] {
     Impl& m = *mImpl;
     sky::RenderOptions options;
-    options.readBack = request.layers ? sky::ReadBack::Layers : sky::ReadBack::Beauty;
+    options.readBack = readBackOf(request);
     const sky::IsoTime& time = m.scene.time.start;
     sky::RenderedFrame rendered = m.renderer.render(m.scene, time, options);
+    return frameOf(rendered, m.scene, time, request, m.exposure, m.ocio, m.context.deviceName());
+  });
+}
 
-    Frame frame;
-    frame.time = time.format();
-    frame.gpuMs = rendered.frame.gpuMs;
-    for (const sky::ImageLayer& layer : rendered.image.layers) {
-      if (layer.name.empty())
-        frame.beauty = imageOf("beauty", rendered.image, layer);
-      else if (request.layers)
-        frame.layers.push_back(imageOf(layer.name, rendered.image, layer));
+std::vector<Frame> Sky::renderViews(const std::vector<View>& views, const RenderRequest& request) {
+  return translated([&] {
+    Impl& m = *mImpl;
+    std::vector<sky::FrameView> frameViews;
+    std::vector<sky::Scene> scenes;
+    for (size_t i = 0; i < views.size(); ++i) {
+      const View& v = views[i];
+      // Each view's scene, through the scene reader: its checks name the view.
+      std::vector<std::string> keys = {"camera.heading=" + exact(v.headingDeg),
+                                       "camera.pitch=" + exact(v.pitchDeg),
+                                       "camera.roll=" + exact(v.rollDeg),
+                                       "camera.vertical_fov=" + exact(v.verticalFovDeg),
+                                       "output.width=" + std::to_string(v.width),
+                                       "output.height=" + std::to_string(v.height)};
+      try {
+        scenes.push_back(with(m.scene, keys));
+      } catch (const sky::Error& e) {
+        throw Error(Error::Kind::BadInput, "render: view " + std::to_string(i) + ": " + e.what());
+      }
+      const sky::CameraSettings& c = scenes.back().camera;
+      frameViews.push_back({c.heading, c.pitch, c.roll, c.verticalFov, c.projection,
+                            static_cast<uint32_t>(v.width), static_cast<uint32_t>(v.height)});
     }
-    // The PNG's path (engine/render/render_files.h): the scene's exposure, then OCIO, then
-    // the PNG's quantisation.
-    const sky::FrameExposure exposure = m.exposure.expose(m.scene, rendered, time);
-    frame.exposureEv = exposure.ev;
-    if (request.display) {
-      const std::vector<float> px = sky::displayPixels(rendered, m.scene, exposure, m.ocio);
-      frame.display = sky::quantize8(
-          rendered.image.width, rendered.image.height, px,
-          m.scene.output.dither ? sky::PngQuantize::Dither : sky::PngQuantize::Nearest);
+    sky::RenderOptions options;
+    options.readBack = readBackOf(request);
+    const sky::IsoTime& time = m.scene.time.start;
+    std::vector<sky::RenderedFrame> rendered =
+        m.renderer.render(m.scene, time, frameViews, options);
+    std::vector<Frame> frames;
+    for (size_t i = 0; i < rendered.size(); ++i) {
+      sky::ExposureMeter meter;  // each view meters itself
+      frames.push_back(
+          frameOf(rendered[i], scenes[i], time, request, meter, m.ocio, m.context.deviceName()));
     }
-    frame.report =
-        sky::renderReport(m.scene, rendered, exposure, m.ocio, m.context.deviceName()).dump(2);
-    return frame;
+    return frames;
   });
 }
 

@@ -309,6 +309,46 @@ PYBIND11_MODULE(skylayers, m) {
           "Renders a frame. width, height, time and any scene keys given as "
           "**{'key.path': value} are set first (and stay set).")
       .def(
+          "render_views",
+          [](skylayers::Sky& sky, const std::vector<py::dict>& given, bool display) {
+            std::vector<skylayers::View> views;
+            for (size_t i = 0; i < given.size(); ++i) {
+              const py::dict& d = given[i];
+              for (const auto& [key, value] : d) {
+                const std::string k = key.cast<std::string>();
+                if (k != "heading" && k != "pitch" && k != "roll" && k != "vertical_fov" &&
+                    k != "width" && k != "height")
+                  throw skylayers::Error(
+                      skylayers::Error::Kind::BadInput,
+                      "render_views: view " + std::to_string(i) + ": unknown key '" + k +
+                          "' (heading, pitch, roll, vertical_fov, width, height)");
+              }
+              const auto number = [&](const char* k, double fallback) {
+                return d.contains(k) ? d[k].cast<double>() : fallback;
+              };
+              skylayers::View v;
+              v.headingDeg = number("heading", 0.0);
+              v.pitchDeg = number("pitch", 0.0);
+              v.rollDeg = number("roll", 0.0);
+              v.verticalFovDeg = number("vertical_fov", 60.0);
+              v.width = d.contains("width") ? d["width"].cast<int>() : 0;
+              v.height = d.contains("height") ? d["height"].cast<int>() : 0;
+              views.push_back(v);
+            }
+            std::vector<skylayers::Frame> frames;
+            {
+              py::gil_scoped_release release;
+              frames = sky.renderViews(views, {.layers = true, .display = display});
+            }
+            std::vector<PyFrame> out;
+            for (skylayers::Frame& f : frames) out.emplace_back(std::move(f));
+            return out;
+          },
+          py::arg("views"), py::kw_only(), py::arg("display") = true,
+          "Several cameras at the Sky's camera place in one frame (one GPU submit): views is a "
+          "list of dicts with heading, pitch, roll, vertical_fov (degrees), width and height. "
+          "Returns one Frame per view, each the frame render() gives for that camera.")
+      .def(
           "lighting",
           [](const skylayers::Sky& sky, std::optional<std::string> time,
              std::optional<std::tuple<double, double, double>> position) {

@@ -220,9 +220,10 @@ uint32_t FrameGraph::declare(uint32_t pass, uint32_t resource, uint32_t version,
 
 ImageId GraphBuilder::create(const ImageDesc& desc) {
   ResourceNode node;
-  node.name = desc.name;
+  node.name = mGraph.mNamePrefix + desc.name;
   node.kind = ResourceKind::Image;
   node.image = desc;
+  node.image.name = node.name;
   node.image.usage = 0;
   return {mGraph.addResource(std::move(node), {}), 0};
 }
@@ -232,9 +233,10 @@ BufferId GraphBuilder::create(const BufferDesc& desc) {
     internalError("transient buffer '" + desc.name +
                   "' must be device memory; use uniform() for uploads");
   ResourceNode node;
-  node.name = desc.name;
+  node.name = mGraph.mNamePrefix + desc.name;
   node.kind = ResourceKind::Buffer;
   node.buffer = desc;
+  node.buffer.name = node.name;
   node.buffer.usage = 0;
   return {mGraph.addResource(std::move(node), {}), 0};
 }

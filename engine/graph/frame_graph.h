@@ -183,12 +183,25 @@ public:
   // Adds a pass; declare its resources through the returned builder before adding the next.
   GraphBuilder addPass(std::string name, std::function<void(PassContext&)> execute);
   // Adds a pass object (see STYLE.md): P::kName, P::Inputs, P::Outputs, setup(), execute().
-  // The pass object must outlive execute().
+  // The pass object must outlive execute(). A pass with a P::Data keeps what one use of it
+  // needs at execute() there, owned by the graph (setup(builder, inputs, data) fills it,
+  // execute(ctx, data) reads it), so one pass object can be added several times to a frame:
+  // once per view. One without keeps it in itself, and can be added once.
   template <class P>
   typename P::Outputs add(P& pass, const typename P::Inputs& inputs) {
-    GraphBuilder b = addPass(P::kName, [&pass](PassContext& ctx) { pass.execute(ctx); });
-    return pass.setup(b, inputs);
+    if constexpr (requires { typename P::Data; }) {
+      auto data = std::make_shared<typename P::Data>();
+      GraphBuilder b =
+          addPass(P::kName, [&pass, data](PassContext& ctx) { pass.execute(ctx, *data); });
+      return pass.setup(b, inputs, *data);
+    } else {
+      GraphBuilder b = addPass(P::kName, [&pass](PassContext& ctx) { pass.execute(ctx); });
+      return pass.setup(b, inputs);
+    }
   }
+  // Prefixes the names of the images and buffers passes create from now on ("view1/": a
+  // frame of several views, whose passes would otherwise name theirs alike); "" for none.
+  void setNamePrefix(std::string prefix) { mNamePrefix = std::move(prefix); }
   // Reads `image` back to the host after the frame under `label` (main image, AOVs, debug).
   void requestOutput(ImageId image, std::string label);
   // The same for an image images() found: an image, or a buffer that holds one (read back
@@ -248,6 +261,7 @@ private:
   };
   std::vector<Output> mOutputs;
   std::vector<HistoryImage*> mHistories;  // flipped after execute
+  std::string mNamePrefix;                // setNamePrefix
   struct External {
     uint32_t resource = 0;
     VkImageLayout hostLayout = VK_IMAGE_LAYOUT_UNDEFINED;

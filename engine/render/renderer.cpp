@@ -204,6 +204,21 @@ struct Renderer::FrameInputs {
   shared::ViewState view;
   uint32_t width, height;
   bool physical, topDown;
+  SharedFrame* shared;  // a frame of several views: what they share; null for one view
+};
+
+// What the views of a frame of several share, made by the first view's passes.
+struct Renderer::SharedFrame {
+  std::optional<HighCloudTextures::Outputs> textures;
+  std::optional<ImageId> highCover;
+  std::optional<AtmosphereLuts::Outputs> luts;
+  struct Clouds {
+    CloudLayers::Frame frame;
+    ImageId ambient;
+    std::optional<CloudLightVolumePass::Outputs> volume;
+    CloudShadowPass::Outputs shadow;
+  };
+  std::optional<Clouds> clouds;
 };
 
 // The sky, the high clouds and the stars of a frame, as the composite reads them.
@@ -243,8 +258,11 @@ Renderer::SkyImages Renderer::addSky(FrameGraph& graph, const FrameInputs& f, Re
   // altitude (the middle of the layer's gh range).
   const bool highFromWeather = highCloudsFromWeather(scene, weather);
   const auto texturesStart = std::chrono::steady_clock::now();
+  SharedFrame* shared = f.shared;
   const HighCloudTextures::Outputs textures =
-      mHighCloudTextures.addTo(graph, scene, highFromWeather);
+      shared && shared->textures ? *shared->textures
+                                 : mHighCloudTextures.addTo(graph, scene, highFromWeather);
+  if (shared) shared->textures = textures;
   out.costs.texturesMs += msSince(texturesStart);
   out.highClouds = mHighCloudTextures.lastActivity();
   if (highFromWeather && weather.highAltitudeM)
@@ -259,8 +277,10 @@ Renderer::SkyImages Renderer::addSky(FrameGraph& graph, const FrameInputs& f, Re
                                    coarse.width, textures.mean, s.highAltitudeM);
   if (highFromWeather) {
     setRegionalCover(sky.params, scene, weather.region, textures);
-    sky.regional = {mClouds.addHighCover(graph, weather), &mClouds.weatherSampler(),
-                    textures.rankShape, textures.coverCoarse};
+    const ImageId cover =
+        shared && shared->highCover ? *shared->highCover : mClouds.addHighCover(graph, weather);
+    if (shared) shared->highCover = cover;
+    sky.regional = {cover, &mClouds.weatherSampler(), textures.rankShape, textures.coverCoarse};
   }
   sky.lighting = out.lighting.gpu;
   sky.textures = {textures.coefficients, textures.normals, textures.coarse,
@@ -282,7 +302,14 @@ Renderer::SkyImages Renderer::addSky(FrameGraph& graph, const FrameInputs& f, Re
       const CloudSettings& c = f.setup.volumetric.clouds;
       a.cloudAltitudeM = 0.5 * (c.low.baseM + c.low.topM);
     }
-    s.luts = mAtmosphere.addTo(graph, a);
+    if (shared && shared->luts) {
+      // Another view at the same place: its own aerial perspective, the same other LUTs.
+      s.luts = *shared->luts;
+      s.luts.aerialPerspective = mAtmosphere.addAerialPerspective(graph, s.luts, f.view);
+    } else {
+      s.luts = mAtmosphere.addTo(graph, a);
+      if (shared) shared->luts = s.luts;
+    }
     sky.physical = true;
     sky.atmosphere = {mAtmosphere.params(), s.luts.transmittance, s.luts.skyViewSun,
                       s.luts.skyViewMoon, &mAtmosphere.sampler()};
@@ -298,14 +325,16 @@ Renderer::CloudImages Renderer::addClouds(FrameGraph& graph, const FrameInputs& 
   const Scene& cloudScene = f.setup.cloudScene;
   const CloudFrameGeometry& geometry = f.setup.geometry;
   CloudImages c;
+  SharedFrame* shared = f.shared;
+  const SharedFrame::Clouds* made = shared && shared->clouds ? &*shared->clouds : nullptr;
   const auto texturesStart = std::chrono::steady_clock::now();
-  c.frame = mClouds.addTo(graph, cloudScene, f.time);
+  c.frame = made ? made->frame : mClouds.addTo(graph, cloudScene, f.time);
   out.costs.texturesMs += msSince(texturesStart);
   out.cloudNoise = mClouds.noiseActivity();
   // Temporal reuse: a sequence's frames march a share of the pixels and reproject the rest,
-  // at the view's size or at half its width and height.
+  // at the view's size or at half its width and height. Not in a frame of several views.
   const bool temporal = scene.clouds.temporal.mode == CloudTemporalMode::On &&
-                        scene.clouds.quality == CloudQuality::Standard && !f.topDown;
+                        scene.clouds.quality == CloudQuality::Standard && !f.topDown && !shared;
   const bool half = temporal && scene.clouds.temporal.resolution == CloudTemporalResolution::Half;
   const uint32_t cloudWidth = half ? (f.width + 1) / 2 : f.width;
   const uint32_t cloudHeight = half ? (f.height + 1) / 2 : f.height;
@@ -329,7 +358,8 @@ Renderer::CloudImages Renderer::addClouds(FrameGraph& graph, const FrameInputs& 
     ambient.atmosphere = CloudAmbientPass::Atmosphere{
         mAtmosphere.cloudParams(), sky.luts.transmittance, sky.luts.skyViewSunClouds,
         sky.luts.skyViewMoonClouds, &mAtmosphere.sampler()};
-  in.ambient = graph.add(mAmbient, ambient).ambient;
+  in.ambient = made ? made->ambient : graph.add(mAmbient, ambient).ambient;
+  std::optional<CloudLightVolumePass::Outputs> lightVolume;
   // What the light volume and the shadow map are made from: kept while it holds.
   CloudFieldKey field;
   field.clouds = settingsWithoutPose(cloudScene);
@@ -348,7 +378,9 @@ Renderer::CloudImages Renderer::addClouds(FrameGraph& graph, const FrameInputs& 
     v.params.lightVolume = cloudLightVolumePlace(in.params, geometry.altitudeM);
     v.textures = in.textures;
     v.key = field;
-    const CloudLightVolumePass::Outputs volume = mLightVolume.addTo(graph, v);
+    const CloudLightVolumePass::Outputs volume =
+        made && made->volume ? *made->volume : mLightVolume.addTo(graph, v);
+    if (shared) lightVolume = volume;
     in.params.lightVolume = volume.place;
     in.lightVolume = volume.volume;
     in.lightVolumeSampler = &mLightVolume.sampler();
@@ -398,18 +430,24 @@ Renderer::CloudImages Renderer::addClouds(FrameGraph& graph, const FrameInputs& 
   }
   // The clouds' shadows on the ground around the observer (a top-down render draws no
   // ground, but the composite's cloud variant binds a map all the same).
-  c.shadow =
-      mShadow.addTo(graph, CloudShadowPass::Inputs{in.params, in.variant,
-                                                   cloudShadowMap(in.params, geometry.altitudeM),
-                                                   in.textures, field});
+  if (made) {
+    c.shadow = made->shadow;
+  } else {
+    c.shadow =
+        mShadow.addTo(graph, CloudShadowPass::Inputs{in.params, in.variant,
+                                                     cloudShadowMap(in.params, geometry.altitudeM),
+                                                     in.textures, field});
+    // A cut through the density field for the debug view: culled unless it is asked for.
+    graph.add(mSlice, CloudDensitySlicePass::Inputs{in.params, in.variant, in.textures});
+    if (shared) shared->clouds = SharedFrame::Clouds{c.frame, in.ambient, lightVolume, c.shadow};
+  }
   out.cloudShadow = c.shadow.map;
-  // A cut through the density field for the debug view: culled unless it is asked for.
-  graph.add(mSlice, CloudDensitySlicePass::Inputs{in.params, in.variant, in.textures});
   return c;
 }
 
 Renderer::FramePlan Renderer::buildFrame(FrameGraph& graph, const Scene& scene, const IsoTime& time,
-                                         const RenderOptions& options, RenderedFrame& out) {
+                                         const RenderOptions& options, RenderedFrame& out,
+                                         SharedFrame* shared) {
   const CloudSetup setup = cloudSetup(scene, time);
   const WeatherMap& weather = *setup.weather;
   out.lighting = setup.lighting;
@@ -427,7 +465,8 @@ Renderer::FramePlan Renderer::buildFrame(FrameGraph& graph, const Scene& scene, 
                       width,
                       height,
                       scene.sky.model == SkyModel::Physical,
-                      setup.geometry.topDown};
+                      setup.geometry.topDown,
+                      shared};
   FramePlan plan;
   const SkyImages sky = addSky(graph, f, out);
   std::optional<CloudImages> clouds;
@@ -499,17 +538,17 @@ constexpr const char* kDebugLabel = "debug:";
 }  // namespace
 
 void Renderer::requestOutputs(FrameGraph& graph, const FramePlan& plan,
-                              const RenderOptions& options) {
-  if (options.readBack != ReadBack::Display) graph.requestOutput(plan.beauty, "beauty");
+                              const RenderOptions& options, const std::string& prefix) {
+  if (options.readBack != ReadBack::Display) graph.requestOutput(plan.beauty, prefix + "beauty");
   if (options.readBack == ReadBack::Layers) {
-    graph.requestOutput(plan.sky, "sky");
-    graph.requestOutput(plan.highClouds, "high_clouds");
+    graph.requestOutput(plan.sky, prefix + "sky");
+    graph.requestOutput(plan.highClouds, prefix + "high_clouds");
     if (plan.clouds.valid()) {
-      graph.requestOutput(plan.clouds, "clouds");
-      graph.requestOutput(plan.cloudsDepth, "clouds_depth");
+      graph.requestOutput(plan.clouds, prefix + "clouds");
+      graph.requestOutput(plan.cloudsDepth, prefix + "clouds_depth");
     }
   }
-  if (plan.display.valid()) graph.requestOutput(plan.display, "display");
+  if (plan.display.valid()) graph.requestOutput(plan.display, prefix + "display");
   // The debug images, by the names their passes gave them (the graph is the registry).
   std::vector<std::string> names = options.debugOutputs;
   if (options.allDebugOutputs)
@@ -520,39 +559,40 @@ void Renderer::requestOutputs(FrameGraph& graph, const FramePlan& plan,
 }
 
 void Renderer::collectOutputs(RenderedFrame& out, const FrameGraph& graph, const FramePlan& plan,
-                              const RenderOptions& options) {
+                              const RenderOptions& options, const std::string& prefix) {
   const FrameResult& result = out.frame;
   const uint32_t width = graph.desc().resources[plan.beauty.id].image.width;
   const uint32_t height = graph.desc().resources[plan.beauty.id].image.height;
   out.image.width = static_cast<int>(width);
   out.image.height = static_cast<int>(height);
   if (options.readBack != ReadBack::Display)
-    out.image.layers.push_back(beautyLayer(result.output("beauty")));
+    out.image.layers.push_back(beautyLayer(result.output(prefix + "beauty")));
   if (options.readBack == ReadBack::Layers) {
     const bool clouds = plan.clouds.valid();
-    appendAovLayers(out.image, result.output("sky"), result.output("high_clouds"),
-                    clouds ? &result.output("clouds") : nullptr,
-                    clouds ? &result.output("clouds_depth") : nullptr);
+    appendAovLayers(out.image, result.output(prefix + "sky"), result.output(prefix + "high_clouds"),
+                    clouds ? &result.output(prefix + "clouds") : nullptr,
+                    clouds ? &result.output(prefix + "clouds_depth") : nullptr);
     if (plan.weather)
       out.image.layers.push_back(
           weatherCoverLayer(*plan.weather, plan.weather->region, width, height));
   }
   const std::vector<GraphImage> images = graph.images();
   for (const GraphImage& g : images) out.images.push_back(debugImageInfo(g));
-  const std::string prefix = kDebugLabel;
+  const std::string debug = kDebugLabel;
   for (const ReadbackImage& o : result.outputs) {
-    if (o.label.rfind(prefix, 0) != 0) continue;
-    const std::string name = o.label.substr(prefix.size());
+    if (o.label.rfind(debug, 0) != 0) continue;
+    const std::string name = o.label.substr(debug.size());
     for (const GraphImage& g : images)
       if (g.name == name) out.debug.push_back(debugImage(o, g, result));
   }
   if (plan.display.valid()) {
-    const std::vector<float>& codes = result.output("display").pixels;
+    const std::vector<float>& codes = result.output(prefix + "display").pixels;
     out.display.resize(codes.size());
     for (size_t i = 0; i < codes.size(); ++i)
       out.display[i] = static_cast<uint8_t>(std::lround(codes[i] * 255.0f));
   }
-  for (ReadbackImage& o : out.frame.outputs) o.pixels = {};  // the layers hold the data now
+  if (prefix.empty())
+    for (ReadbackImage& o : out.frame.outputs) o.pixels = {};  // the layers hold the data now
 }
 
 RenderedFrame Renderer::render(const Scene& scene, const IsoTime& time,
@@ -579,6 +619,12 @@ RenderedFrame Renderer::render(const Scene& scene, const IsoTime& time,
   if (plan.pendingHistory) mHistory = std::move(*plan.pendingHistory);
   out.graphDot = graph.toDot(&out.frame);
   if (!options.host) collectOutputs(out, graph, plan, options);
+  finishCosts(out, start, pipelinesBefore);
+  return out;
+}
+
+void Renderer::finishCosts(RenderedFrame& out, std::chrono::steady_clock::time_point start,
+                           double pipelinesBefore) {
   for (const PassTiming& t : out.frame.passes)
     if (t.name == AtmosphereLuts::kTransmittanceName ||
         t.name == AtmosphereLuts::kMultiScatteringName)
@@ -590,7 +636,64 @@ RenderedFrame Renderer::render(const Scene& scene, const IsoTime& time,
     out.costs.rendererPipelinesMs = mConstruction->rendererPipelinesMs;
     mConstruction.reset();
   }
-  return out;
+}
+
+std::vector<RenderedFrame> Renderer::render(const Scene& scene, const IsoTime& time,
+                                            const std::vector<FrameView>& views,
+                                            const RenderOptions& options) {
+  if (views.empty()) inputError("render: no view to render");
+  if (scene.camera.mode != CameraMode::Observer)
+    inputError("render: several views need an observer camera (camera.mode observer)");
+  if (options.gpuDisplay || options.host || !options.debugOutputs.empty() ||
+      options.allDebugOutputs)
+    internalError("a frame of several views has no GPU display, host target or debug output");
+  const auto start = std::chrono::steady_clock::now();
+  const double pipelinesBefore = pipelineBuildMs();
+  std::vector<RenderedFrame> outs(views.size());
+  std::vector<FramePlan> plans;
+  FrameGraph graph(mRuntime);
+  SharedFrame shared;
+  for (size_t i = 0; i < views.size(); ++i) {
+    const FrameView& v = views[i];
+    if (v.width == 0 || v.height == 0)
+      inputError("render: view " + std::to_string(i) + " has no size");
+    Scene view = scene;
+    view.camera.heading = v.headingDeg;
+    view.camera.pitch = v.pitchDeg;
+    view.camera.roll = v.rollDeg;
+    view.camera.verticalFov = v.verticalFovDeg;
+    view.camera.projection = v.projection;
+    view.output.width = static_cast<int>(v.width);
+    view.output.height = static_cast<int>(v.height);
+    // Each view's images by their names, "view1/beauty" after the first view's "beauty".
+    graph.setNamePrefix(i == 0 ? "" : "view" + std::to_string(i) + "/");
+    plans.push_back(buildFrame(graph, view, time, options, outs[i], &shared));
+  }
+  graph.setNamePrefix("");
+  const auto label = [](size_t i) {
+    return i == 0 ? std::string() : "view" + std::to_string(i) + "/";
+  };
+  FrameResult result;
+  try {
+    for (size_t i = 0; i < views.size(); ++i) requestOutputs(graph, plans[i], options, label(i));
+    result = graph.execute();
+  } catch (...) {
+    mLightVolume.invalidate();
+    mShadow.invalidate();
+    throw;
+  }
+  // The views marched every pixel; a later sequence frame starts afresh.
+  mCloudHistory.invalidate();
+  mDepthHistory.invalidate();
+  const std::string dot = graph.toDot(&result);
+  for (size_t i = 0; i < views.size(); ++i) {
+    outs[i].frame = result;
+    collectOutputs(outs[i], graph, plans[i], options, label(i));
+    outs[i].frame.outputs.clear();
+    outs[i].graphDot = dot;
+    finishCosts(outs[i], start, pipelinesBefore);
+  }
+  return outs;
 }
 
 std::vector<DebugImageInfo> Renderer::debugImages(const Scene& scene, const IsoTime& time,

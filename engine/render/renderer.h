@@ -73,6 +73,16 @@ struct HostTarget {
   shared::HostDepth depthMapping{};  // how its values map to distance
 };
 
+// One camera of a frame of several views (Renderer::render with views): where it looks, its
+// field of view and its size. Every view stands at the scene camera's place, so they share
+// the frame's lights, bakes, LUTs, weather map, noise, light volume and shadow map.
+struct FrameView {
+  double headingDeg = 0.0, pitchDeg = 0.0, rollDeg = 0.0;  // as camera.heading/pitch/roll
+  double verticalFovDeg = 60.0;                            // camera.vertical_fov
+  CameraProjection projection = CameraProjection::Perspective;
+  uint32_t width = 0, height = 0;
+};
+
 struct RenderOptions {
   // Images of the frame's graph to read back by name (Renderer::debugImages lists them);
   // a name the frame does not have is an UnknownImageName error (BadInput).
@@ -167,6 +177,15 @@ public:
   // marches every pixel; the others 1 / block^2 of them (passes/cloud_temporal).
   // The first (or only) frame of the scene's time.
   RenderedFrame render(const Scene& scene) { return render(scene, scene.time.start); }
+  // Several views of `scene` at `time` in one frame graph and one submit, each as render()
+  // would draw it with the scene's camera turned and sized as the view says. What does not
+  // depend on where a camera looks is made once for all. Without temporal reuse (each view
+  // marches all its pixels; the reuse history is left invalid), and without the GPU display
+  // path or debug outputs (internal error). One RenderedFrame per view, in order; each holds
+  // the whole frame's pass timings. BadInput for no view or a topdown camera.
+  std::vector<RenderedFrame> render(const Scene& scene, const IsoTime& time,
+                                    const std::vector<FrameView>& views,
+                                    const RenderOptions& options = {});
   // The images the frame of `scene` at `time` would have, each of which can be asked for in
   // RenderOptions::debugOutputs: builds the frame's graph (baking what it needs) but does not
   // run it.
@@ -224,7 +243,10 @@ private:
 
   // A frame in four steps: build the graph (sky, clouds, composite, display), request its
   // outputs (the EXR's layers, the display image, debug images by name), execute, collect.
+  // A frame of several views builds each view in turn; what they share, the first makes
+  // (SharedFrame) and the others reuse.
   struct FrameInputs;
+  struct SharedFrame;
   struct SkyImages;
   struct CloudImages;
   struct FramePlan {  // what the outputs are read from
@@ -233,13 +255,19 @@ private:
     std::optional<CloudHistory> pendingHistory;  // becomes mHistory once the frame has run
   };
   FramePlan buildFrame(FrameGraph& graph, const Scene& scene, const IsoTime& time,
-                       const RenderOptions& options, RenderedFrame& out);
+                       const RenderOptions& options, RenderedFrame& out,
+                       SharedFrame* shared = nullptr);
   SkyImages addSky(FrameGraph& graph, const FrameInputs& f, RenderedFrame& out);
   CloudImages addClouds(FrameGraph& graph, const FrameInputs& f, const SkyImages& sky,
                         RenderedFrame& out, std::optional<CloudHistory>& pendingHistory);
-  void requestOutputs(FrameGraph& graph, const FramePlan& plan, const RenderOptions& options);
+  // `prefix` labels a view's outputs in a frame of several ("view1/").
+  void requestOutputs(FrameGraph& graph, const FramePlan& plan, const RenderOptions& options,
+                      const std::string& prefix = "");
   void collectOutputs(RenderedFrame& out, const FrameGraph& graph, const FramePlan& plan,
-                      const RenderOptions& options);
+                      const RenderOptions& options, const std::string& prefix = "");
+  // The costs and timings of a frame once it has run.
+  void finishCosts(RenderedFrame& out, std::chrono::steady_clock::time_point start,
+                   double pipelinesBefore);
 
   // When construction began and the process's pipeline time then: the first render() reports
   // what constructing took (FrameCosts::rendererMs). Declared first, so initialised first.

@@ -139,9 +139,10 @@ std::vector<CompositeBand> compositeBands(const shared::AtmosphereCompositeParam
 AtmosphereCompositePass::AtmosphereCompositePass(const Context& ctx, ShaderCompiler& compiler)
     : mVariants(ctx, compiler, "atmosphere_composite.comp", kName) {}
 
-AtmosphereCompositePass::Outputs AtmosphereCompositePass::setup(GraphBuilder& b, const Inputs& in) {
-  mInputs = in;
-  mInputs.params.clouds = in.clouds ? 1u : 0u;
+AtmosphereCompositePass::Outputs AtmosphereCompositePass::setup(GraphBuilder& b, const Inputs& in,
+                                                                Data& d) {
+  d.inputs = in;
+  d.inputs.params.clouds = in.clouds ? 1u : 0u;
   const shared::LightingState& L = in.lighting;
   const bool sunDisc =
       discReachesView(in.params.view, glm::vec3(L.sun.direction), L.sun.direction.w);
@@ -155,14 +156,14 @@ AtmosphereCompositePass::Outputs AtmosphereCompositePass::setup(GraphBuilder& b,
       internalError("atmosphere_composite: a host colour format other than rgba16f or rgba32f");
     if (in.host->depth && !in.host->depthSampler)
       internalError("atmosphere_composite: no host depth sampler");
-    mInputs.params.host = in.host->depthMapping;
-    mInputs.params.host.present = in.host->depth ? 1u : 0u;
+    d.inputs.params.host = in.host->depthMapping;
+    d.inputs.params.host.present = in.host->depth ? 1u : 0u;
   }
-  mBands.clear();
+  d.bands.clear();
   for (const CompositeBand& band :
-       compositeBands(mInputs.params, in.clouds.has_value(), in.clouds && in.clouds->belowBase,
+       compositeBands(d.inputs.params, in.clouds.has_value(), in.clouds && in.clouds->belowBase,
                       ATMOSPHERE_COMPOSITE_GROUP_Y))
-    mBands.emplace_back(
+    d.bands.emplace_back(
         band, &mVariants.get({flag("ATMOSPHERE_COMPOSITE_PHYSICAL", in.atmosphere.has_value()),
                               flag("ATMOSPHERE_COMPOSITE_CLOUDS", in.clouds.has_value()),
                               flag("ATMOSPHERE_COMPOSITE_STARS", in.starFlux.has_value()),
@@ -181,7 +182,7 @@ AtmosphereCompositePass::Outputs AtmosphereCompositePass::setup(GraphBuilder& b,
     b.read(in.clouds->clouds, Access::StorageReadCompute);
     b.read(in.clouds->depth, Access::StorageReadCompute);
     b.read(in.clouds->shadow, Access::SampledCompute);
-    mInputs.params.shadow = in.clouds->shadowMap;
+    d.inputs.params.shadow = in.clouds->shadowMap;
   }
   if (in.atmosphere) {
     if (!in.atmosphere->sampler) internalError("atmosphere_composite: no LUT sampler");
@@ -195,35 +196,35 @@ AtmosphereCompositePass::Outputs AtmosphereCompositePass::setup(GraphBuilder& b,
   desc.height = in.params.view.size.y;
   desc.name = "beauty";
   desc.about = "the frame: sky, clouds and ground through the atmosphere (scene-linear)";
-  mOutputs.beauty = b.write(b.create(desc), Access::StorageWriteCompute);
-  mOutputs.host = {};
+  d.outputs.beauty = b.write(b.create(desc), Access::StorageWriteCompute);
+  d.outputs.host = {};
   if (in.host) {
     if (in.host->depth) b.read(*in.host->depth, Access::SampledCompute);
-    mOutputs.host = b.write(in.host->colour, Access::StorageReadWriteCompute);
+    d.outputs.host = b.write(in.host->colour, Access::StorageReadWriteCompute);
     b.sideEffect();  // the host reads it, after the frame
   }
-  return mOutputs;
+  return d.outputs;
 }
 
-void AtmosphereCompositePass::execute(PassContext& ctx) const {
-  const auto& size = mInputs.params.view.size;
+void AtmosphereCompositePass::execute(PassContext& ctx, const Data& d) const {
+  const auto& size = d.inputs.params.view.size;
   // Each variant's shader declares exactly these: the common ones, the stars', the clouds'
   // and, for the physical sky, the atmosphere's.
   std::vector<Binding> bindings = {
-      Binding::of(ATMOSPHERE_COMPOSITE_BINDING_PARAMS, ctx.uniform(mInputs.params)),
-      Binding::of(ATMOSPHERE_COMPOSITE_BINDING_BEAUTY, mOutputs.beauty),
-      Binding::of(ATMOSPHERE_COMPOSITE_BINDING_SKY, mInputs.sky),
-      Binding::of(ATMOSPHERE_COMPOSITE_BINDING_HIGH_CLOUDS, mInputs.highClouds),
-      Binding::of(ATMOSPHERE_COMPOSITE_BINDING_LIGHTING, ctx.uniform(mInputs.lighting))};
-  if (mInputs.starFlux)
-    bindings.push_back(Binding::of(ATMOSPHERE_COMPOSITE_BINDING_STARS, *mInputs.starFlux));
-  if (const auto& c = mInputs.clouds) {
+      Binding::of(ATMOSPHERE_COMPOSITE_BINDING_PARAMS, ctx.uniform(d.inputs.params)),
+      Binding::of(ATMOSPHERE_COMPOSITE_BINDING_BEAUTY, d.outputs.beauty),
+      Binding::of(ATMOSPHERE_COMPOSITE_BINDING_SKY, d.inputs.sky),
+      Binding::of(ATMOSPHERE_COMPOSITE_BINDING_HIGH_CLOUDS, d.inputs.highClouds),
+      Binding::of(ATMOSPHERE_COMPOSITE_BINDING_LIGHTING, ctx.uniform(d.inputs.lighting))};
+  if (d.inputs.starFlux)
+    bindings.push_back(Binding::of(ATMOSPHERE_COMPOSITE_BINDING_STARS, *d.inputs.starFlux));
+  if (const auto& c = d.inputs.clouds) {
     bindings.push_back(Binding::of(ATMOSPHERE_COMPOSITE_BINDING_CLOUDS, c->clouds));
     bindings.push_back(Binding::of(ATMOSPHERE_COMPOSITE_BINDING_CLOUD_DEPTH, c->depth));
     bindings.push_back(
         Binding::of(ATMOSPHERE_COMPOSITE_BINDING_CLOUD_SHADOW, c->shadow, c->shadowSampler));
   }
-  if (const auto& a = mInputs.atmosphere) {
+  if (const auto& a = d.inputs.atmosphere) {
     bindings.push_back(
         Binding::of(ATMOSPHERE_COMPOSITE_BINDING_ATMOSPHERE, ctx.uniform(a->params)));
     bindings.push_back(
@@ -231,13 +232,13 @@ void AtmosphereCompositePass::execute(PassContext& ctx) const {
     bindings.push_back(Binding::of(ATMOSPHERE_COMPOSITE_BINDING_AERIAL_PERSPECTIVE,
                                    a->aerialPerspective, a->sampler));
   }
-  if (const auto& h = mInputs.host) {
-    bindings.push_back(Binding::of(ATMOSPHERE_COMPOSITE_BINDING_HOST_COLOUR, mOutputs.host));
+  if (const auto& h = d.inputs.host) {
+    bindings.push_back(Binding::of(ATMOSPHERE_COMPOSITE_BINDING_HOST_COLOUR, d.outputs.host));
     if (h->depth)
       bindings.push_back(
           Binding::of(ATMOSPHERE_COMPOSITE_BINDING_HOST_DEPTH, *h->depth, h->depthSampler));
   }
-  for (const auto& [band, pipeline] : mBands) {
+  for (const auto& [band, pipeline] : d.bands) {
     const shared::AtmosphereCompositeBand rows{glm::uvec4(band.firstRow, band.rows, 0u, 0u)};
     ctx.dispatch(*pipeline, bindings, pipeline->groupsX(size.x), pipeline->groupsY(band.rows), 1,
                  &rows, sizeof rows);

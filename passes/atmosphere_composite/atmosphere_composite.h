@@ -109,15 +109,18 @@ public:
   // The shader's variants (physical or kozlov; clouds, stars, each disc or not; ground and
   // clouds' air or not) are compiled on first use: setup picks those this frame's bands need.
   AtmosphereCompositePass(const Context& ctx, ShaderCompiler& compiler);
-  Outputs setup(GraphBuilder& builder, const Inputs& inputs);
-  void execute(PassContext& ctx) const;
+  // One use's data, in the frame graph (FrameGraph::add): once per view.
+  struct Data {
+    // This view's bands, each with its variant.
+    std::vector<std::pair<CompositeBand, const ComputePipeline*>> bands;
+    Inputs inputs{};
+    Outputs outputs;
+  };
+  Outputs setup(GraphBuilder& builder, const Inputs& inputs, Data& data);
+  void execute(PassContext& ctx, const Data& data) const;
 
 private:
   ComputePipelineVariants mVariants;
-  // This frame's bands, each with its variant.
-  std::vector<std::pair<CompositeBand, const ComputePipeline*>> mBands;
-  Inputs mInputs{};
-  Outputs mOutputs;
 };
 
 }  // namespace sky

@@ -239,24 +239,35 @@ AtmosphereLuts::Outputs AtmosphereLuts::addTo(FrameGraph& graph, const Frame& fr
                 kSkyViewCloudsMoonName);
   }
 
+  out.aerialPerspective = addAerialPerspective(graph, out, frame.view);
+  return out;
+}
+
+ImageId AtmosphereLuts::addAerialPerspective(FrameGraph& graph, const Outputs& luts,
+                                             const shared::ViewState& view) {
+  shared::AtmosphereParams p = mParams;
+  p.view = view;
+  struct Handles {
+    ImageId transmittance, multiScattering, aerialPerspective;
+  };
+  auto h = std::make_shared<Handles>(Handles{luts.transmittance, luts.multiScattering, {}});
   GraphBuilder a = graph.addPass(kAerialPerspectiveName, [this, h, p](PassContext& ctx) {
-    ctx.dispatch(
-        mAerialPerspective,
-        {Binding::of(ATMOSPHERE_BINDING_PARAMS, ctx.uniform(p)),
-         Binding::of(ATMOSPHERE_AP_BINDING_TRANSMITTANCE, h->out.transmittance, &mSampler),
-         Binding::of(ATMOSPHERE_AP_BINDING_MULTISCATTERING, h->out.multiScattering, &mSampler),
-         Binding::of(ATMOSPHERE_AP_BINDING_OUT, h->out.aerialPerspective)},
-        mAerialPerspective.groupsX(ATMOSPHERE_AP_SIZE),
-        mAerialPerspective.groupsY(ATMOSPHERE_AP_SIZE));
+    ctx.dispatch(mAerialPerspective,
+                 {Binding::of(ATMOSPHERE_BINDING_PARAMS, ctx.uniform(p)),
+                  Binding::of(ATMOSPHERE_AP_BINDING_TRANSMITTANCE, h->transmittance, &mSampler),
+                  Binding::of(ATMOSPHERE_AP_BINDING_MULTISCATTERING, h->multiScattering, &mSampler),
+                  Binding::of(ATMOSPHERE_AP_BINDING_OUT, h->aerialPerspective)},
+                 mAerialPerspective.groupsX(ATMOSPHERE_AP_SIZE),
+                 mAerialPerspective.groupsY(ATMOSPHERE_AP_SIZE));
   });
-  a.read(out.transmittance, Access::SampledCompute);
-  a.read(out.multiScattering, Access::SampledCompute);
-  out.aerialPerspective =
+  a.read(luts.transmittance, Access::SampledCompute);
+  a.read(luts.multiScattering, Access::SampledCompute);
+  h->aerialPerspective =
       a.write(a.create(lutDesc("atmosphere_aerial_perspective",
                                "in-scattering (RGB) and transmittance (A) along view rays, 3D",
                                ATMOSPHERE_AP_SIZE, ATMOSPHERE_AP_SIZE, ATMOSPHERE_AP_SLICES)),
               Access::StorageWriteCompute);
-  return out;
+  return h->aerialPerspective;
 }
 
 ImageId AtmosphereLuts::addSkyProbe(FrameGraph& graph, const Outputs& luts, uint32_t width,

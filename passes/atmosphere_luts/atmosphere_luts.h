@@ -87,6 +87,10 @@ public:
   // LUT no pass of the frame reads (the moon's by day) is culled with its pass. Aerial
   // perspective follows the view and runs every frame. Must outlive graph.execute().
   Outputs addTo(FrameGraph& graph, const Frame& frame);
+  // Another view's aerial-perspective volume from the LUTs of this frame's addTo (a frame of
+  // several views at one place: the other LUTs do not depend on where the camera looks).
+  ImageId addAerialPerspective(FrameGraph& graph, const Outputs& luts,
+                               const shared::ViewState& view);
 
   // Adds the sky probe: a width x height RGBA32F equirectangular image of the whole sphere
   // (column 0 north, azimuth eastward; row 0 the zenith) made by skyViewRadiance() from

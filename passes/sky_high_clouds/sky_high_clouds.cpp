@@ -15,7 +15,9 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kDeg = kPi / 180.0;
-ShaderDefine flag(const char* name, bool on) { return {name, on ? "1" : "0"}; }
+ShaderDefine flag(const char* name, bool on) {
+  return {name, on ? "1" : "0"};
+}
 
 }  // namespace
 
@@ -113,17 +115,16 @@ bool highCloudsFromWeather(const Scene& scene, const WeatherMap& map) {
 SkyHighCloudsPass::SkyHighCloudsPass(const Context& ctx, ShaderCompiler& compiler)
     : mVariants(ctx, compiler, "sky_high_clouds.comp", kName) {}
 
-SkyHighCloudsPass::Outputs SkyHighCloudsPass::setup(GraphBuilder& b, const Inputs& in) {
+SkyHighCloudsPass::Outputs SkyHighCloudsPass::setup(GraphBuilder& b, const Inputs& in, Data& d) {
   if (!in.textures.sampler) internalError("sky_high_clouds: no texture sampler");
   if (in.physical && !in.atmosphere.sampler) internalError("sky_high_clouds: no LUT sampler");
-  mInputs = in;
-  mMoon = !moonLightNegligible(in.lighting);
-  mPipeline = &mVariants.get({flag("SKY_PHYSICAL_SKY", in.physical),
-                              flag("SKY_HIGH_CLOUDS_REGIONAL", regional()),
-                              flag("SKY_HIGH_CLOUDS_LAYER", in.params.layer.w > 0.0f),
-                              flag("LIGHTING_MOON", mMoon)});
+  d.inputs = in;
+  d.moon = !moonLightNegligible(in.lighting);
+  d.pipeline = &mVariants.get(
+      {flag("SKY_PHYSICAL_SKY", in.physical), flag("SKY_HIGH_CLOUDS_REGIONAL", d.regional()),
+       flag("SKY_HIGH_CLOUDS_LAYER", in.params.layer.w > 0.0f), flag("LIGHTING_MOON", d.moon)});
   b.read(in.textures.normals, Access::SampledCompute);
-  if (regional()) {
+  if (d.regional()) {
     const Regional& r = in.regional;
     if (!r.cover.valid() || !r.coverSampler || !r.rankShape.valid() || !r.coverCoarse.valid())
       internalError("sky_high_clouds: regional cover without its textures");
@@ -139,7 +140,7 @@ SkyHighCloudsPass::Outputs SkyHighCloudsPass::setup(GraphBuilder& b, const Input
   if (in.physical) {
     b.read(in.atmosphere.transmittance, Access::SampledCompute);
     b.read(in.atmosphere.skyViewSun, Access::SampledCompute);
-    if (mMoon) b.read(in.atmosphere.skyViewMoon, Access::SampledCompute);
+    if (d.moon) b.read(in.atmosphere.skyViewMoon, Access::SampledCompute);
   }
   ImageDesc desc;
   // 32-bit: the images are physical, and a moonlit night's 1e-7 (renderer units) is below
@@ -149,29 +150,29 @@ SkyHighCloudsPass::Outputs SkyHighCloudsPass::setup(GraphBuilder& b, const Input
   desc.height = in.params.view.size.y;
   desc.name = "sky";
   desc.about = "the clear sky's radiance, without clouds";
-  mOutputs.sky = b.write(b.create(desc), Access::StorageWriteCompute);
+  d.outputs.sky = b.write(b.create(desc), Access::StorageWriteCompute);
   desc.name = "high_clouds";
   desc.about = "the high clouds: premultiplied radiance (RGB) and opacity (A)";
-  mOutputs.highClouds = b.write(b.create(desc), Access::StorageWriteCompute);
-  return mOutputs;
+  d.outputs.highClouds = b.write(b.create(desc), Access::StorageWriteCompute);
+  return d.outputs;
 }
 
-void SkyHighCloudsPass::execute(PassContext& ctx) const {
-  const auto& size = mInputs.params.view.size;
-  const Textures& tex = mInputs.textures;
-  const Regional& r = mInputs.regional;
-  const UniformRange params = ctx.uniform(mInputs.params);
-  const UniformRange lighting = ctx.uniform(mInputs.lighting);
-  const Atmosphere& atm = mInputs.atmosphere;
+void SkyHighCloudsPass::execute(PassContext& ctx, const Data& d) const {
+  const auto& size = d.inputs.params.view.size;
+  const Textures& tex = d.inputs.textures;
+  const Regional& r = d.inputs.regional;
+  const UniformRange params = ctx.uniform(d.inputs.params);
+  const UniformRange lighting = ctx.uniform(d.inputs.lighting);
+  const Atmosphere& atm = d.inputs.atmosphere;
   // Each variant's shader declares exactly these: the common ones, the cloud textures of its
   // cover mode and, for the physical sky, the atmosphere LUTs (the moon's when it shines).
   std::vector<Binding> bindings = {
       Binding::of(SKY_HIGH_CLOUDS_BINDING_PARAMS, params),
       Binding::of(SKY_HIGH_CLOUDS_BINDING_LIGHTING, lighting),
-      Binding::of(SKY_HIGH_CLOUDS_BINDING_SKY, mOutputs.sky),
-      Binding::of(SKY_HIGH_CLOUDS_BINDING_CLOUDS, mOutputs.highClouds),
+      Binding::of(SKY_HIGH_CLOUDS_BINDING_SKY, d.outputs.sky),
+      Binding::of(SKY_HIGH_CLOUDS_BINDING_CLOUDS, d.outputs.highClouds),
       Binding::of(SKY_HIGH_CLOUDS_BINDING_NORMALS, tex.normals, tex.sampler)};
-  if (regional()) {
+  if (d.regional()) {
     bindings.push_back(
         Binding::of(SKY_HIGH_CLOUDS_BINDING_REGIONAL_COVER, r.cover, r.coverSampler));
     bindings.push_back(Binding::of(SKY_HIGH_CLOUDS_BINDING_RANK_SHAPE, r.rankShape, tex.sampler));
@@ -183,17 +184,17 @@ void SkyHighCloudsPass::execute(PassContext& ctx) const {
     bindings.push_back(Binding::of(SKY_HIGH_CLOUDS_BINDING_LEVELS, tex.levels, tex.sampler));
     bindings.push_back(Binding::of(SKY_HIGH_CLOUDS_BINDING_COARSE, tex.coarse, tex.sampler));
   }
-  if (mInputs.physical) {
+  if (d.inputs.physical) {
     bindings.push_back(Binding::of(SKY_HIGH_CLOUDS_BINDING_ATMOSPHERE, ctx.uniform(atm.params)));
     bindings.push_back(
         Binding::of(SKY_HIGH_CLOUDS_BINDING_TRANSMITTANCE, atm.transmittance, atm.sampler));
     bindings.push_back(
         Binding::of(SKY_HIGH_CLOUDS_BINDING_SKY_VIEW_SUN, atm.skyViewSun, atm.sampler));
-    if (mMoon)
+    if (d.moon)
       bindings.push_back(
           Binding::of(SKY_HIGH_CLOUDS_BINDING_SKY_VIEW_MOON, atm.skyViewMoon, atm.sampler));
   }
-  ctx.dispatch(*mPipeline, bindings, mPipeline->groupsX(size.x), mPipeline->groupsY(size.y));
+  ctx.dispatch(*d.pipeline, bindings, d.pipeline->groupsX(size.x), d.pipeline->groupsY(size.y));
 }
 
 }  // namespace sky

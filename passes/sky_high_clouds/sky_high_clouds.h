@@ -66,16 +66,19 @@ public:
   // The shader's variants (kozlov or physical; regional cover; a high-cloud layer or none;
   // moonlight or, by day, none) are compiled on first use: setup picks the frame's.
   SkyHighCloudsPass(const Context& ctx, ShaderCompiler& compiler);
-  Outputs setup(GraphBuilder& builder, const Inputs& inputs);
-  void execute(PassContext& ctx) const;
+  // One use's data, in the frame graph (FrameGraph::add): once per view.
+  struct Data {
+    const ComputePipeline* pipeline = nullptr;  // this view's variant
+    bool moon = true;                           // the moon's light is in this frame
+    Inputs inputs{};
+    Outputs outputs;
+    bool regional() const { return inputs.params.regional.x > 0.5f; }
+  };
+  Outputs setup(GraphBuilder& builder, const Inputs& inputs, Data& data);
+  void execute(PassContext& ctx, const Data& data) const;
 
 private:
-  bool regional() const { return mInputs.params.regional.x > 0.5f; }
   ComputePipelineVariants mVariants;
-  const ComputePipeline* mPipeline = nullptr;  // this frame's variant
-  bool mMoon = true;                           // the moon's light is in this frame
-  Inputs mInputs{};
-  Outputs mOutputs;
 };
 
 // The sphere the sky passes put the ground on: the physical atmosphere's ground, or for the

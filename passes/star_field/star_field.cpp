@@ -53,9 +53,9 @@ bool starsVisible(double brightestVmag, double fluxPerVega, double pixelSolidAng
 StarClearPass::StarClearPass(const Context& ctx, ShaderCompiler& compiler)
     : mPipeline(buildPipeline(ctx, compiler, kName)) {}
 
-StarClearPass::Outputs StarClearPass::setup(GraphBuilder& b, const Inputs& in) {
+StarClearPass::Outputs StarClearPass::setup(GraphBuilder& b, const Inputs& in, Data& d) {
   if (in.width == 0 || in.height == 0) internalError("star_clear: empty image size");
-  mInputs = in;
+  d.inputs = in;
   BufferDesc desc;
   desc.name = "star_flux";
   // Viewable as an image: the flux each pixel gathered, in V = 0 units (a star of magnitude
@@ -66,15 +66,15 @@ StarClearPass::Outputs StarClearPass::setup(GraphBuilder& b, const Inputs& in) {
   desc.image.scale = static_cast<float>(1.0 / STAR_FLUX_FIXED_ONE);
   desc.image.about = "the stars' flux gathered per pixel, in V = 0 units (10^(-0.4 V) a star)";
   desc.size = starFluxBufferBytes(in.width, in.height);
-  mOutputs.flux = b.write(b.create(desc), Access::StorageWriteCompute);
-  return mOutputs;
+  d.outputs.flux = b.write(b.create(desc), Access::StorageWriteCompute);
+  return d.outputs;
 }
 
-void StarClearPass::execute(PassContext& ctx) const {
+void StarClearPass::execute(PassContext& ctx, const Data& d) const {
   shared::StarClearParams push{};
-  push.size = glm::uvec4(mInputs.width, mInputs.height, 0, 0);
-  ctx.dispatch(mPipeline, {Binding::of(STAR_CLEAR_BINDING_FLUX, mOutputs.flux)},
-               mPipeline.groupsX(mInputs.width), mPipeline.groupsY(mInputs.height), 1, &push,
+  push.size = glm::uvec4(d.inputs.width, d.inputs.height, 0, 0);
+  ctx.dispatch(mPipeline, {Binding::of(STAR_CLEAR_BINDING_FLUX, d.outputs.flux)},
+               mPipeline.groupsX(d.inputs.width), mPipeline.groupsY(d.inputs.height), 1, &push,
                sizeof push);
 }
 
@@ -89,8 +89,8 @@ StarFieldPass::StarFieldPass(const Context& ctx, ShaderCompiler& compiler,
                    })->vmag;
 }
 
-std::optional<StarFieldPass::Outputs> StarFieldPass::addTo(FrameGraph& graph,
-                                                           const Frame& frame, bool visible) {
+std::optional<StarFieldPass::Outputs> StarFieldPass::addTo(FrameGraph& graph, const Frame& frame,
+                                                           bool visible) {
   if (!visible) return std::nullopt;
   Inputs in;
   in.stars = graph.importBuffer(mStars);
@@ -99,28 +99,28 @@ std::optional<StarFieldPass::Outputs> StarFieldPass::addTo(FrameGraph& graph,
   return graph.add(*this, in);
 }
 
-StarFieldPass::Outputs StarFieldPass::setup(GraphBuilder& b, const Inputs& in) {
-  mInputs = in;
+StarFieldPass::Outputs StarFieldPass::setup(GraphBuilder& b, const Inputs& in, Data& d) {
+  d.inputs = in;
   const Frame& f = in.frame;
-  mParams = {};
-  mParams.view = f.view;
-  mParams.j2000ToEnu0 = glm::vec4(f.j2000ToEnu[0], 0.0f);
-  mParams.j2000ToEnu1 = glm::vec4(f.j2000ToEnu[1], 0.0f);
-  mParams.j2000ToEnu2 = glm::vec4(f.j2000ToEnu[2], 0.0f);
-  mParams.extinction = glm::vec4(f.extinction, 0.0f, 0.0f, 0.0f);
-  mParams.counts = glm::uvec4(mStarCount, 0, 0, 0);
-  mInputs.stars = b.read(in.stars, Access::StorageReadCompute);
+  d.params = {};
+  d.params.view = f.view;
+  d.params.j2000ToEnu0 = glm::vec4(f.j2000ToEnu[0], 0.0f);
+  d.params.j2000ToEnu1 = glm::vec4(f.j2000ToEnu[1], 0.0f);
+  d.params.j2000ToEnu2 = glm::vec4(f.j2000ToEnu[2], 0.0f);
+  d.params.extinction = glm::vec4(f.extinction, 0.0f, 0.0f, 0.0f);
+  d.params.counts = glm::uvec4(mStarCount, 0, 0, 0);
+  d.inputs.stars = b.read(in.stars, Access::StorageReadCompute);
   // Read-write: the atomics add to what star_clear wrote.
-  mOutputs.flux = b.write(in.flux, Access::StorageReadWriteCompute);
-  return mOutputs;
+  d.outputs.flux = b.write(in.flux, Access::StorageReadWriteCompute);
+  return d.outputs;
 }
 
-void StarFieldPass::execute(PassContext& ctx) const {
+void StarFieldPass::execute(PassContext& ctx, const Data& d) const {
   const uint32_t groups = std::min(mPipeline.groupsX(mStarCount), kMaxGroups);
   ctx.dispatch(mPipeline,
-               {Binding::of(STAR_FIELD_BINDING_PARAMS, ctx.uniform(mParams)),
-                Binding::of(STAR_FIELD_BINDING_STARS, mInputs.stars),
-                Binding::of(STAR_FIELD_BINDING_FLUX, mInputs.flux)},
+               {Binding::of(STAR_FIELD_BINDING_PARAMS, ctx.uniform(d.params)),
+                Binding::of(STAR_FIELD_BINDING_STARS, d.inputs.stars),
+                Binding::of(STAR_FIELD_BINDING_FLUX, d.inputs.flux)},
                groups, 1);
 }
 

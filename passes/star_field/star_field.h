@@ -46,13 +46,16 @@ public:
 
   // Compiles star_clear.comp (once, at start-up).
   StarClearPass(const Context& ctx, ShaderCompiler& compiler);
-  Outputs setup(GraphBuilder& builder, const Inputs& inputs);
-  void execute(PassContext& ctx) const;
+  // One use's data, in the frame graph (FrameGraph::add): once per view.
+  struct Data {
+    Inputs inputs{};
+    Outputs outputs;
+  };
+  Outputs setup(GraphBuilder& builder, const Inputs& inputs, Data& data);
+  void execute(PassContext& ctx, const Data& data) const;
 
 private:
   ComputePipeline mPipeline;
-  Inputs mInputs{};
-  Outputs mOutputs;
 };
 
 class StarFieldPass {
@@ -88,8 +91,14 @@ public:
   // The V magnitude of the brightest star in the catalogue.
   double brightestVmag() const { return mBrightestVmag; }
   uint32_t starCount() const { return mStarCount; }
-  Outputs setup(GraphBuilder& builder, const Inputs& inputs);
-  void execute(PassContext& ctx) const;
+  // One use's data, in the frame graph (FrameGraph::add): once per view.
+  struct Data {
+    shared::StarFieldParams params{};
+    Inputs inputs{};
+    Outputs outputs;
+  };
+  Outputs setup(GraphBuilder& builder, const Inputs& inputs, Data& data);
+  void execute(PassContext& ctx, const Data& data) const;
 
 private:
   StarClearPass mClear;
@@ -97,9 +106,6 @@ private:
   PersistentBuffer mStars;
   uint32_t mStarCount = 0;
   double mBrightestVmag = 0.0;
-  shared::StarFieldParams mParams{};
-  Inputs mInputs{};
-  Outputs mOutputs;
 };
 
 }  // namespace sky

@@ -98,8 +98,7 @@ const ComputePipeline& CloudPipelines::get(const CloudVariant& variant) {
 bool cloudFieldReusable(const CloudFieldKey& m, const CloudFieldKey& k, double maxShiftM) {
   // The lights may turn this far (degrees), and the camera move this far (m).
   constexpr double kMaxLightTurnDeg = 0.05, kMaxCameraMoveM = 50.0;
-  if (k.clouds != m.clouds || k.mapRevision != m.mapRevision || k.lights != m.lights)
-    return false;
+  if (k.clouds != m.clouds || k.mapRevision != m.mapRevision || k.lights != m.lights) return false;
   if (glm::length(k.drift - m.drift) > maxShiftM) return false;
   auto turned = [](const glm::vec3& a, const glm::vec3& b) {
     return std::acos(std::clamp(static_cast<double>(glm::dot(a, b)), -1.0, 1.0)) / kDeg;
@@ -193,8 +192,9 @@ shared::CloudParams cloudParams(const VolumetricCloudsSettings& settings,
   const double detailCellM = detailM / (c.model == CloudModel::Tang2019 ? 4.0 : 2.0);
   uint32_t near = 0;
   for (int i = 0; i < c.lightSteps; ++i) {
-    const double sub = clouds::lightStepLength(i, c.lightSteps, static_cast<float>(c.lightDistanceM)) /
-                       static_cast<double>(p.lightSplit);
+    const double sub =
+        clouds::lightStepLength(i, c.lightSteps, static_cast<float>(c.lightDistanceM)) /
+        static_cast<double>(p.lightSplit);
     if (0.25 * sub >= 0.5 * detailCellM * 1.001) break;
     near = static_cast<uint32_t>(i + 1);
   }
@@ -279,9 +279,10 @@ CloudKeyLight cloudKeyLight(const shared::CloudParams& p) {
 VolumetricCloudsPass::VolumetricCloudsPass(const Context& ctx, ShaderCompiler& compiler)
     : mPipelines(ctx, compiler, "volumetric_clouds.comp", kName) {}
 
-VolumetricCloudsPass::Outputs VolumetricCloudsPass::setup(GraphBuilder& b, const Inputs& in) {
-  mInputs = in;
-  mPipeline = &mPipelines.get(in.variant);
+VolumetricCloudsPass::Outputs VolumetricCloudsPass::setup(GraphBuilder& b, const Inputs& in,
+                                                          Data& d) {
+  d.inputs = in;
+  d.pipeline = &mPipelines.get(in.variant);
   readCloudTextures(b, in.textures);
   b.read(in.ambient, Access::StorageReadCompute);
   if (in.variant.light == CloudLight::Volume) {
@@ -297,7 +298,7 @@ VolumetricCloudsPass::Outputs VolumetricCloudsPass::setup(GraphBuilder& b, const
   desc.format = VK_FORMAT_R32G32B32A32_SFLOAT;
   desc.name = "clouds";
   desc.about = "the marched clouds: premultiplied radiance (RGB) and opacity (A)";
-  mOutputs.clouds = b.write(b.create(desc), Access::StorageWriteCompute);
+  d.outputs.clouds = b.write(b.create(desc), Access::StorageWriteCompute);
   desc.format = VK_FORMAT_R32G32_SFLOAT;
   desc.name = "clouds_depth";
   desc.about =
@@ -305,7 +306,7 @@ VolumetricCloudsPass::Outputs VolumetricCloudsPass::setup(GraphBuilder& b, const
       "(m, G)";
   desc.view = DebugView::Depth;
   desc.channels = "depth,shell_entry";
-  mOutputs.depth = b.write(b.create(desc), Access::StorageWriteCompute);
+  d.outputs.depth = b.write(b.create(desc), Access::StorageWriteCompute);
   desc.format = VK_FORMAT_R16G16B16A16_SFLOAT;
   desc.name = "cloud_steps";
   desc.about =
@@ -313,25 +314,25 @@ VolumetricCloudsPass::Outputs VolumetricCloudsPass::setup(GraphBuilder& b, const
       "the raymarch's cost";
   desc.view = DebugView::Heat;
   desc.channels = "view,light";
-  mOutputs.steps = b.write(b.create(desc), Access::StorageWriteCompute);
-  return mOutputs;
+  d.outputs.steps = b.write(b.create(desc), Access::StorageWriteCompute);
+  return d.outputs;
 }
 
-void VolumetricCloudsPass::execute(PassContext& ctx) const {
-  const ImageDesc& size = ctx.image(mOutputs.clouds).desc();
-  std::vector<Binding> bindings = cloudTextureBindings(mInputs.textures);
+void VolumetricCloudsPass::execute(PassContext& ctx, const Data& d) const {
+  const ImageDesc& size = ctx.image(d.outputs.clouds).desc();
+  std::vector<Binding> bindings = cloudTextureBindings(d.inputs.textures);
   bindings.insert(bindings.end(),
-                  {Binding::of(VOLUMETRIC_CLOUDS_BINDING_PARAMS, ctx.uniform(mInputs.params)),
-                   Binding::of(VOLUMETRIC_CLOUDS_BINDING_LIGHTING, ctx.uniform(mInputs.lighting)),
-                   Binding::of(VOLUMETRIC_CLOUDS_BINDING_AMBIENT, mInputs.ambient),
-                   Binding::of(VOLUMETRIC_CLOUDS_BINDING_CLOUDS, mOutputs.clouds),
-                   Binding::of(VOLUMETRIC_CLOUDS_BINDING_DEPTH, mOutputs.depth),
-                   Binding::of(VOLUMETRIC_CLOUDS_BINDING_STEPS, mOutputs.steps)});
-  if (mInputs.variant.light == CloudLight::Volume)
-    bindings.push_back(Binding::of(CLOUD_LIGHT_VOLUME_BINDING_IMAGE, mInputs.lightVolume,
-                                   mInputs.lightVolumeSampler));
-  ctx.dispatch(*mPipeline, bindings, mPipeline->groupsX(size.width),
-               mPipeline->groupsY(size.height));
+                  {Binding::of(VOLUMETRIC_CLOUDS_BINDING_PARAMS, ctx.uniform(d.inputs.params)),
+                   Binding::of(VOLUMETRIC_CLOUDS_BINDING_LIGHTING, ctx.uniform(d.inputs.lighting)),
+                   Binding::of(VOLUMETRIC_CLOUDS_BINDING_AMBIENT, d.inputs.ambient),
+                   Binding::of(VOLUMETRIC_CLOUDS_BINDING_CLOUDS, d.outputs.clouds),
+                   Binding::of(VOLUMETRIC_CLOUDS_BINDING_DEPTH, d.outputs.depth),
+                   Binding::of(VOLUMETRIC_CLOUDS_BINDING_STEPS, d.outputs.steps)});
+  if (d.inputs.variant.light == CloudLight::Volume)
+    bindings.push_back(Binding::of(CLOUD_LIGHT_VOLUME_BINDING_IMAGE, d.inputs.lightVolume,
+                                   d.inputs.lightVolumeSampler));
+  ctx.dispatch(*d.pipeline, bindings, d.pipeline->groupsX(size.width),
+               d.pipeline->groupsY(size.height));
 }
 
 }  // namespace sky

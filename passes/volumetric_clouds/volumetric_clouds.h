@@ -107,14 +107,17 @@ public:
   };
 
   VolumetricCloudsPass(const Context& ctx, ShaderCompiler& compiler);
-  Outputs setup(GraphBuilder& builder, const Inputs& inputs);
-  void execute(PassContext& ctx) const;
+  // One use's data, in the frame graph (FrameGraph::add): once per view.
+  struct Data {
+    const ComputePipeline* pipeline = nullptr;  // this view's variant, chosen in setup()
+    Inputs inputs{};
+    Outputs outputs;
+  };
+  Outputs setup(GraphBuilder& builder, const Inputs& inputs, Data& data);
+  void execute(PassContext& ctx, const Data& data) const;
 
 private:
   CloudPipelines mPipelines;
-  const ComputePipeline* mPipeline = nullptr;  // this frame's variant, chosen in setup()
-  Inputs mInputs{};
-  Outputs mOutputs;
 };
 
 // Calibrated coverage thresholds (CloudParams.coverageLut): [layer][type key][cover entry].

@@ -174,3 +174,18 @@ def test_a_hosts_camera_axes_and_projection_matrix(small_sky):
     assert "vertical_fov: 50" in small_sky.scene_yaml()
     with pytest.raises(skylayers.Error, match="4, 4"):
         small_sky.set_projection_matrix(np.eye(3))
+
+
+def test_a_rig_of_views_in_one_frame_is_each_views_own_render(small_sky):
+    views = [{"heading": 280, "pitch": 5, "width": 32, "height": 18},
+             {"heading": 10, "pitch": 20, "roll": 10, "vertical_fov": 40, "width": 16,
+              "height": 16}]
+    frames = small_sky.render_views(views, display=False)
+    assert [f["beauty"].shape for f in frames] == [(18, 32, 4), (16, 16, 4)]
+    small_sky.set("camera.heading", 10)
+    small_sky.set("camera.pitch", 20)
+    small_sky.set("camera.roll", 10)
+    alone = small_sky.render(16, 16, display=False, **{"camera.vertical_fov": 40})
+    assert np.array_equal(frames[1]["beauty"], alone["beauty"])
+    with pytest.raises(skylayers.Error, match="view 0: unknown key 'fov'"):
+        small_sky.render_views([{"fov": 30, "width": 8, "height": 8}])

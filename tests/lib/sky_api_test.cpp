@@ -71,6 +71,59 @@ TEST(SkylayersApi, AFrameIsTheSameBitsEveryTimeAndInEverySky) {
     EXPECT_EQ(first.layers[i].pixels, other.layers[i].pixels) << first.layers[i].name;
 }
 
+// Many views in one frame: each view's frame is, bit for bit, the one render() gives with the
+// camera turned and sized as the view says; the views share one frame graph.
+TEST(SkylayersApi, ManyViewsInOneFrameAreEachTheViewsOwnRender) {
+  for (const char* model : {"kozlov", "physical"}) {
+    SCOPED_TRACE(model);
+    skylayers::Sky sky = defaultSky(
+        {std::string("sky.model=") + model, "time=2024-06-21T20:30:00+02:00", "camera.pitch=5"});
+    const std::vector<skylayers::View> views = {
+        {.headingDeg = 280, .pitchDeg = 5, .verticalFovDeg = 60, .width = 40, .height = 24},
+        {.headingDeg = 10,
+         .pitchDeg = 2,
+         .rollDeg = 15,
+         .verticalFovDeg = 45,
+         .width = 32,
+         .height = 32},
+        {.headingDeg = 100, .pitchDeg = 40, .verticalFovDeg = 90, .width = 24, .height = 16},
+        {.headingDeg = 190, .pitchDeg = -10, .verticalFovDeg = 30, .width = 48, .height = 20}};
+    const std::vector<skylayers::Frame> frames = sky.renderViews(views, {.layers = true});
+    ASSERT_EQ(frames.size(), views.size());
+    const nlohmann::json report = nlohmann::json::parse(frames[0].report);
+    size_t composites = 0;
+    for (const auto& pass : report["passes"])
+      composites += pass["name"] == "atmosphere_composite" ? 1 : 0;
+    EXPECT_EQ(composites, views.size()) << "one graph with a composite per view";
+    const skylayers::GeoPose place = sky.camera();
+    for (size_t i = 0; i < views.size(); ++i) {
+      SCOPED_TRACE(i);
+      const skylayers::View& v = views[i];
+      sky.setCamera({place.latitudeDeg, place.longitudeDeg, place.altitudeM, v.headingDeg,
+                     v.pitchDeg, v.rollDeg});
+      sky.setVerticalFov(v.verticalFovDeg);
+      sky.setSize(v.width, v.height);
+      const skylayers::Frame alone = sky.render({.layers = true});
+      ASSERT_EQ(frames[i].beauty.width, v.width);
+      ASSERT_EQ(frames[i].beauty.height, v.height);
+      EXPECT_EQ(frames[i].beauty.pixels, alone.beauty.pixels);
+      ASSERT_EQ(frames[i].layers.size(), alone.layers.size());
+      for (size_t k = 0; k < alone.layers.size(); ++k)
+        EXPECT_EQ(frames[i].layers[k].pixels, alone.layers[k].pixels) << alone.layers[k].name;
+    }
+    // And the same bits from one such frame to the next.
+    EXPECT_EQ(sky.renderViews(views)[3].beauty.pixels, frames[3].beauty.pixels);
+  }
+  skylayers::Sky sky = defaultSky();
+  try {
+    sky.renderViews({{.width = 0, .height = 10}});
+    ADD_FAILURE() << "an empty view was rendered";
+  } catch (const skylayers::Error& e) {
+    EXPECT_EQ(e.kind(), skylayers::Error::Kind::BadInput);
+    EXPECT_THAT(e.what(), HasSubstr("view 0"));
+  }
+}
+
 TEST(SkylayersApi, TheBeautyDisplayAndReportAreSkyrendersForTheSameScene) {
   skylayers::Sky sky = defaultSky({"time=2024-06-21T18:30:00+02:00", "camera.heading=270"});
   const skylayers::Frame frame = sky.render({.display = true});

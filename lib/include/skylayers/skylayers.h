@@ -118,6 +118,17 @@ struct SKYLAYERS_API Frame {
   const Image& layer(const std::string& name) const;
 };
 
+// One camera of a frame of several views (Sky::renderViews): where it looks, its field of
+// view and its image size. Every view stands at the Sky's camera place (a vehicle's rig of
+// cameras), so they share the frame's lights, bakes, LUTs, weather map, noise and shadow map.
+struct View {
+  double headingDeg = 0.0;  // as GeoPose
+  double pitchDeg = 0.0;
+  double rollDeg = 0.0;
+  double verticalFovDeg = 60.0;
+  int width = 0, height = 0;
+};
+
 // A light for the host's own scene, at the camera's place and time.
 struct Light {
   std::array<double, 3> direction{};  // unit vector toward the body: east, north, up
@@ -249,6 +260,13 @@ public:
   // Renders the scene at its time. With clouds.temporal.mode on, frames rendered one after
   // another reuse each other's clouds, as the window does.
   Frame render(const RenderRequest& request = {});
+  // Several views at the camera's place in one frame: one frame graph and one submit, with
+  // everything that does not depend on where a camera looks made once. Each Frame is the one
+  // render() gives with the camera turned and sized as its view says (the same bits, tested),
+  // its report holding the whole frame's passes. No temporal reuse across such frames, and a
+  // histogram exposure meters each view on its own. BadInput for no view or an empty one.
+  std::vector<Frame> renderViews(const std::vector<View>& views,
+                                 const RenderRequest& request = {});
   // Draws the frame into the host's own images (<skylayers/vulkan.h>, docs/library.md, "Into
   // the host's images"): records into the host's command buffer, submits nothing. The Sky
   // must be on the host's device (DeviceOptions::vulkan). Where the host's depth holds no
