@@ -12,9 +12,9 @@ shared::CloudAmbientParams cloudAmbientParams(const CloudAmbientSettings& s) {
   p.groundAlbedo = glm::vec4(s.groundAlbedo, 0.0f);
   // The air between the ground and the clouds' base, straight up (the shader takes it along
   // each slant path below the horizon).
-  const glm::dvec3 toBase = light::atmosphereTransmittance(90.0, 0.0, s.turbidity) /
-                            light::atmosphereTransmittance(90.0, std::max(s.cloudBaseM, 0.0),
-                                                           s.turbidity);
+  const glm::dvec3 toBase =
+      light::atmosphereTransmittance(90.0, 0.0, s.turbidity) /
+      light::atmosphereTransmittance(90.0, std::max(s.cloudBaseM, 0.0), s.turbidity);
   p.airDepth = glm::vec4(glm::vec3(-glm::log(glm::max(toBase, glm::dvec3(1e-30)))), 0.0f);
   p.groundLight = static_cast<float>(light::overcastGlobalShare(std::clamp(s.overcast, 0.0, 1.0)));
   p.phaseG = static_cast<float>(s.phaseG);
@@ -26,11 +26,11 @@ shared::CloudAmbientParams cloudAmbientParams(const CloudAmbientSettings& s) {
 CloudAmbientPass::CloudAmbientPass(const Context& ctx, ShaderCompiler& compiler)
     : mVariants(ctx, compiler, "cloud_ambient.comp", kName) {}
 
-CloudAmbientPass::Outputs CloudAmbientPass::setup(GraphBuilder& b, const Inputs& in) {
-  mInputs = in;
+CloudAmbientPass::Outputs CloudAmbientPass::setup(GraphBuilder& b, const Inputs& in, Data& d) {
+  d.inputs = in;
   const bool physical = in.atmosphere.has_value();
-  mPipeline = &mVariants.get({{"SKY_PHYSICAL_SKY", physical ? "1" : "0"},
-                              {"LIGHTING_MOON", in.moon ? "1" : "0"}});
+  d.pipeline = &mVariants.get(
+      {{"SKY_PHYSICAL_SKY", physical ? "1" : "0"}, {"LIGHTING_MOON", in.moon ? "1" : "0"}});
   if (physical) {
     const Atmosphere& a = *in.atmosphere;
     if (!a.sampler) internalError("cloud_ambient: no LUT sampler");
@@ -50,24 +50,26 @@ CloudAmbientPass::Outputs CloudAmbientPass::setup(GraphBuilder& b, const Inputs&
       "ground through the air), the ground's own radiance in the next row's first texel, then "
       "the sky scattered once toward each view direction less an isotropic phase's share (same "
       "grid)";
-  mOutputs.ambient = b.write(b.create(desc), Access::StorageWriteCompute);
-  return mOutputs;
+  d.outputs.ambient = b.write(b.create(desc), Access::StorageWriteCompute);
+  return d.outputs;
 }
 
-void CloudAmbientPass::execute(PassContext& ctx) const {
+void CloudAmbientPass::execute(PassContext& ctx, const Data& d) const {
   std::vector<Binding> bindings = {
-      Binding::of(CLOUD_AMBIENT_BINDING_PARAMS, ctx.uniform(mInputs.params)),
-      Binding::of(CLOUD_AMBIENT_BINDING_LIGHTING, ctx.uniform(mInputs.lighting)),
-      Binding::of(CLOUD_AMBIENT_BINDING_OUT, mOutputs.ambient)};
-  if (mInputs.atmosphere) {
-    const Atmosphere& a = *mInputs.atmosphere;
+      Binding::of(CLOUD_AMBIENT_BINDING_PARAMS, ctx.uniform(d.inputs.params)),
+      Binding::of(CLOUD_AMBIENT_BINDING_LIGHTING, ctx.uniform(d.inputs.lighting)),
+      Binding::of(CLOUD_AMBIENT_BINDING_OUT, d.outputs.ambient)};
+  if (d.inputs.atmosphere) {
+    const Atmosphere& a = *d.inputs.atmosphere;
     bindings.push_back(Binding::of(CLOUD_AMBIENT_BINDING_ATMOSPHERE, ctx.uniform(a.params)));
-    bindings.push_back(Binding::of(CLOUD_AMBIENT_BINDING_TRANSMITTANCE, a.transmittance, a.sampler));
+    bindings.push_back(
+        Binding::of(CLOUD_AMBIENT_BINDING_TRANSMITTANCE, a.transmittance, a.sampler));
     bindings.push_back(Binding::of(CLOUD_AMBIENT_BINDING_SKY_VIEW_SUN, a.skyViewSun, a.sampler));
-    if (mInputs.moon)
-      bindings.push_back(Binding::of(CLOUD_AMBIENT_BINDING_SKY_VIEW_MOON, a.skyViewMoon, a.sampler));
+    if (d.inputs.moon)
+      bindings.push_back(
+          Binding::of(CLOUD_AMBIENT_BINDING_SKY_VIEW_MOON, a.skyViewMoon, a.sampler));
   }
-  ctx.dispatch(*mPipeline, bindings, 1, 1);
+  ctx.dispatch(*d.pipeline, bindings, 1, 1);
 }
 
 }  // namespace sky

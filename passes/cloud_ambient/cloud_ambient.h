@@ -2,8 +2,8 @@
 // The volumetric clouds' ambient light from the frame's own sky (shaders/cloud_ambient.comp):
 // the clear sky of either model sampled over the upper hemisphere, its light on a surface of
 // each orientation of a small table, and the ground below lit by the sun, the moon and that
-// sky, into a small image the raymarch reads. So the clouds are lit by the sky the viewer sees, whatever the
-// sky model, the hour or the turbidity, not by the palette's two constant colours.
+// sky, into a small image the raymarch reads. So the clouds are lit by the sky the viewer sees,
+// whatever the sky model, the hour or the turbidity, not by the palette's two constant colours.
 #include <optional>
 
 #include "engine/gpu/compute_pipeline.h"
@@ -56,14 +56,17 @@ public:
   };
 
   CloudAmbientPass(const Context& ctx, ShaderCompiler& compiler);
-  Outputs setup(GraphBuilder& builder, const Inputs& inputs);
-  void execute(PassContext& ctx) const;
+  // One use's data, in the frame graph (FrameGraph::add).
+  struct Data {
+    const ComputePipeline* pipeline = nullptr;  // this use's variant, chosen in setup()
+    Inputs inputs{};
+    Outputs outputs;
+  };
+  Outputs setup(GraphBuilder& builder, const Inputs& inputs, Data& data);
+  void execute(PassContext& ctx, const Data& data) const;
 
 private:
   ComputePipelineVariants mVariants;
-  const ComputePipeline* mPipeline = nullptr;  // this frame's variant, chosen in setup()
-  Inputs mInputs{};
-  Outputs mOutputs;
 };
 
 }  // namespace sky

@@ -24,15 +24,18 @@ public:
   };
 
   CloudDensitySlicePass(const Context& ctx, ShaderCompiler& compiler);
-  Outputs setup(GraphBuilder& builder, const Inputs& inputs);
-  void execute(PassContext& ctx) const;
+  // One use's data, in the frame graph (FrameGraph::add).
+  struct Data {
+    Inputs inputs{};
+    Outputs outputs;
+  };
+  Outputs setup(GraphBuilder& builder, const Inputs& inputs, Data& data);
+  void execute(PassContext& ctx, const Data& data) const;
 
 private:
   // Every frame with clouds adds this pass for the debug view, and nearly every frame culls
   // it: its variant is compiled when it first runs, in execute(), not in setup().
   mutable CloudPipelines mPipelines;
-  Inputs mInputs{};
-  Outputs mOutputs;
 };
 
 }  // namespace sky

@@ -1,5 +1,7 @@
 #include "passes/cloud_light_volume/cloud_light_volume.h"
 
+#include <memory>
+
 #include <algorithm>
 #include <cmath>
 
@@ -70,36 +72,37 @@ CloudLightVolumePass::Outputs CloudLightVolumePass::addTo(FrameGraph& graph, con
     out.place.shiftNorthM = static_cast<float>(shift.y);
     return out;
   }
-  mTarget = volume;
-  GraphBuilder b = graph.addPass(kName, [this](PassContext& ctx) { execute(ctx); });
-  out = setup(b, in);
+  auto data = std::make_shared<Data>();
+  data->target = volume;
+  GraphBuilder b = graph.addPass(kName, [this, data](PassContext& ctx) { execute(ctx, *data); });
+  out = setup(b, in, *data);
   mPlace = in.params.lightVolume;
   mPlace.shiftEastM = mPlace.shiftNorthM = 0.0f;
   return out;
 }
 
-CloudLightVolumePass::Outputs CloudLightVolumePass::setup(GraphBuilder& b, const Inputs& in) {
-  mInputs = in;
-  mInputs.params.lightVolume.shiftEastM = mInputs.params.lightVolume.shiftNorthM = 0.0f;
-  mPipeline = &mPipelines.get(in.variant);
+CloudLightVolumePass::Outputs CloudLightVolumePass::setup(GraphBuilder& b, const Inputs& in,
+                                                          Data& d) {
+  d.inputs = in;
+  d.inputs.params.lightVolume.shiftEastM = d.inputs.params.lightVolume.shiftNorthM = 0.0f;
+  d.pipeline = &mPipelines.get(in.variant);
   readCloudTextures(b, in.textures);
   Outputs out;
-  out.volume = b.write(mTarget, Access::StorageWriteCompute);
-  mTarget = out.volume;
-  out.place = mInputs.params.lightVolume;
+  out.volume = d.target = b.write(d.target, Access::StorageWriteCompute);
+  out.place = d.inputs.params.lightVolume;
   out.made = true;
   b.sideEffect();  // later frames read it
   return out;
 }
 
-void CloudLightVolumePass::execute(PassContext& ctx) const {
-  std::vector<Binding> bindings = cloudTextureBindings(mInputs.textures);
+void CloudLightVolumePass::execute(PassContext& ctx, const Data& d) const {
+  std::vector<Binding> bindings = cloudTextureBindings(d.inputs.textures);
   bindings.insert(bindings.end(),
-                  {Binding::of(VOLUMETRIC_CLOUDS_BINDING_PARAMS, ctx.uniform(mInputs.params)),
-                   Binding::of(CLOUD_LIGHT_VOLUME_BINDING_IMAGE, mTarget)});
-  ctx.dispatch(*mPipeline, bindings, mPipeline->groupsX(CLOUD_LIGHT_VOLUME_SIZE),
-               mPipeline->groupsY(CLOUD_LIGHT_VOLUME_SIZE),
-               mPipeline->groupsZ(CLOUD_LIGHT_VOLUME_SLICES));
+                  {Binding::of(VOLUMETRIC_CLOUDS_BINDING_PARAMS, ctx.uniform(d.inputs.params)),
+                   Binding::of(CLOUD_LIGHT_VOLUME_BINDING_IMAGE, d.target)});
+  ctx.dispatch(*d.pipeline, bindings, d.pipeline->groupsX(CLOUD_LIGHT_VOLUME_SIZE),
+               d.pipeline->groupsY(CLOUD_LIGHT_VOLUME_SIZE),
+               d.pipeline->groupsZ(CLOUD_LIGHT_VOLUME_SLICES));
 }
 
 }  // namespace sky

@@ -32,7 +32,7 @@ public:
     CloudFieldKey key;
   };
   struct Outputs {
-    ImageId volume;  // RG16F, CLOUD_LIGHT_VOLUME_SIZE^2 x CLOUD_LIGHT_VOLUME_SLICES
+    ImageId volume;                  // RG16F, CLOUD_LIGHT_VOLUME_SIZE^2 x CLOUD_LIGHT_VOLUME_SLICES
     shared::CloudLightVolume place;  // where it lies, with the shift to read it by
     bool made = false;               // made this frame (false: reused)
   };
@@ -44,8 +44,14 @@ public:
   // Forgets the volume, so the next frame makes it (a failed frame may not have).
   void invalidate() { mKept.invalidate(); }
   // The pieces addTo() uses.
-  Outputs setup(GraphBuilder& builder, const Inputs& inputs);
-  void execute(PassContext& ctx) const;
+  // One use's data, in the frame graph.
+  struct Data {
+    const ComputePipeline* pipeline = nullptr;  // this use's variant, chosen in setup()
+    Inputs inputs{};
+    ImageId target;  // the imported volume, written
+  };
+  Outputs setup(GraphBuilder& builder, const Inputs& inputs, Data& data);
+  void execute(PassContext& ctx, const Data& data) const;
   const Sampler& sampler() const { return mSampler; }
 
 private:
@@ -53,9 +59,6 @@ private:
   const Context& mCtx;
   Sampler mSampler;  // linear, clamp
   PersistentImage mVolume;
-  const ComputePipeline* mPipeline = nullptr;
-  Inputs mInputs{};
-  ImageId mTarget;
   KeptCloudProduct mKept;  // what the volume in memory was made from
   shared::CloudLightVolume mPlace{};
 };

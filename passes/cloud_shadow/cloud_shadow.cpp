@@ -1,5 +1,7 @@
 #include "passes/cloud_shadow/cloud_shadow.h"
 
+#include <memory>
+
 #include <algorithm>
 #include <cmath>
 
@@ -67,32 +69,33 @@ CloudShadowPass::Outputs CloudShadowPass::addTo(FrameGraph& graph, const Inputs&
     out.map.shiftNorthM = static_cast<float>(shift.y);
     return out;
   }
-  mTarget = shadow;
-  GraphBuilder b = graph.addPass(kName, [this](PassContext& ctx) { execute(ctx); });
-  const Outputs out = setup(b, in);
+  auto data = std::make_shared<Data>();
+  data->target = shadow;
+  GraphBuilder b = graph.addPass(kName, [this, data](PassContext& ctx) { execute(ctx, *data); });
+  const Outputs out = setup(b, in, *data);
   mMap = out.map;
   return out;
 }
 
-CloudShadowPass::Outputs CloudShadowPass::setup(GraphBuilder& b, const Inputs& in) {
-  mInputs = in;
-  mInputs.map.shiftEastM = mInputs.map.shiftNorthM = 0.0f;
-  mPipeline = &mPipelines.get(in.variant);
+CloudShadowPass::Outputs CloudShadowPass::setup(GraphBuilder& b, const Inputs& in, Data& d) {
+  d.inputs = in;
+  d.inputs.map.shiftEastM = d.inputs.map.shiftNorthM = 0.0f;
+  d.pipeline = &mPipelines.get(in.variant);
   readCloudTextures(b, in.textures);
-  mOutputs.shadow = mTarget = b.write(mTarget, Access::StorageWriteCompute);
-  mOutputs.map = mInputs.map;
+  d.outputs.shadow = d.target = b.write(d.target, Access::StorageWriteCompute);
+  d.outputs.map = d.inputs.map;
   b.sideEffect();  // later frames may read it
-  return mOutputs;
+  return d.outputs;
 }
 
-void CloudShadowPass::execute(PassContext& ctx) const {
-  std::vector<Binding> bindings = cloudTextureBindings(mInputs.textures);
+void CloudShadowPass::execute(PassContext& ctx, const Data& d) const {
+  std::vector<Binding> bindings = cloudTextureBindings(d.inputs.textures);
   bindings.insert(bindings.end(),
-                  {Binding::of(VOLUMETRIC_CLOUDS_BINDING_PARAMS, ctx.uniform(mInputs.params)),
-                   Binding::of(CLOUD_SHADOW_BINDING_MAP_PARAMS, ctx.uniform(mInputs.map)),
-                   Binding::of(CLOUD_SHADOW_BINDING_IMAGE, mOutputs.shadow)});
-  ctx.dispatch(*mPipeline, bindings, mPipeline->groupsX(CLOUD_SHADOW_SIZE),
-               mPipeline->groupsY(CLOUD_SHADOW_SIZE));
+                  {Binding::of(VOLUMETRIC_CLOUDS_BINDING_PARAMS, ctx.uniform(d.inputs.params)),
+                   Binding::of(CLOUD_SHADOW_BINDING_MAP_PARAMS, ctx.uniform(d.inputs.map)),
+                   Binding::of(CLOUD_SHADOW_BINDING_IMAGE, d.outputs.shadow)});
+  ctx.dispatch(*d.pipeline, bindings, d.pipeline->groupsX(CLOUD_SHADOW_SIZE),
+               d.pipeline->groupsY(CLOUD_SHADOW_SIZE));
 }
 
 }  // namespace sky

@@ -29,10 +29,10 @@ public:
     CloudVariant variant;
     shared::CloudShadowMap map{};  // cloudShadowMap
     CloudTextures textures;
-    CloudFieldKey key;             // what the map is made from
+    CloudFieldKey key;  // what the map is made from
   };
   struct Outputs {
-    ImageId shadow;  // R16F CLOUD_SHADOW_SIZE^2: transmittance toward the light
+    ImageId shadow;                // R16F CLOUD_SHADOW_SIZE^2: transmittance toward the light
     shared::CloudShadowMap map{};  // where it lies, with the drift to read it by
   };
 
@@ -42,16 +42,19 @@ public:
   Outputs addTo(FrameGraph& graph, const Inputs& inputs);
   // Forgets the map (a frame that failed may not have made it).
   void invalidate() { mKept.invalidate(); }
-  Outputs setup(GraphBuilder& builder, const Inputs& inputs);
-  void execute(PassContext& ctx) const;
+  // One use's data, in the frame graph.
+  struct Data {
+    const ComputePipeline* pipeline = nullptr;  // this use's variant, chosen in setup()
+    Inputs inputs{};
+    Outputs outputs;
+    ImageId target;  // the imported map, written
+  };
+  Outputs setup(GraphBuilder& builder, const Inputs& inputs, Data& data);
+  void execute(PassContext& ctx, const Data& data) const;
 
 private:
   CloudPipelines mPipelines;
   PersistentImage mShadow;
-  const ComputePipeline* mPipeline = nullptr;  // this frame's variant, chosen in setup()
-  Inputs mInputs{};
-  Outputs mOutputs;
-  ImageId mTarget;
   KeptCloudProduct mKept;         // what the map in memory was made from
   shared::CloudShadowMap mMap{};  // where it lies
 };

@@ -58,30 +58,31 @@ shared::CloudTemporalParams cloudTemporalParams(const shared::ViewState& view,
 CloudTemporalPass::CloudTemporalPass(const Context& ctx, ShaderCompiler& compiler)
     : mPipeline(buildComputePipeline(ctx, compiler, "cloud_temporal.comp", kName)) {}
 
-CloudTemporalPass::Outputs CloudTemporalPass::setup(GraphBuilder& b, const Inputs& in) {
+CloudTemporalPass::Outputs CloudTemporalPass::setup(GraphBuilder& b, const Inputs& in, Data& d) {
   if (!in.historySampler) internalError("cloud_temporal: no history sampler");
-  mInputs = in;
+  d.inputs = in;
   b.read(in.marched, Access::StorageReadCompute);
   b.read(in.marchedDepth, Access::StorageReadCompute);
   // Read even after a cut (the shader then ignores them), so the bindings never change.
   b.read(in.clouds.previous, Access::SampledCompute);
   b.read(in.depth.previous, Access::StorageReadCompute);
-  mOutputs.clouds = b.write(in.clouds.next, Access::StorageWriteCompute);
-  mOutputs.depth = b.write(in.depth.next, Access::StorageWriteCompute);
+  d.outputs.clouds = b.write(in.clouds.next, Access::StorageWriteCompute);
+  d.outputs.depth = b.write(in.depth.next, Access::StorageWriteCompute);
   b.sideEffect();  // the next frame reads what this one writes
-  return mOutputs;
+  return d.outputs;
 }
 
-void CloudTemporalPass::execute(PassContext& ctx) const {
-  const auto& size = mInputs.params.view.size;
+void CloudTemporalPass::execute(PassContext& ctx, const Data& d) const {
+  const auto& size = d.inputs.params.view.size;
   std::vector<Binding> bindings = {
-      Binding::of(CLOUD_TEMPORAL_BINDING_PARAMS, ctx.uniform(mInputs.params)),
-      Binding::of(CLOUD_TEMPORAL_BINDING_MARCHED, mInputs.marched),
-      Binding::of(CLOUD_TEMPORAL_BINDING_MARCHED_DEPTH, mInputs.marchedDepth),
-      Binding::of(CLOUD_TEMPORAL_BINDING_HISTORY, mInputs.clouds.previous, mInputs.historySampler),
-      Binding::of(CLOUD_TEMPORAL_BINDING_HISTORY_DEPTH, mInputs.depth.previous),
-      Binding::of(CLOUD_TEMPORAL_BINDING_CLOUDS, mOutputs.clouds),
-      Binding::of(CLOUD_TEMPORAL_BINDING_DEPTH, mOutputs.depth)};
+      Binding::of(CLOUD_TEMPORAL_BINDING_PARAMS, ctx.uniform(d.inputs.params)),
+      Binding::of(CLOUD_TEMPORAL_BINDING_MARCHED, d.inputs.marched),
+      Binding::of(CLOUD_TEMPORAL_BINDING_MARCHED_DEPTH, d.inputs.marchedDepth),
+      Binding::of(CLOUD_TEMPORAL_BINDING_HISTORY, d.inputs.clouds.previous,
+                  d.inputs.historySampler),
+      Binding::of(CLOUD_TEMPORAL_BINDING_HISTORY_DEPTH, d.inputs.depth.previous),
+      Binding::of(CLOUD_TEMPORAL_BINDING_CLOUDS, d.outputs.clouds),
+      Binding::of(CLOUD_TEMPORAL_BINDING_DEPTH, d.outputs.depth)};
   ctx.dispatch(mPipeline, bindings, mPipeline.groupsX(size.x), mPipeline.groupsY(size.y));
 }
 

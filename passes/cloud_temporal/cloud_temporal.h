@@ -46,13 +46,16 @@ public:
   };
 
   CloudTemporalPass(const Context& ctx, ShaderCompiler& compiler);
-  Outputs setup(GraphBuilder& builder, const Inputs& inputs);
-  void execute(PassContext& ctx) const;
+  // One use's data, in the frame graph (FrameGraph::add).
+  struct Data {
+    Inputs inputs{};
+    Outputs outputs;
+  };
+  Outputs setup(GraphBuilder& builder, const Inputs& inputs, Data& data);
+  void execute(PassContext& ctx, const Data& data) const;
 
 private:
   ComputePipeline mPipeline;
-  Inputs mInputs{};
-  Outputs mOutputs;
 };
 
 // The pass's parameters: this frame's and last frame's views, the motion between them, the

@@ -26,13 +26,16 @@ public:
   };
 
   CloudUpsamplePass(const Context& ctx, ShaderCompiler& compiler);
-  Outputs setup(GraphBuilder& builder, const Inputs& inputs);
-  void execute(PassContext& ctx) const;
+  // One use's data, in the frame graph (FrameGraph::add).
+  struct Data {
+    Inputs inputs{};
+    Outputs outputs;
+  };
+  Outputs setup(GraphBuilder& builder, const Inputs& inputs, Data& data);
+  void execute(PassContext& ctx, const Data& data) const;
 
 private:
   ComputePipeline mPipeline;
-  Inputs mInputs{};
-  Outputs mOutputs;
 };
 
 }  // namespace sky

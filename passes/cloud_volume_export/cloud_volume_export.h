@@ -24,14 +24,17 @@ public:
   };
 
   CloudVolumeExportPass(const Context& ctx, ShaderCompiler& compiler);
-  Outputs setup(GraphBuilder& builder, const Inputs& inputs);
-  void execute(PassContext& ctx) const;
+  // One use's data, in the frame graph (FrameGraph::add).
+  struct Data {
+    const ComputePipeline* pipeline = nullptr;  // this use's variant, chosen in setup()
+    Inputs inputs{};
+    Outputs outputs;
+  };
+  Outputs setup(GraphBuilder& builder, const Inputs& inputs, Data& data);
+  void execute(PassContext& ctx, const Data& data) const;
 
 private:
   CloudPipelines mPipelines;  // the same shader variants as the raymarch's
-  const ComputePipeline* mPipeline = nullptr;
-  Inputs mInputs{};
-  Outputs mOutputs;
 };
 
 }  // namespace sky

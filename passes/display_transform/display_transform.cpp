@@ -1,6 +1,7 @@
 #include "passes/display_transform/display_transform.h"
 
 #include <cmath>
+#include <memory>
 
 #include "engine/color/display_lut.h"
 #include "engine/core/error.h"
@@ -16,6 +17,7 @@ DisplayTransformPass::Outputs DisplayTransformPass::addTo(FrameGraph& graph, con
   const DisplayTransformSettings& s = in.settings;
   if (!s.ocio) internalError("display_transform: no OCIO config");
   const std::string key = s.display + "\n" + s.view;
+  ImageId lutId;
   if (key != mLutKey) {
     const DisplayLut lut = bakeDisplayLut(*s.ocio, s.display, s.view);
     if (!mLut.image) {
@@ -31,42 +33,45 @@ DisplayTransformPass::Outputs DisplayTransformPass::addTo(FrameGraph& graph, con
     }
     // Uploaded in this frame's graph; the key is kept once the frame has run, so a frame that
     // fails uploads it again.
-    mLutId = graph.upload(graph.importImage(mLut), lut.rgba, "upload display_lut");
+    lutId = graph.upload(graph.importImage(mLut), lut.rgba, "upload display_lut");
     graph.afterExecute([this, key] { mLutKey = key; });
   } else {
-    mLutId = graph.importImage(mLut);
+    lutId = graph.importImage(mLut);
   }
-  GraphBuilder b = graph.addPass(kName, [this](PassContext& ctx) { execute(ctx); });
-  return setup(b, in);
+  auto data = std::make_shared<Data>();
+  data->lut = lutId;
+  GraphBuilder b = graph.addPass(kName, [this, data](PassContext& ctx) { execute(ctx, *data); });
+  return setup(b, in, *data);
 }
 
-DisplayTransformPass::Outputs DisplayTransformPass::setup(GraphBuilder& b, const Inputs& in) {
-  mParams = {};
-  mParams.exposureScale = static_cast<float>(std::exp2(in.settings.exposureEv));
-  mParams.nightLook = in.settings.nightLook ? 1u : 0u;
-  mParams.lutMinLog2 = DisplayLut::kMinLog2;
-  mParams.lutMaxLog2 = DisplayLut::kMaxLog2;
-  mParams.lutSize = static_cast<float>(DisplayLut::kSize);
-  mBeauty = b.read(in.beauty, Access::StorageReadCompute);
-  b.read(mLutId, Access::SampledCompute);
-  ImageDesc d;
-  d.name = "display";
-  d.about = "the display image: 8-bit codes through the OCIO view, as the PNG holds them";
-  d.format = VK_FORMAT_R8G8B8A8_UNORM;
-  d.width = in.width;
-  d.height = in.height;
-  mOutputs.display = b.write(b.create(d), Access::StorageWriteCompute);
-  return mOutputs;
+DisplayTransformPass::Outputs DisplayTransformPass::setup(GraphBuilder& b, const Inputs& in,
+                                                          Data& d) {
+  d.params = {};
+  d.params.exposureScale = static_cast<float>(std::exp2(in.settings.exposureEv));
+  d.params.nightLook = in.settings.nightLook ? 1u : 0u;
+  d.params.lutMinLog2 = DisplayLut::kMinLog2;
+  d.params.lutMaxLog2 = DisplayLut::kMaxLog2;
+  d.params.lutSize = static_cast<float>(DisplayLut::kSize);
+  d.beauty = b.read(in.beauty, Access::StorageReadCompute);
+  b.read(d.lut, Access::SampledCompute);
+  ImageDesc desc;
+  desc.name = "display";
+  desc.about = "the display image: 8-bit codes through the OCIO view, as the PNG holds them";
+  desc.format = VK_FORMAT_R8G8B8A8_UNORM;
+  desc.width = in.width;
+  desc.height = in.height;
+  d.outputs.display = b.write(b.create(desc), Access::StorageWriteCompute);
+  return d.outputs;
 }
 
-void DisplayTransformPass::execute(PassContext& ctx) const {
-  const ImageDesc& d = ctx.image(mOutputs.display).desc();
+void DisplayTransformPass::execute(PassContext& ctx, const Data& d) const {
+  const ImageDesc& size = ctx.image(d.outputs.display).desc();
   ctx.dispatch(mPipeline,
-               {Binding::of(DISPLAY_TRANSFORM_BINDING_PARAMS, ctx.uniform(mParams)),
-                Binding::of(DISPLAY_TRANSFORM_BINDING_BEAUTY, mBeauty),
-                Binding::of(DISPLAY_TRANSFORM_BINDING_LUT, mLutId, &mSampler),
-                Binding::of(DISPLAY_TRANSFORM_BINDING_DISPLAY, mOutputs.display)},
-               mPipeline.groupsX(d.width), mPipeline.groupsY(d.height));
+               {Binding::of(DISPLAY_TRANSFORM_BINDING_PARAMS, ctx.uniform(d.params)),
+                Binding::of(DISPLAY_TRANSFORM_BINDING_BEAUTY, d.beauty),
+                Binding::of(DISPLAY_TRANSFORM_BINDING_LUT, d.lut, &mSampler),
+                Binding::of(DISPLAY_TRANSFORM_BINDING_DISPLAY, d.outputs.display)},
+               mPipeline.groupsX(size.width), mPipeline.groupsY(size.height));
 }
 
 }  // namespace sky

@@ -30,7 +30,7 @@ public:
   static constexpr const char* kName = "display_transform";
   struct Inputs {
     DisplayTransformSettings settings;
-    ImageId beauty;  // RGBA32F scene-linear
+    ImageId beauty;                  // RGBA32F scene-linear
     uint32_t width = 0, height = 0;  // the beauty's size
   };
   struct Outputs {
@@ -40,18 +40,21 @@ public:
   DisplayTransformPass(const Context& ctx, ShaderCompiler& compiler);
   // Bakes and uploads the display/view's table on first use (kept for the next frames).
   Outputs addTo(FrameGraph& graph, const Inputs& inputs);
-  Outputs setup(GraphBuilder& builder, const Inputs& inputs);
-  void execute(PassContext& ctx) const;
+  // One use's data, in the frame graph: once per view.
+  struct Data {
+    shared::DisplayTransformParams params{};
+    ImageId lut, beauty;
+    Outputs outputs;
+  };
+  Outputs setup(GraphBuilder& builder, const Inputs& inputs, Data& data);
+  void execute(PassContext& ctx, const Data& data) const;
 
 private:
   const Context& mCtx;
   ComputePipeline mPipeline;
-  Sampler mSampler;     // linear, clamp
+  Sampler mSampler;      // linear, clamp
   PersistentImage mLut;  // RGBA32F DisplayLut::kSize^3
   std::string mLutKey;   // display + view it was baked for
-  shared::DisplayTransformParams mParams{};
-  ImageId mLutId, mBeauty;
-  Outputs mOutputs;
 };
 
 }  // namespace sky

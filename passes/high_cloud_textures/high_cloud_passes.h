@@ -33,15 +33,18 @@ public:
   HighCloudBakePass(const Context& ctx, ShaderCompiler& compiler, const Sampler& sampler);
   // For cache keys: the shader's preprocessed source with every include (CompiledShader).
   uint64_t sourceHash() const { return mPipeline.sourceHash(); }
-  Outputs setup(GraphBuilder& builder, const Inputs& inputs);
-  void execute(PassContext& ctx) const;
+  // One use's data, in the frame graph (FrameGraph::add).
+  struct Data {
+    Inputs inputs;
+    Outputs outputs;
+  };
+  Outputs setup(GraphBuilder& builder, const Inputs& inputs, Data& data);
+  void execute(PassContext& ctx, const Data& data) const;
 
 private:
   // Created at the first bake: most runs load the textures from their cache.
   LazyComputePipeline mPipeline;
   const Sampler& mSampler;
-  Inputs mInputs;
-  Outputs mOutputs;
 };
 
 // Tangent-space normals from the coefficients' opacity (shaders/high_cloud_normals.comp), of
@@ -65,16 +68,19 @@ public:
   // `sampler` (any; the levels are read with texelFetch) must outlive the pass.
   HighCloudNormalsPass(const Context& ctx, ShaderCompiler& compiler, const Sampler& sampler);
   uint64_t sourceHash() const { return mSourceHash; }
-  Outputs setup(GraphBuilder& builder, const Inputs& inputs);
-  void execute(PassContext& ctx) const;
+  // One use's data, in the frame graph (FrameGraph::add).
+  struct Data {
+    Inputs inputs;
+    Outputs outputs;
+  };
+  Outputs setup(GraphBuilder& builder, const Inputs& inputs, Data& data);
+  void execute(PassContext& ctx, const Data& data) const;
 
 private:
   HighCloudNormalsPass(const Context& ctx, const CompiledShader& shader, const Sampler& sampler);
   ComputePipeline mPipeline;
   uint64_t mSourceHash = 0;
   const Sampler& mSampler;
-  Inputs mInputs;
-  Outputs mOutputs;
 };
 
 // The coefficients' mip levels 1 .. log2(N / C) - 1 side by side in one image
@@ -93,13 +99,16 @@ public:
     ImageId levels;
   };
   HighCloudLevelsPass(const Context& ctx, ShaderCompiler& compiler);
-  Outputs setup(GraphBuilder& builder, const Inputs& inputs);
-  void execute(PassContext& ctx) const;
+  // One use's data, in the frame graph (FrameGraph::add).
+  struct Data {
+    Inputs inputs;
+    Outputs outputs;
+  };
+  Outputs setup(GraphBuilder& builder, const Inputs& inputs, Data& data);
+  void execute(PassContext& ctx, const Data& data) const;
 
 private:
   ComputePipeline mPipeline;
-  Inputs mInputs;
-  Outputs mOutputs;
 };
 
 // The coarse, box-filtered coefficients (shaders/high_cloud_reduce.comp).
@@ -116,13 +125,16 @@ public:
     ImageId coarse;
   };
   HighCloudReducePass(const Context& ctx, ShaderCompiler& compiler);
-  Outputs setup(GraphBuilder& builder, const Inputs& inputs);
-  void execute(PassContext& ctx) const;
+  // One use's data, in the frame graph (FrameGraph::add).
+  struct Data {
+    Inputs inputs;
+    Outputs outputs;
+  };
+  Outputs setup(GraphBuilder& builder, const Inputs& inputs, Data& data);
+  void execute(PassContext& ctx, const Data& data) const;
 
 private:
   ComputePipeline mPipeline;
-  Inputs mInputs;
-  Outputs mOutputs;
 };
 
 // The per-cover coarse texture from the rank/shape texture
@@ -142,13 +154,16 @@ public:
     ImageId coverCoarse;
   };
   HighCloudCoverReducePass(const Context& ctx, ShaderCompiler& compiler);
-  Outputs setup(GraphBuilder& builder, const Inputs& inputs);
-  void execute(PassContext& ctx) const;
+  // One use's data, in the frame graph (FrameGraph::add).
+  struct Data {
+    Inputs inputs;
+    Outputs outputs;
+  };
+  Outputs setup(GraphBuilder& builder, const Inputs& inputs, Data& data);
+  void execute(PassContext& ctx, const Data& data) const;
 
 private:
   ComputePipeline mPipeline;
-  Inputs mInputs;
-  Outputs mOutputs;
 };
 
 }  // namespace sky
