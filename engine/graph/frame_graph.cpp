@@ -265,16 +265,17 @@ void GraphBuilder::sideEffect() {
   mGraph.mDesc.passes[mPass].sideEffect = true;
 }
 
-void FrameGraph::requestOutput(ImageId image, std::string label) {
+OutputId FrameGraph::requestOutput(ImageId image, std::string label) {
   if (mCompiled) internalError("frame graph: output '" + label + "' requested after compile()");
   if (image.id >= mDesc.resources.size() || mDesc.resources[image.id].kind != ResourceKind::Image)
     internalError("frame graph: output '" + label + "' is not an image");
   for (const auto& o : mOutputs)
     if (o.label == label) internalError("frame graph: output '" + label + "' requested twice");
   mOutputs.push_back({image.id, image.version, std::move(label)});
+  return {static_cast<uint32_t>(mOutputs.size() - 1)};
 }
 
-void FrameGraph::requestOutput(const GraphImage& image, std::string label) {
+OutputId FrameGraph::requestOutput(const GraphImage& image, std::string label) {
   if (image.latest.valid()) return requestOutput(image.latest, std::move(label));
   if (mCompiled) internalError("frame graph: output '" + label + "' requested after compile()");
   if (!image.buffer.valid() || mDesc.resources[image.buffer.id].buffer.image.width == 0)
@@ -282,6 +283,7 @@ void FrameGraph::requestOutput(const GraphImage& image, std::string label) {
   for (const auto& o : mOutputs)
     if (o.label == label) internalError("frame graph: output '" + label + "' requested twice");
   mOutputs.push_back({image.buffer.id, image.buffer.version, std::move(label)});
+  return {static_cast<uint32_t>(mOutputs.size() - 1)};
 }
 
 std::vector<GraphImage> FrameGraph::images() const {
@@ -336,6 +338,18 @@ UnknownImageName::UnknownImageName(std::string name, std::vector<std::string> kn
             "no image named '" + name + "' in this frame (it has: " + knownList(known) + ")"),
       mName(std::move(name)),
       mKnown(std::move(known)) {}
+
+const ReadbackImage& FrameResult::output(OutputId id) const {
+  if (!id.valid() || id.index >= outputs.size())
+    internalError("frame result has no output " + std::to_string(id.index));
+  return outputs[id.index];
+}
+
+ReadbackImage& FrameResult::output(OutputId id) {
+  if (!id.valid() || id.index >= outputs.size())
+    internalError("frame result has no output " + std::to_string(id.index));
+  return outputs[id.index];
+}
 
 const ReadbackImage& FrameResult::output(std::string_view label) const {
   for (const ReadbackImage& o : outputs)

@@ -115,6 +115,9 @@ struct FrameResult {
   std::vector<ReadbackImage> outputs;
   // The output requested under `label`; Internal error if there is none.
   const ReadbackImage& output(std::string_view label) const;
+  // The output requestOutput returned `id` for; Internal error if it is not this frame's.
+  const ReadbackImage& output(OutputId id) const;
+  ReadbackImage& output(OutputId id);
 };
 
 // An image of a frame's graph, as a debug view finds it: by its name (ImageDesc::name).
@@ -202,11 +205,12 @@ public:
   // Prefixes the names of the images and buffers passes create from now on ("view1/": a
   // frame of several views, whose passes would otherwise name theirs alike); "" for none.
   void setNamePrefix(std::string prefix) { mNamePrefix = std::move(prefix); }
-  // Reads `image` back to the host after the frame under `label` (main image, AOVs, debug).
-  void requestOutput(ImageId image, std::string label);
+  // Reads `image` back to the host after the frame under `label` (main image, AOVs, debug;
+  // the label names it in errors and dumps). Returns its handle in FrameResult::output.
+  OutputId requestOutput(ImageId image, std::string label);
   // The same for an image images() found: an image, or a buffer that holds one (read back
   // as R32F, each value times its BufferImage::scale).
-  void requestOutput(const GraphImage& image, std::string label);
+  OutputId requestOutput(const GraphImage& image, std::string label);
   // Every image added so far, in the order they were added (the debug views' registry: any
   // image a pass declares can be requested by its name, with nothing added for it).
   std::vector<GraphImage> images() const;

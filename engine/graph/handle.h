@@ -21,4 +21,14 @@ struct Handle {
 using ImageId = Handle<Image>;
 using BufferId = Handle<Buffer>;
 
+// An output a frame reads back (FrameGraph::requestOutput): its place in the frame's
+// FrameResult::outputs, so a renderer finds what it asked for without matching labels.
+struct OutputId {
+  static constexpr uint32_t kInvalid = 0xffffffffu;
+  uint32_t index = kInvalid;
+
+  bool valid() const { return index != kInvalid; }
+  bool operator==(const OutputId&) const = default;
+};
+
 }  // namespace sky

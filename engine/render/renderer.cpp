@@ -80,11 +80,10 @@ Renderer::Renderer(const Context& ctx, ShaderCompiler& compiler)
       mAmbient(ctx, compiler),
       mVolumetric(ctx, compiler),
       mShadow(ctx, compiler),
-      mTemporal(ctx, compiler),
+      mReuse(ctx, compiler),
       mUpsample(ctx, compiler),
       mLightVolume(ctx, compiler),
       mDisplay(ctx, compiler),
-      mHistorySampler(ctx, SamplerWrap::Clamp),
       mHostDepthSampler(ctx, SamplerWrap::Clamp, false),
       mSlice(ctx, compiler),
       mVolumeExport(ctx, compiler),
@@ -125,76 +124,6 @@ Renderer::CloudSetup Renderer::cloudSetup(const Scene& scene, const IsoTime& tim
   return s;
 }
 
-namespace {
-
-// A history older than this, or a camera moved further, is a cut: the clouds have changed
-// too much for reprojection (a time-lapse's steps, a jump).
-constexpr double kHistoryMaxGapS = 60.0;
-constexpr double kHistoryMaxMoveM = 5000.0;
-
-// The scene written out without the camera's pose and the time: what temporal reuse and the
-// light volume compare to see whether anything else changed.
-std::string settingsWithoutPose(const Scene& scene) {
-  Scene s = scene;
-  s.camera.heading = s.camera.pitch = s.camera.roll = 0.0;
-  s.camera.latitude = s.camera.longitude = s.camera.altitudeM = 0.0;
-  s.time.start = IsoTime{};
-  s.time.end.reset();
-  s.time.stepSeconds = 0.0;
-  return writeScene(s, ConfigFormat::Json);
-}
-
-}  // namespace
-
-Renderer::HistoryStep Renderer::stepHistory(const Scene& scene, const IsoTime& time,
-                                            const shared::ViewState& view, uint32_t width,
-                                            uint32_t height) {
-  const Context& ctx = mRuntime.gpu();
-  ImageDesc desc;
-  desc.width = width;
-  desc.height = height;
-  desc.format = VK_FORMAT_R32G32B32A32_SFLOAT;
-  desc.name = "clouds";
-  desc.about = "the clouds after temporal reuse: premultiplied radiance (RGB), opacity (A)";
-  mCloudHistory.ensure(ctx, desc);
-  desc.format = VK_FORMAT_R32G32_SFLOAT;
-  desc.name = "clouds_depth";
-  desc.about = "the clouds' distance (m, R) and shell entry (m, G) after temporal reuse";
-  desc.view = DebugView::Depth;
-  desc.channels = "depth,shell_entry";
-  mDepthHistory.ensure(ctx, desc);
-
-  HistoryStep step;
-  CloudHistory& next = step.next;
-  next.settings = settingsWithoutPose(scene);
-  next.view = view;
-  next.latDeg = scene.camera.latitude;
-  next.lonDeg = scene.camera.longitude;
-  next.altitudeM = scene.camera.altitudeM;
-  next.time = time;
-  next.mapRevision = mClouds.mapRevision();
-
-  const CloudHistory& last = mHistory;
-  const glm::dvec3 here = ecefFromLatLonAltitude(next.latDeg, next.lonDeg, next.altitudeM);
-  const glm::dvec3 there = ecefFromLatLonAltitude(last.latDeg, last.lonDeg, last.altitudeM);
-  const double gap = time.secondsSince(last.time);
-  step.valid = mCloudHistory.valid() && mDepthHistory.valid() && next.settings == last.settings &&
-               next.mapRevision == last.mapRevision && std::abs(gap) <= kHistoryMaxGapS &&
-               glm::length(here - there) <= kHistoryMaxMoveM;
-  next.frame = step.valid ? last.frame + 1 : 0;
-  // A cut marches every pixel, so the first frame of a sequence is the still.
-  if (step.valid) {
-    step.block = static_cast<uint32_t>(scene.clouds.temporal.block);
-    step.offset = cloudMarchOffset(step.block, next.frame - 1);
-    const glm::dmat3 enuHere = enuToEcefRotation(next.latDeg, next.lonDeg);
-    const glm::dmat3 enuThere = enuToEcefRotation(last.latDeg, last.lonDeg);
-    step.motion.previousPosition = glm::vec3(glm::transpose(enuHere) * (there - here));
-    step.motion.toPrevious = glm::mat3(glm::transpose(enuThere) * enuHere);
-    step.motion.windShift = glm::vec3(glm::vec2(cloudWindDriftM(scene.clouds, gap)), 0.0f);
-  }
-  return step;
-}
-
 // What every part of a frame's graph is built from: the scene, the time, the clouds' setup
 // and the view.
 struct Renderer::FrameInputs {
@@ -205,6 +134,10 @@ struct Renderer::FrameInputs {
   uint32_t width, height;
   bool physical, topDown;
   SharedFrame* shared;  // a frame of several views: what they share; null for one view
+  // What the passes read of the frame, never write: the lights after the local weather, and
+  // whether the weather map has low or mid cover.
+  const LightingState& lighting;
+  bool clouds;
 };
 
 // What the views of a frame of several share, made by the first view's passes.
@@ -242,14 +175,14 @@ Renderer::SkyImages Renderer::addSky(FrameGraph& graph, const FrameInputs& f, Re
   SkyImages s;
   StarFieldPass::Frame stars;
   stars.view = f.view;
-  stars.j2000ToEnu = glm::mat3(out.lighting.ephemeris.equatorialJ2000ToEnu);
+  stars.j2000ToEnu = glm::mat3(f.lighting.ephemeris.equatorialJ2000ToEnu);
   stars.extinction = static_cast<float>(scene.lighting.starExtinction);
   // No star passes by day: the brightest star over a pixel of this view against the sky.
-  const glm::vec3 skyColor = glm::vec3(out.lighting.gpu.palette.sky);
+  const glm::vec3 skyColor = glm::vec3(f.lighting.gpu.palette.sky);
   const double skyLuminance = 0.2126 * skyColor.r + 0.7152 * skyColor.g + 0.0722 * skyColor.b;
   const bool starsShow =
-      out.lighting.dayFactor < 1.0 ||
-      starsVisible(mStars.brightestVmag(), out.lighting.gpu.night.z,
+      f.lighting.dayFactor < 1.0 ||
+      starsVisible(mStars.brightestVmag(), f.lighting.gpu.night.z,
                    double(f.view.forward.w) * double(f.view.forward.w), skyLuminance);
   s.stars = mStars.addTo(graph, stars, starsShow);
 
@@ -273,7 +206,7 @@ Renderer::SkyImages Renderer::addSky(FrameGraph& graph, const FrameInputs& f, Re
                              scene.highClouds.cover > 0.0;
   const ImageDesc& fine = graph.desc().resources[textures.coefficients.id].image;
   const ImageDesc& coarse = graph.desc().resources[textures.coarse.id].image;
-  sky.params = skyHighCloudsParams(scene, out.lighting, f.time, f.view, cloudsPresent, fine.width,
+  sky.params = skyHighCloudsParams(scene, f.lighting, f.time, f.view, cloudsPresent, fine.width,
                                    coarse.width, textures.mean, s.highAltitudeM);
   if (highFromWeather) {
     setRegionalCover(sky.params, scene, weather.region, textures);
@@ -282,7 +215,7 @@ Renderer::SkyImages Renderer::addSky(FrameGraph& graph, const FrameInputs& f, Re
     if (shared) shared->highCover = cover;
     sky.regional = {cover, &mClouds.weatherSampler(), textures.rankShape, textures.coverCoarse};
   }
-  sky.lighting = out.lighting.gpu;
+  sky.lighting = f.lighting.gpu;
   sky.textures = {textures.coefficients, textures.normals, textures.coarse,
                   &mHighCloudTextures.sampler(), textures.levels};
   if (f.physical) {
@@ -290,15 +223,15 @@ Renderer::SkyImages Renderer::addSky(FrameGraph& graph, const FrameInputs& f, Re
     a.atmosphere = physicalAtmosphere(scene);
     a.cameraAltitudeM = scene.camera.altitudeM;
     a.view = f.view;
-    a.sunDirection = glm::vec3(out.lighting.sun.direction);
-    a.moonDirection = glm::vec3(out.lighting.moon.direction);
-    a.sunIlluminance = glm::vec3(out.lighting.gpu.sunSpace);
-    a.moonIlluminance = glm::vec3(out.lighting.gpu.moonSpace);
+    a.sunDirection = glm::vec3(f.lighting.sun.direction);
+    a.moonDirection = glm::vec3(f.lighting.moon.direction);
+    a.sunIlluminance = glm::vec3(f.lighting.gpu.sunSpace);
+    a.moonIlluminance = glm::vec3(f.lighting.gpu.moonSpace);
     // The volumetric clouds' sky, from the middle of the low layer (where their sunlight is
     // taken too, cloudParams): seen from the ground, the low sky was a third dimmer and less
     // blue than the clouds see it, and a backlit core came out too dark and too warm against
     // Cycles lit by the sky at the clouds (docs/cloud-model.md).
-    if (out.clouds) {
+    if (f.clouds) {
       const CloudSettings& c = f.setup.volumetric.clouds;
       a.cloudAltitudeM = 0.5 * (c.low.baseM + c.low.topM);
     }
@@ -320,7 +253,7 @@ Renderer::SkyImages Renderer::addSky(FrameGraph& graph, const FrameInputs& f, Re
 
 Renderer::CloudImages Renderer::addClouds(FrameGraph& graph, const FrameInputs& f,
                                           const SkyImages& sky, RenderedFrame& out,
-                                          std::optional<CloudHistory>& pendingHistory) {
+                                          bool& reuseStep) {
   const Scene& scene = f.scene;
   const Scene& cloudScene = f.setup.cloudScene;
   const CloudFrameGeometry& geometry = f.setup.geometry;
@@ -341,19 +274,19 @@ Renderer::CloudImages Renderer::addClouds(FrameGraph& graph, const FrameInputs& 
   const shared::ViewState cloudView =
       half ? makeViewState(scene.camera, cloudWidth, cloudHeight) : f.view;
   VolumetricCloudsPass::Inputs in;
-  in.params = cloudParams(f.setup.volumetric, out.lighting, f.time, cloudView, c.frame.maxCover,
+  in.params = cloudParams(f.setup.volumetric, f.lighting, f.time, cloudView, c.frame.maxCover,
                           c.frame.coverage, c.frame.noiseMeans);
   in.variant = cloudVariant(f.setup.volumetric, c.frame.lowRolls);
-  in.lighting = out.lighting.gpu;
+  in.lighting = f.lighting.gpu;
   in.textures = c.frame.textures;
   // The ambient light from the sky the frame draws (either model) and the ground under it.
   CloudAmbientPass::Inputs ambient;
   const bool dualLobe = in.variant.phase == CloudPhase::DualLobe;
   ambient.params = cloudAmbientParams({scene.ground.albedo, scene.lighting.turbidity,
-                                       in.params.shellBaseM, out.lighting.overcast, in.params.g,
+                                       in.params.shellBaseM, f.lighting.overcast, in.params.g,
                                        in.params.gBack, dualLobe ? in.params.backWeight : 0.0f});
-  ambient.lighting = out.lighting.gpu;
-  ambient.moon = !moonLightNegligible(out.lighting.gpu);
+  ambient.lighting = f.lighting.gpu;
+  ambient.moon = !moonLightNegligible(f.lighting.gpu);
   if (f.physical)
     ambient.atmosphere = CloudAmbientPass::Atmosphere{
         mAtmosphere.cloudParams(), sky.luts.transmittance, sky.luts.skyViewSunClouds,
@@ -385,34 +318,27 @@ Renderer::CloudImages Renderer::addClouds(FrameGraph& graph, const FrameInputs& 
     in.lightVolume = volume.volume;
     in.lightVolumeSampler = &mLightVolume.sampler();
   }
-  std::optional<HistoryStep> step;
+  std::optional<CloudReuse::Step> step;
   if (temporal) {
-    step = stepHistory(scene, f.time, cloudView, cloudWidth, cloudHeight);
+    step = mReuse.step(scene, f.time, cloudView, mClouds.mapRevision());
     in.params.marchBlock = step->block;
     in.params.marchOffsetX = step->offset.x;
     in.params.marchOffsetY = step->offset.y;
     // A new jitter every frame, so a pixel marched again averages differently.
     in.params.frameIndex =
-        (in.params.frameIndex + static_cast<uint32_t>(step->next.frame) * 0x9E3779B9u) &
-        0x7fffffffu;
+        (in.params.frameIndex + static_cast<uint32_t>(step->frame) * 0x9E3779B9u) & 0x7fffffffu;
   }
   const VolumetricCloudsPass::Outputs marched = graph.add(mVolumetric, in);
   c.clouds = marched.clouds;
   c.depth = marched.depth;
   if (temporal) {
-    CloudTemporalPass::Inputs t;
-    t.params = cloudTemporalParams(
-        cloudView, mHistory.view, step->motion, step->block, step->offset, step->valid,
-        in.params.geo.origin.w, scene.camera.altitudeM, in.params.shellBaseM, in.params.shellTopM);
-    t.marched = c.clouds;
-    t.marchedDepth = c.depth;
-    t.clouds = graph.importHistory(mCloudHistory);
-    t.depth = graph.importHistory(mDepthHistory);
-    t.historySampler = &mHistorySampler;
-    const CloudTemporalPass::Outputs resolved = graph.add(mTemporal, t);
+    const CloudTemporalPass::Outputs resolved = mReuse.addTo(
+        graph, *step, c.clouds, c.depth,
+        {in.params.geo.origin.w, scene.camera.altitudeM, in.params.shellBaseM,
+         in.params.shellTopM});
     c.clouds = resolved.clouds;
     c.depth = resolved.depth;
-    pendingHistory = std::move(step->next);
+    reuseStep = true;
   }
   if (half) {
     CloudUpsamplePass::Inputs u;
@@ -466,11 +392,13 @@ Renderer::FramePlan Renderer::buildFrame(FrameGraph& graph, const Scene& scene, 
                       height,
                       scene.sky.model == SkyModel::Physical,
                       setup.geometry.topDown,
-                      shared};
+                      shared,
+                      setup.lighting,
+                      out.clouds};
   FramePlan plan;
   const SkyImages sky = addSky(graph, f, out);
   std::optional<CloudImages> clouds;
-  if (out.clouds) clouds = addClouds(graph, f, sky, out, plan.pendingHistory);
+  if (out.clouds) clouds = addClouds(graph, f, sky, out, plan.reuseStep);
 
   AtmosphereCompositeSettings compositeSettings;
   compositeSettings.ground = scene.ground;
@@ -483,7 +411,7 @@ Renderer::FramePlan Renderer::buildFrame(FrameGraph& graph, const Scene& scene, 
       !f.topDown && scene.camera.altitudeM > sky.highAltitudeM.value_or(scene.highClouds.altitudeM);
   compositeSettings.belowClouds = scene.camera.altitudeM < setup.volumetric.clouds.low.baseM;
   AtmosphereCompositePass::Inputs composite{};
-  composite.params = atmosphereCompositeParams(compositeSettings, out.lighting, f.view);
+  composite.params = atmosphereCompositeParams(compositeSettings, f.lighting, f.view);
   if (clouds)
     composite.clouds = AtmosphereCompositePass::Clouds{clouds->clouds,
                                                        clouds->depth,
@@ -495,7 +423,7 @@ Renderer::FramePlan Renderer::buildFrame(FrameGraph& graph, const Scene& scene, 
     composite.atmosphere =
         AtmosphereCompositePass::Atmosphere{mAtmosphere.params(), sky.luts.transmittance,
                                             sky.luts.aerialPerspective, &mAtmosphere.sampler()};
-  composite.lighting = out.lighting.gpu;
+  composite.lighting = f.lighting.gpu;
   if (sky.stars) composite.starFlux = sky.stars->flux;
   composite.sky = sky.sky.sky;
   composite.highClouds = sky.sky.highClouds;
@@ -520,7 +448,7 @@ Renderer::FramePlan Renderer::buildFrame(FrameGraph& graph, const Scene& scene, 
       internalError("the GPU display path has no histogram exposure (it meters the frame)");
     DisplayTransformPass::Inputs d;
     d.settings = {options.gpuDisplay, scene.output.display, scene.output.view,
-                  (scene.output.exposure == ExposureMode::Auto ? out.lighting.nightLiftEv : 0.0) +
+                  (scene.output.exposure == ExposureMode::Auto ? f.lighting.nightLiftEv : 0.0) +
                       scene.output.exposureEv,
                   scene.output.nightLook};
     d.beauty = plan.beauty;
@@ -533,66 +461,59 @@ Renderer::FramePlan Renderer::buildFrame(FrameGraph& graph, const Scene& scene, 
   return plan;
 }
 
-namespace {
-constexpr const char* kDebugLabel = "debug:";
-}  // namespace
-
-void Renderer::requestOutputs(FrameGraph& graph, const FramePlan& plan,
-                              const RenderOptions& options, const std::string& prefix) {
-  if (options.readBack != ReadBack::Display) graph.requestOutput(plan.beauty, prefix + "beauty");
+void Renderer::requestOutputs(FrameGraph& graph, FramePlan& plan, const RenderOptions& options,
+                              const std::string& prefix) {
+  FramePlan::Outputs& o = plan.outputs;
+  if (options.readBack != ReadBack::Display)
+    o.beauty = graph.requestOutput(plan.beauty, prefix + "beauty");
   if (options.readBack == ReadBack::Layers) {
-    graph.requestOutput(plan.sky, prefix + "sky");
-    graph.requestOutput(plan.highClouds, prefix + "high_clouds");
+    o.sky = graph.requestOutput(plan.sky, prefix + "sky");
+    o.highClouds = graph.requestOutput(plan.highClouds, prefix + "high_clouds");
     if (plan.clouds.valid()) {
-      graph.requestOutput(plan.clouds, prefix + "clouds");
-      graph.requestOutput(plan.cloudsDepth, prefix + "clouds_depth");
+      o.clouds = graph.requestOutput(plan.clouds, prefix + "clouds");
+      o.cloudsDepth = graph.requestOutput(plan.cloudsDepth, prefix + "clouds_depth");
     }
   }
-  if (plan.display.valid()) graph.requestOutput(plan.display, prefix + "display");
+  if (plan.display.valid()) o.display = graph.requestOutput(plan.display, prefix + "display");
   // The debug images, by the names their passes gave them (the graph is the registry).
   std::vector<std::string> names = options.debugOutputs;
   if (options.allDebugOutputs)
     for (const GraphImage& image : graph.images())
       if (std::find(names.begin(), names.end(), image.name) == names.end())
         names.push_back(image.name);
-  for (const std::string& name : names) graph.requestOutput(graph.image(name), kDebugLabel + name);
+  for (const std::string& name : names) {
+    const GraphImage image = graph.image(name);
+    o.debug.emplace_back(graph.requestOutput(image, prefix + "debug " + name), image);
+  }
 }
 
 void Renderer::collectOutputs(RenderedFrame& out, const FrameGraph& graph, const FramePlan& plan,
-                              const RenderOptions& options, const std::string& prefix) {
+                              const RenderOptions& options) {
   const FrameResult& result = out.frame;
+  const FramePlan::Outputs& o = plan.outputs;
   const uint32_t width = graph.desc().resources[plan.beauty.id].image.width;
   const uint32_t height = graph.desc().resources[plan.beauty.id].image.height;
   out.image.width = static_cast<int>(width);
   out.image.height = static_cast<int>(height);
   if (options.readBack != ReadBack::Display)
-    out.image.layers.push_back(beautyLayer(result.output(prefix + "beauty")));
+    out.image.layers.push_back(beautyLayer(result.output(o.beauty)));
   if (options.readBack == ReadBack::Layers) {
-    const bool clouds = plan.clouds.valid();
-    appendAovLayers(out.image, result.output(prefix + "sky"), result.output(prefix + "high_clouds"),
-                    clouds ? &result.output(prefix + "clouds") : nullptr,
-                    clouds ? &result.output(prefix + "clouds_depth") : nullptr);
+    const bool clouds = o.clouds.valid();
+    appendAovLayers(out.image, result.output(o.sky), result.output(o.highClouds),
+                    clouds ? &result.output(o.clouds) : nullptr,
+                    clouds ? &result.output(o.cloudsDepth) : nullptr);
     if (plan.weather)
       out.image.layers.push_back(
           weatherCoverLayer(*plan.weather, plan.weather->region, width, height));
   }
-  const std::vector<GraphImage> images = graph.images();
-  for (const GraphImage& g : images) out.images.push_back(debugImageInfo(g));
-  const std::string debug = kDebugLabel;
-  for (const ReadbackImage& o : result.outputs) {
-    if (o.label.rfind(debug, 0) != 0) continue;
-    const std::string name = o.label.substr(debug.size());
-    for (const GraphImage& g : images)
-      if (g.name == name) out.debug.push_back(debugImage(o, g, result));
-  }
-  if (plan.display.valid()) {
-    const std::vector<float>& codes = result.output(prefix + "display").pixels;
+  for (const GraphImage& g : graph.images()) out.images.push_back(debugImageInfo(g));
+  for (const auto& [id, image] : o.debug) out.debug.push_back(debugImage(result.output(id), image, result));
+  if (o.display.valid()) {
+    const std::vector<float>& codes = result.output(o.display).pixels;
     out.display.resize(codes.size());
     for (size_t i = 0; i < codes.size(); ++i)
       out.display[i] = static_cast<uint8_t>(std::lround(codes[i] * 255.0f));
   }
-  if (prefix.empty())
-    for (ReadbackImage& o : out.frame.outputs) o.pixels = {};  // the layers hold the data now
 }
 
 RenderedFrame Renderer::render(const Scene& scene, const IsoTime& time,
@@ -616,9 +537,12 @@ RenderedFrame Renderer::render(const Scene& scene, const IsoTime& time,
     mShadow.invalidate();
     throw;
   }
-  if (plan.pendingHistory) mHistory = std::move(*plan.pendingHistory);
+  if (plan.reuseStep) mReuse.commit();
   out.graphDot = graph.toDot(&out.frame);
-  if (!options.host) collectOutputs(out, graph, plan, options);
+  if (!options.host) {
+    collectOutputs(out, graph, plan, options);
+    for (ReadbackImage& o : out.frame.outputs) o.pixels = {};  // the layers hold the data now
+  }
   finishCosts(out, start, pipelinesBefore);
   return out;
 }
@@ -683,12 +607,11 @@ std::vector<RenderedFrame> Renderer::render(const Scene& scene, const IsoTime& t
     throw;
   }
   // The views marched every pixel; a later sequence frame starts afresh.
-  mCloudHistory.invalidate();
-  mDepthHistory.invalidate();
+  mReuse.invalidate();
   const std::string dot = graph.toDot(&result);
   for (size_t i = 0; i < views.size(); ++i) {
     outs[i].frame = result;
-    collectOutputs(outs[i], graph, plans[i], options, label(i));
+    collectOutputs(outs[i], graph, plans[i], options);
     outs[i].frame.outputs.clear();
     outs[i].graphDot = dot;
     finishCosts(outs[i], start, pipelinesBefore);

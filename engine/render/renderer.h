@@ -19,6 +19,7 @@
 #include "passes/atmosphere_composite/atmosphere_composite.h"
 #include "engine/render/cloud_field.h"
 #include "engine/render/cloud_layers.h"
+#include "engine/render/cloud_reuse.h"
 #include "engine/render/cloud_volume.h"
 #include "passes/atmosphere_luts/atmosphere_luts.h"
 #include "engine/gpu/sampler.h"
@@ -26,7 +27,6 @@
 #include "passes/cloud_density_slice/cloud_density_slice.h"
 #include "passes/cloud_light_volume/cloud_light_volume.h"
 #include "passes/cloud_shadow/cloud_shadow.h"
-#include "passes/cloud_temporal/cloud_temporal.h"
 #include "passes/cloud_upsample/cloud_upsample.h"
 #include "passes/display_transform/display_transform.h"
 #include "passes/cloud_volume_export/cloud_volume_export.h"
@@ -220,27 +220,6 @@ private:
   };
   CloudSetup cloudSetup(const Scene& scene, const IsoTime& time);
 
-  // The frame temporal reuse's history images belong to (clouds.temporal), to reproject them
-  // from.
-  struct CloudHistory {
-    std::string settings;  // the scene written out, but for the camera's pose and the time
-    shared::ViewState view{};
-    double latDeg = 0.0, lonDeg = 0.0, altitudeM = 0.0;
-    IsoTime time;
-    uint64_t mapRevision = 0;
-    uint64_t frame = 0;  // frames since the last cut (0: the cut, marched in full)
-  };
-  // This frame's step of the history: whether last frame's clouds can be reprojected, and how.
-  struct HistoryStep {
-    bool valid = false;
-    uint32_t block = 1;
-    glm::uvec2 offset{0};
-    CloudTemporalMotion motion;
-    CloudHistory next;  // the history once this frame has run
-  };
-  HistoryStep stepHistory(const Scene& scene, const IsoTime& time, const shared::ViewState& view,
-                          uint32_t width, uint32_t height);
-
   // A frame in four steps: build the graph (sky, clouds, composite, display), request its
   // outputs (the EXR's layers, the display image, debug images by name), execute, collect.
   // A frame of several views builds each view in turn; what they share, the first makes
@@ -251,20 +230,28 @@ private:
   struct CloudImages;
   struct FramePlan {  // what the outputs are read from
     ImageId beauty, sky, highClouds, clouds, cloudsDepth, display;
+    // Their read-backs, as requestOutputs asked for them (invalid: not read back), and the
+    // debug images'.
+    struct Outputs {
+      OutputId beauty, sky, highClouds, clouds, cloudsDepth, display;
+      std::vector<std::pair<OutputId, GraphImage>> debug;
+    } outputs;
     const WeatherMap* weather = nullptr;         // a top-down view's map, for its "weather" layer
-    std::optional<CloudHistory> pendingHistory;  // becomes mHistory once the frame has run
+    bool reuseStep = false;  // the frame took a step of mReuse: commit it once it has run
   };
   FramePlan buildFrame(FrameGraph& graph, const Scene& scene, const IsoTime& time,
                        const RenderOptions& options, RenderedFrame& out,
                        SharedFrame* shared = nullptr);
+  // Each reads the frame from `f` alone (read-only) and writes into `out` only what the
+  // frame reports (costs, what was baked or kept, the shadow map's place).
   SkyImages addSky(FrameGraph& graph, const FrameInputs& f, RenderedFrame& out);
   CloudImages addClouds(FrameGraph& graph, const FrameInputs& f, const SkyImages& sky,
-                        RenderedFrame& out, std::optional<CloudHistory>& pendingHistory);
-  // `prefix` labels a view's outputs in a frame of several ("view1/").
-  void requestOutputs(FrameGraph& graph, const FramePlan& plan, const RenderOptions& options,
+                        RenderedFrame& out, bool& reuseStep);
+  // `prefix` labels a view's outputs in a frame of several ("view1/"), for errors and dumps.
+  void requestOutputs(FrameGraph& graph, FramePlan& plan, const RenderOptions& options,
                       const std::string& prefix = "");
   void collectOutputs(RenderedFrame& out, const FrameGraph& graph, const FramePlan& plan,
-                      const RenderOptions& options, const std::string& prefix = "");
+                      const RenderOptions& options);
   // The costs and timings of a frame once it has run.
   void finishCosts(RenderedFrame& out, std::chrono::steady_clock::time_point start,
                    double pipelinesBefore);
@@ -283,15 +270,11 @@ private:
   CloudAmbientPass mAmbient;
   VolumetricCloudsPass mVolumetric;
   CloudShadowPass mShadow;
-  CloudTemporalPass mTemporal;
+  CloudReuse mReuse;  // the cloud history: temporal reuse across a sequence's frames
   CloudUpsamplePass mUpsample;
   CloudLightVolumePass mLightVolume;
   DisplayTransformPass mDisplay;
-  Sampler mHistorySampler;     // linear, clamp
   Sampler mHostDepthSampler;   // nearest, clamp: a host's depth, fetched texel by texel
-  HistoryImage mCloudHistory;  // RGBA32F: premultiplied radiance and opacity, the view's size
-  HistoryImage mDepthHistory;  // RG32F: transmittance-weighted distance (m) in r
-  CloudHistory mHistory;       // the frame they hold
   CloudDensitySlicePass mSlice;
   CloudVolumeExportPass mVolumeExport;
   AtmosphereCompositePass mComposite;

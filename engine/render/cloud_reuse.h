@@ -1,0 +1,79 @@
+#pragma once
+// The cloud history: temporal reuse of the volumetric clouds across the frames of a sequence
+// (clouds.temporal; docs/clouds.md, "Temporal reuse"). It keeps the two history images
+// (HistoryImage) and which frame they hold, decides each frame's step (whether last frame's
+// clouds can be reprojected, or a cut, and which pixel of each block this frame marches) and
+// adds the pass that merges the frame's sparse march with the history (passes/cloud_temporal).
+// One of the Renderer's jobs, apart from the sky, the clouds and the outputs.
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include <glm/vec2.hpp>
+
+#include "engine/graph/frame_graph.h"
+#include "engine/gpu/sampler.h"
+#include "engine/scene/scene.h"
+#include "passes/cloud_temporal/cloud_temporal.h"
+#include "shaders/common/view_shared.h"
+
+namespace sky {
+
+class Context;
+class ShaderCompiler;
+
+// The scene written out without the camera's pose and the time: what temporal reuse and the
+// clouds' kept products (light volume, shadow map) compare to see whether anything else
+// changed.
+std::string settingsWithoutPose(const Scene& scene);
+
+class CloudReuse {
+public:
+  CloudReuse(const Context& ctx, ShaderCompiler& compiler);
+
+  // This frame's step of the history.
+  struct Step {
+    bool valid = false;  // last frame's clouds can be reprojected (false: a cut)
+    uint32_t block = 1;  // this frame marches one pixel of each block x block square
+    glm::uvec2 offset{0};
+    CloudTemporalMotion motion;
+    uint64_t frame = 0;  // frames since the last cut (0: the cut, marched in full)
+  };
+  // The step of a frame of `scene` at `time` whose clouds are marched at `view` (its size,
+  // or half of it), with the weather map at `mapRevision`. It becomes the history once the
+  // frame has run (commit()); a frame built but not run leaves the history as it was.
+  Step step(const Scene& scene, const IsoTime& time, const shared::ViewState& view,
+            uint64_t mapRevision);
+  // Where the clouds lie for the reprojection.
+  struct Shells {
+    double planetRadiusM = 0.0, cameraAltitudeM = 0.0, shellBaseM = 0.0, shellTopM = 0.0;
+  };
+  // Adds the temporal pass: `marched` and `marchedDepth` (the cloud pass's sparse march for
+  // `step`) merged with the history into this frame's clouds, the history's next images.
+  CloudTemporalPass::Outputs addTo(FrameGraph& graph, const Step& step, ImageId marched,
+                                   ImageId marchedDepth, const Shells& shells);
+  // The frame of the last step() has run: it is the history now.
+  void commit();
+  // Forgets the history: the next frame is a cut (a frame of several views marched in full).
+  void invalidate();
+
+private:
+  // The frame the history images hold.
+  struct Held {
+    std::string settings;  // settingsWithoutPose
+    shared::ViewState view{};
+    double latDeg = 0.0, lonDeg = 0.0, altitudeM = 0.0;
+    IsoTime time;
+    uint64_t mapRevision = 0;
+    uint64_t frame = 0;
+  };
+  const Context& mCtx;
+  CloudTemporalPass mTemporal;
+  Sampler mSampler;           // linear, clamp
+  HistoryImage mClouds;       // RGBA32F: premultiplied radiance and opacity, the view's size
+  HistoryImage mDepth;        // RG32F: transmittance-weighted distance (m) in r
+  Held mHeld;                 // the frame they hold
+  std::optional<Held> mNext;  // the last step's frame, until commit()
+};
+
+}  // namespace sky
