@@ -53,8 +53,9 @@ struct DepthConvention {
   bool reverseZ = false;
   double nearM = 0.1;
   double farM = std::numeric_limits<double>::infinity();
-  // Column-major, Vulkan clip space (depth 0..1, w = -z of the view): only m[10] and m[14]
-  // are read. Its far end (depth 0 or 1, the larger distance) is where the host drew nothing.
+  // Column-major, Vulkan clip space (depth 0..1, w = -z of the view: m[11] = -1, m[15] = 0);
+  // m[10] and m[14] give a depth's distance. Its far end (depth 0 or 1, the larger distance)
+  // is where the host drew nothing.
   bool useProjection = false;
   std::array<double, 16> projection{};
 };
