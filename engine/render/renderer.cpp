@@ -332,10 +332,10 @@ Renderer::CloudImages Renderer::addClouds(FrameGraph& graph, const FrameInputs& 
   c.clouds = marched.clouds;
   c.depth = marched.depth;
   if (temporal) {
-    const CloudTemporalPass::Outputs resolved = mReuse.addTo(
-        graph, *step, c.clouds, c.depth,
-        {in.params.geo.origin.w, scene.camera.altitudeM, in.params.shellBaseM,
-         in.params.shellTopM});
+    const CloudTemporalPass::Outputs resolved =
+        mReuse.addTo(graph, *step, c.clouds, c.depth,
+                     {in.params.geo.origin.w, scene.camera.altitudeM, in.params.shellBaseM,
+                      in.params.shellTopM});
     c.clouds = resolved.clouds;
     c.depth = resolved.depth;
     reuseStep = true;
@@ -487,9 +487,9 @@ void Renderer::requestOutputs(FrameGraph& graph, FramePlan& plan, const RenderOp
   }
 }
 
-void Renderer::collectOutputs(RenderedFrame& out, const FrameGraph& graph, const FramePlan& plan,
+void Renderer::collectOutputs(RenderedFrame& out, const FrameResult& result,
+                              const FrameGraph& graph, const FramePlan& plan,
                               const RenderOptions& options) {
-  const FrameResult& result = out.frame;
   const FramePlan::Outputs& o = plan.outputs;
   const uint32_t width = graph.desc().resources[plan.beauty.id].image.width;
   const uint32_t height = graph.desc().resources[plan.beauty.id].image.height;
@@ -507,7 +507,8 @@ void Renderer::collectOutputs(RenderedFrame& out, const FrameGraph& graph, const
           weatherCoverLayer(*plan.weather, plan.weather->region, width, height));
   }
   for (const GraphImage& g : graph.images()) out.images.push_back(debugImageInfo(g));
-  for (const auto& [id, image] : o.debug) out.debug.push_back(debugImage(result.output(id), image, result));
+  for (const auto& [id, image] : o.debug)
+    out.debug.push_back(debugImage(result.output(id), image, result));
   if (o.display.valid()) {
     const std::vector<float>& codes = result.output(o.display).pixels;
     out.display.resize(codes.size());
@@ -540,7 +541,7 @@ RenderedFrame Renderer::render(const Scene& scene, const IsoTime& time,
   if (plan.reuseStep) mReuse.commit();
   out.graphDot = graph.toDot(&out.frame);
   if (!options.host) {
-    collectOutputs(out, graph, plan, options);
+    collectOutputs(out, out.frame, graph, plan, options);
     for (ReadbackImage& o : out.frame.outputs) o.pixels = {};  // the layers hold the data now
   }
   finishCosts(out, start, pipelinesBefore);
@@ -609,10 +610,12 @@ std::vector<RenderedFrame> Renderer::render(const Scene& scene, const IsoTime& t
   // The views marched every pixel; a later sequence frame starts afresh.
   mReuse.invalidate();
   const std::string dot = graph.toDot(&result);
+  // Each view holds the frame's timings; its images come from the one read-back, not copies.
+  FrameResult timings = result;
+  timings.outputs.clear();
   for (size_t i = 0; i < views.size(); ++i) {
-    outs[i].frame = result;
-    collectOutputs(outs[i], graph, plans[i], options);
-    outs[i].frame.outputs.clear();
+    outs[i].frame = timings;
+    collectOutputs(outs[i], result, graph, plans[i], options);
     outs[i].graphDot = dot;
     finishCosts(outs[i], start, pipelinesBefore);
   }

@@ -68,7 +68,7 @@ struct HostTarget {
   VkCommandBuffer cmd = VK_NULL_HANDLE;  // recording
   PersistentImage* colour = nullptr;     // scene-linear rgba16f or rgba32f, storage usage
   VkImageLayout colourLayout = VK_IMAGE_LAYOUT_UNDEFINED;  // before and after the frame
-  PersistentImage* depth = nullptr;  // optional; sampled usage
+  PersistentImage* depth = nullptr;                        // optional; sampled usage
   VkImageLayout depthLayout = VK_IMAGE_LAYOUT_UNDEFINED;
   shared::HostDepth depthMapping{};  // how its values map to distance
 };
@@ -236,7 +236,7 @@ private:
       OutputId beauty, sky, highClouds, clouds, cloudsDepth, display;
       std::vector<std::pair<OutputId, GraphImage>> debug;
     } outputs;
-    const WeatherMap* weather = nullptr;         // a top-down view's map, for its "weather" layer
+    const WeatherMap* weather = nullptr;  // a top-down view's map, for its "weather" layer
     bool reuseStep = false;  // the frame took a step of mReuse: commit it once it has run
   };
   FramePlan buildFrame(FrameGraph& graph, const Scene& scene, const IsoTime& time,
@@ -250,8 +250,9 @@ private:
   // `prefix` labels a view's outputs in a frame of several ("view1/"), for errors and dumps.
   void requestOutputs(FrameGraph& graph, FramePlan& plan, const RenderOptions& options,
                       const std::string& prefix = "");
-  void collectOutputs(RenderedFrame& out, const FrameGraph& graph, const FramePlan& plan,
-                      const RenderOptions& options);
+  // The layers, display and debug images of `plan` from `result` (the frame's read-backs).
+  void collectOutputs(RenderedFrame& out, const FrameResult& result, const FrameGraph& graph,
+                      const FramePlan& plan, const RenderOptions& options);
   // The costs and timings of a frame once it has run.
   void finishCosts(RenderedFrame& out, std::chrono::steady_clock::time_point start,
                    double pipelinesBefore);
@@ -274,7 +275,7 @@ private:
   CloudUpsamplePass mUpsample;
   CloudLightVolumePass mLightVolume;
   DisplayTransformPass mDisplay;
-  Sampler mHostDepthSampler;   // nearest, clamp: a host's depth, fetched texel by texel
+  Sampler mHostDepthSampler;  // nearest, clamp: a host's depth, fetched texel by texel
   CloudDensitySlicePass mSlice;
   CloudVolumeExportPass mVolumeExport;
   AtmosphereCompositePass mComposite;
