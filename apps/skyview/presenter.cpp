@@ -11,7 +11,7 @@ namespace sky::view {
 
 namespace {
 
-constexpr VkFormat kUploadFormat = VK_FORMAT_R8G8B8A8_UNORM;
+constexpr VkFormat kFormat = VK_FORMAT_R8G8B8A8_UNORM;
 
 void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageLayout from, VkImageLayout to,
                   VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
@@ -35,49 +35,46 @@ void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageLayout from, VkImag
 
 }  // namespace
 
-UploadImage::UploadImage(const Context& ctx, std::string name)
+WindowImage::WindowImage(const Context& ctx, std::string name)
     : mCtx(ctx), mName(std::move(name)) {}
 
-UploadImage::~UploadImage() {
-  destroy();
-}
-
-void UploadImage::destroy() {
-  if (mImage) vkDestroyImage(mCtx.device(), mImage, nullptr);
-  if (mMemory) vkFreeMemory(mCtx.device(), mMemory, nullptr);
-  mImage = VK_NULL_HANDLE;
-  mMemory = VK_NULL_HANDLE;
-  mUploaded = false;
-}
-
-void UploadImage::set(const uint8_t* rgba, uint32_t width, uint32_t height) {
-  const VkDeviceSize bytes = VkDeviceSize(width) * height * 4;
+void WindowImage::ensure(uint32_t width, uint32_t height) {
   if (width == 0 || height == 0) internalError("skyview: an empty image to show");
-  if (width != mWidth || height != mHeight) {
-    destroy();
-    VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
-    info.imageType = VK_IMAGE_TYPE_2D;
-    info.format = kUploadFormat;
-    info.extent = {width, height, 1};
-    info.mipLevels = 1;
-    info.arrayLayers = 1;
-    info.samples = VK_SAMPLE_COUNT_1_BIT;
-    info.tiling = VK_IMAGE_TILING_OPTIMAL;
-    info.usage = VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
-    info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-    SKY_VK(vkCreateImage(mCtx.device(), &info, nullptr, &mImage));
-    VkMemoryRequirements req;
-    vkGetImageMemoryRequirements(mCtx.device(), mImage, &req);
-    VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-    alloc.allocationSize = req.size;
-    alloc.memoryTypeIndex =
-        mCtx.memoryType(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-    mMemory = mCtx.allocate(alloc, "the window image " + mName);
-    SKY_VK(vkBindImageMemory(mCtx.device(), mImage, mMemory, 0));
-    mCtx.setName(VK_OBJECT_TYPE_IMAGE, reinterpret_cast<uint64_t>(mImage), mName);
-    mWidth = width;
-    mHeight = height;
-  }
+  if (mImage.image && width == this->width() && height == this->height()) return;
+  ImageDesc desc;
+  desc.name = mName;
+  desc.format = kFormat;
+  desc.width = width;
+  desc.height = height;
+  // Storage: the display pass writes it; transfer: uploads, blits, dump-frame's read.
+  desc.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
+               VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+  mImage = PersistentImage{Image(mCtx, desc), {}};
+  mFilled = false;
+  // Into the layout it is kept in, cleared: the frame graph and the blits find it there.
+  const VkImage image = mImage.image.image();
+  mCtx.submitAndWait([&](VkCommandBuffer cmd) {
+    imageBarrier(cmd, image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                 VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_CLEAR_BIT,
+                 VK_ACCESS_2_TRANSFER_WRITE_BIT);
+    const VkClearColorValue black{{0.0f, 0.0f, 0.0f, 1.0f}};
+    const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    vkCmdClearColorImage(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &black, 1, &all);
+    imageBarrier(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, kLayout,
+                 VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                 VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT);
+  });
+}
+
+PersistentImage& WindowImage::target(uint32_t width, uint32_t height) {
+  ensure(width, height);
+  mPending = false;  // the frame replaces an upload not yet made
+  return mImage;
+}
+
+void WindowImage::set(const uint8_t* rgba, uint32_t width, uint32_t height) {
+  ensure(width, height);
+  const VkDeviceSize bytes = VkDeviceSize(width) * height * 4;
   if (!mStaging || mStaging.size() < bytes)
     mStaging = Buffer(mCtx, {mName + " staging", bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                              BufferMemory::HostVisible});
@@ -85,24 +82,47 @@ void UploadImage::set(const uint8_t* rgba, uint32_t width, uint32_t height) {
   mPending = true;
 }
 
-void UploadImage::record(VkCommandBuffer cmd) {
+void WindowImage::record(VkCommandBuffer cmd) {
   if (!mPending) return;
   // The old contents are not needed: UNDEFINED discards them. The previous frame's blits
   // read the image, so the transfer write waits for them (same stage, execution order).
-  imageBarrier(cmd, mImage, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+  imageBarrier(cmd, image(), VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                VK_PIPELINE_STAGE_2_BLIT_BIT, 0, VK_PIPELINE_STAGE_2_COPY_BIT,
                VK_ACCESS_2_TRANSFER_WRITE_BIT);
   VkBufferImageCopy region{};
   region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-  region.imageExtent = {mWidth, mHeight, 1};
-  vkCmdCopyBufferToImage(cmd, mStaging.buffer(), mImage, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1,
+  region.imageExtent = {width(), height(), 1};
+  vkCmdCopyBufferToImage(cmd, mStaging.buffer(), image(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1,
                          &region);
-  imageBarrier(cmd, mImage, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-               VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT,
-               VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_BLIT_BIT,
-               VK_ACCESS_2_TRANSFER_READ_BIT);
+  imageBarrier(cmd, image(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, kLayout,
+               VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+               VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
   mPending = false;
-  mUploaded = true;
+  mFilled = true;
+}
+
+std::vector<uint8_t> WindowImage::read() const {
+  if (!valid()) return {};
+  const VkDeviceSize bytes = VkDeviceSize(width()) * height() * 4;
+  Buffer readback(
+      mCtx, {mName + " read", bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, BufferMemory::HostVisible});
+  mCtx.submitAndWait([&](VkCommandBuffer cmd) {
+    VkBufferImageCopy region{};
+    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    region.imageExtent = {width(), height(), 1};
+    vkCmdCopyImageToBuffer(cmd, image(), kLayout, readback.buffer(), 1, &region);
+    VkMemoryBarrier2 toHost{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+    toHost.srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
+    toHost.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
+    toHost.dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT;
+    toHost.dstAccessMask = VK_ACCESS_2_HOST_READ_BIT;
+    VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+    dep.memoryBarrierCount = 1;
+    dep.pMemoryBarriers = &toHost;
+    vkCmdPipelineBarrier2(cmd, &dep);
+  });
+  const auto* codes = static_cast<const uint8_t*>(readback.mapped());
+  return {codes, codes + bytes};
 }
 
 Presenter::Presenter(const Context& ctx, Swapchain& swapchain)
@@ -124,7 +144,7 @@ Presenter::Presenter(const Context& ctx, Swapchain& swapchain)
   SKY_VK(vkCreateSemaphore(device, &semaphore, nullptr, &mAcquired));
 
   VkFormatProperties p;
-  vkGetPhysicalDeviceFormatProperties(ctx.physicalDevice(), kUploadFormat, &p);
+  vkGetPhysicalDeviceFormatProperties(ctx.physicalDevice(), kFormat, &p);
   if (!(p.optimalTilingFeatures & VK_FORMAT_FEATURE_BLIT_SRC_BIT))
     internalError("cannot open a window: " + ctx.deviceName() + " cannot blit RGBA8 images");
   if (p.optimalTilingFeatures & VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT)
@@ -143,6 +163,16 @@ void Presenter::waitForLastFrame() {
   mCtx.wait(mFence);
 }
 
+PersistentImage& Presenter::frameTarget(uint32_t width, uint32_t height) {
+  waitForLastFrame();
+  return mFrame.target(width, height);
+}
+
+Presenter::Codes Presenter::readFrame() {
+  waitForLastFrame();
+  return {mFrame.read(), mFrame.width(), mFrame.height()};
+}
+
 void Presenter::setFrame(const uint8_t* rgba, uint32_t width, uint32_t height) {
   waitForLastFrame();
   mFrame.set(rgba, width, height);
@@ -153,7 +183,7 @@ void Presenter::setTile(const uint8_t* rgba, uint32_t width, uint32_t height) {
   mTile.set(rgba, width, height);
 }
 
-void Presenter::blit(VkCommandBuffer cmd, const UploadImage& from, const Rect& to, VkImage target) {
+void Presenter::blit(VkCommandBuffer cmd, const WindowImage& from, const Rect& to, VkImage target) {
   if (!from.valid() || to.width == 0 || to.height == 0) return;
   VkImageBlit region{};
   region.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};

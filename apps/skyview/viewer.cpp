@@ -243,6 +243,12 @@ RenderedFrame Viewer::renderWith(Renderer& renderer) {
   const bool histogram = mScene.output.exposure == ExposureMode::Histogram;
   options.readBack = histogram ? ReadBack::Beauty : ReadBack::Display;
   options.gpuDisplay = histogram ? nullptr : &mOcio;
+  // The GPU path writes the frame straight into the image the window blits from: nothing
+  // comes back to the host and nothing is uploaded (after the last present has read it).
+  if (!histogram)
+    options.displayTarget = &mPresenter->frameTarget(static_cast<uint32_t>(mScene.output.width),
+                                                     static_cast<uint32_t>(mScene.output.height));
+  options.displayTargetLayout = WindowImage::kLayout;
   // The debug view's image comes back with the frame, by its name in the frame's graph.
   if (const std::optional<std::string> wanted = mDebug.wanted()) options.debugOutputs = {*wanted};
   try {
@@ -262,12 +268,14 @@ void Viewer::show(RenderedFrame& frame) {
   if (mScene.output.exposure == ExposureMode::Histogram) {
     const FrameExposure exposure = mMeter.expose(mScene, frame, mScene.time.start);
     const std::vector<float> px = displayPixels(frame, mScene, exposure, mOcio);
-    mDisplay.resize(px.size());
+    std::vector<uint8_t> codes(px.size());
     for (size_t i = 0; i < px.size(); ++i)
-      mDisplay[i] = static_cast<uint8_t>(std::lround(std::clamp(px[i], 0.0f, 1.0f) * 255.0f));
+      codes[i] = static_cast<uint8_t>(std::lround(std::clamp(px[i], 0.0f, 1.0f) * 255.0f));
+    mPresenter->setFrame(codes.data(), mDisplayW, mDisplayH);
   } else {
-    mDisplay = std::move(frame.display);
+    mPresenter->frameDrawn();
   }
+  mHasFrame = true;
   if (!frame.debug.empty()) {
     const DebugImage& d = frame.debug.front();
     const DisplayTile shown = debugDisplay(d);
@@ -293,7 +301,6 @@ void Viewer::show(RenderedFrame& frame) {
   mRenderMs = frame.frame.wallMs;
   mRenderMsTotal += frame.frame.wallMs;
   ++mRendered;
-  mPresenter->setFrame(mDisplay.data(), mDisplayW, mDisplayH);
 }
 
 void Viewer::renderView() {
@@ -302,13 +309,13 @@ void Viewer::renderView() {
   try {
     frame = renderWith(*mRenderer);
   } catch (const DeviceLost& e) {
-    if (mDisplay.empty()) throw;  // no window content yet: the one-line error and exit 1
+    if (!mHasFrame) throw;  // no window content yet: the one-line error and exit 1
     stopDrawing(e.what());
     return;
   } catch (const Error& e) {
     // A setting the renderer refuses (a size too large, a shader variant that does not
     // compile): back to the last scene that rendered; the frame on screen stays.
-    if (mDisplay.empty()) throw;
+    if (!mHasFrame) throw;
     mRenderError = "render failed: " + oneLine(e.what());
     say(mRenderError);
     const int w = mScene.output.width, h = mScene.output.height;
@@ -398,9 +405,11 @@ void Viewer::saveScene(const fs::path& path) {
   say("saved scene " + path.string());
 }
 
-void Viewer::dumpFrame(const fs::path& path) const {
-  if (mDisplay.empty()) inputError("dump-frame: no frame rendered yet");
-  writePngCodes(path, static_cast<int>(mDisplayW), static_cast<int>(mDisplayH), mDisplay);
+void Viewer::dumpFrame(const fs::path& path) {
+  // The codes the window blits, read back from its frame image: what is on screen.
+  const Presenter::Codes codes = mPresenter->readFrame();
+  if (!mHasFrame || codes.rgba.empty()) inputError("dump-frame: no frame on screen yet");
+  writePngCodes(path, static_cast<int>(codes.width), static_cast<int>(codes.height), codes.rgba);
 }
 
 void Viewer::dumpDebug(const fs::path& path) const {

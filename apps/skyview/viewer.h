@@ -59,7 +59,7 @@ private:
   void reloadScene();
   void screenshot();
   void saveScene(const std::filesystem::path& path);
-  void dumpFrame(const std::filesystem::path& path) const;
+  void dumpFrame(const std::filesystem::path& path);
   void dumpDebug(const std::filesystem::path& path) const;
   void applySet(const std::string& assignment);
   void drawUi();
@@ -95,8 +95,9 @@ private:
   PanelState mPanel;
   bool mPanelVisible = true;
 
-  // The frame on screen.
-  std::vector<uint8_t> mDisplay;
+  // The frame on screen: the presenter's frame image holds it (the renderer writes it there
+  // on the GPU); only its size is kept here.
+  bool mHasFrame = false;
   uint32_t mDisplayW = 0, mDisplayH = 0;
   std::vector<PassTiming> mPasses;
   double mRenderMs = 0.0;

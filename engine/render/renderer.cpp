@@ -454,6 +454,14 @@ Renderer::FramePlan Renderer::buildFrame(FrameGraph& graph, const Scene& scene, 
     d.beauty = plan.beauty;
     d.width = width;
     d.height = height;
+    if (PersistentImage* target = options.displayTarget) {
+      const ImageDesc& t = target->image.desc();
+      if (t.format != VK_FORMAT_R8G8B8A8_UNORM || t.width != width || t.height != height ||
+          !(t.usage & VK_IMAGE_USAGE_STORAGE_BIT))
+        internalError("RenderOptions::displayTarget is not an RGBA8 storage image of the " +
+                      std::to_string(width) + "x" + std::to_string(height) + " output");
+      d.target = graph.importExternal(*target, options.displayTargetLayout);
+    }
     out.displayEv = d.settings.exposureEv;
     plan.display = mDisplay.addTo(graph, d).display;
   }
@@ -474,7 +482,8 @@ void Renderer::requestOutputs(FrameGraph& graph, FramePlan& plan, const RenderOp
       o.cloudsDepth = graph.requestOutput(plan.cloudsDepth, prefix + "clouds_depth");
     }
   }
-  if (plan.display.valid()) o.display = graph.requestOutput(plan.display, prefix + "display");
+  if (plan.display.valid() && !options.displayTarget)
+    o.display = graph.requestOutput(plan.display, prefix + "display");
   // The debug images, by the names their passes gave them (the graph is the registry).
   std::vector<std::string> names = options.debugOutputs;
   if (options.allDebugOutputs)
@@ -521,6 +530,8 @@ RenderedFrame Renderer::render(const Scene& scene, const IsoTime& time,
                                const RenderOptions& options) {
   if (options.readBack == ReadBack::Display && !options.gpuDisplay)
     internalError("ReadBack::Display without RenderOptions::gpuDisplay");
+  if (options.displayTarget && (options.readBack != ReadBack::Display || options.host))
+    internalError("RenderOptions::displayTarget without ReadBack::Display, or with a host target");
   const auto start = std::chrono::steady_clock::now();
   const double pipelinesBefore = pipelineBuildMs();
   RenderedFrame out;
@@ -569,8 +580,8 @@ std::vector<RenderedFrame> Renderer::render(const Scene& scene, const IsoTime& t
   if (views.empty()) inputError("render: no view to render");
   if (scene.camera.mode != CameraMode::Observer)
     inputError("render: several views need an observer camera (camera.mode observer)");
-  if (options.gpuDisplay || options.host || !options.debugOutputs.empty() ||
-      options.allDebugOutputs)
+  if (options.gpuDisplay || options.displayTarget || options.host ||
+      !options.debugOutputs.empty() || options.allDebugOutputs)
     internalError("a frame of several views has no GPU display, host target or debug output");
   const auto start = std::chrono::steady_clock::now();
   const double pipelinesBefore = pipelineBuildMs();

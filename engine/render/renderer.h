@@ -94,6 +94,13 @@ struct RenderOptions {
   // night look and exposure (auto or fixed; a histogram exposure meters the read-back frame
   // and needs the CPU path). The config must outlive the call.
   const OcioOutput* gpuDisplay = nullptr;
+  // The GPU display path writes its codes into this image instead, and reads nothing back
+  // (skyview: the image it blits into its window, so a frame never leaves the GPU). RGBA8
+  // UNORM with storage usage, the output's size; the frame finds it in `displayTargetLayout`
+  // and leaves it there with its writes made available. Needs gpuDisplay and
+  // ReadBack::Display; the caller must not use it while the frame runs.
+  PersistentImage* displayTarget = nullptr;
+  VkImageLayout displayTargetLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
   // Draw into the host's images instead (readBack, debugOutputs and gpuDisplay are ignored:
   // nothing is read back). The target must outlive the call; its images, until the host's
   // command buffer has run.
@@ -147,8 +154,8 @@ struct RenderedFrame {
   std::vector<DebugImage> debug;  // as requested in RenderOptions
   // Every image of the frame's graph: the names RenderOptions::debugOutputs can ask for.
   std::vector<DebugImageInfo> images;
-  // With RenderOptions::gpuDisplay: the display image, 8-bit RGBA codes (row 0 the top), and
-  // the exposure it was made with (EV).
+  // With RenderOptions::gpuDisplay: the display image, 8-bit RGBA codes (row 0 the top; empty
+  // with a displayTarget, which holds them), and the exposure it was made with (EV).
   std::vector<uint8_t> display;
   double displayEv = 0.0;
 };

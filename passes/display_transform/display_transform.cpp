@@ -54,6 +54,11 @@ DisplayTransformPass::Outputs DisplayTransformPass::setup(GraphBuilder& b, const
   d.params.lutSize = static_cast<float>(DisplayLut::kSize);
   d.beauty = b.read(in.beauty, Access::StorageReadCompute);
   b.read(d.lut, Access::SampledCompute);
+  if (in.target.valid()) {
+    d.outputs.display = b.write(in.target, Access::StorageWriteCompute);
+    b.sideEffect();  // the window shows it, after the frame
+    return d.outputs;
+  }
   ImageDesc desc;
   desc.name = "display";
   desc.about = "the display image: 8-bit codes through the OCIO view, as the PNG holds them";

@@ -32,9 +32,14 @@ public:
     DisplayTransformSettings settings;
     ImageId beauty;                  // RGBA32F scene-linear
     uint32_t width = 0, height = 0;  // the beauty's size
+    // Where the codes go: an RGBA8 UNORM storage image of the beauty's size that outlives
+    // the frame (skyview's window image, imported with FrameGraph::importExternal). Invalid:
+    // an image of the frame's own, to read back.
+    ImageId target;
   };
   struct Outputs {
-    ImageId display;  // RGBA8 UNORM display-referred, the beauty's size
+    ImageId display;  // RGBA8 UNORM display-referred, the beauty's size (Inputs::target's
+                      // new version when given)
   };
 
   DisplayTransformPass(const Context& ctx, ShaderCompiler& compiler);

@@ -11,7 +11,10 @@
 #include <gtest/gtest.h>
 
 #include "engine/color/ocio_output.h"
+#include "engine/core/error.h"
 #include "engine/core/paths.h"
+#include "engine/gpu/buffer.h"
+#include "engine/gpu/context.h"
 #include "engine/io/image_metrics.h"
 #include "engine/render/exposure.h"
 #include "engine/render/render_files.h"
@@ -68,6 +71,80 @@ TEST_F(DisplayTransformTest, MatchesTheCpuPath) {
     EXPECT_GE(db, 45.0) << c.scene;
     EXPECT_LE(worst, 4.0) << c.scene;
   }
+}
+
+// skyview's path (RenderOptions::displayTarget): the codes go into the caller's image, kept in
+// its layout between frames, and nothing comes back to the host. They must be the codes the
+// read-back gives, bit for bit.
+TEST_F(DisplayTransformTest, WritesIntoTheCallersImageWithNothingReadBack) {
+  ::unsetenv("OCIO");
+  const OcioOutput ocio = OcioOutput::load();
+  ShaderCompiler compiler;
+  Renderer renderer(ctx(), compiler);
+  const Scene scene = loadSceneFile(configDir() / "tests" / "clouds" / "cumulus_noon.yaml",
+                                    {"output.width=96", "output.height=54"});
+  RenderOptions options;
+  options.gpuDisplay = &ocio;
+  options.readBack = ReadBack::Display;
+  const RenderedFrame readBack = renderer.render(scene, scene.time.start, options);
+  ASSERT_EQ(readBack.display.size(), 96u * 54u * 4u);
+
+  // The caller's image, in the layout it keeps it in (as skyview's window image).
+  constexpr VkImageLayout kLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+  auto makeTarget = [&](uint32_t width, uint32_t height) {
+    ImageDesc desc;
+    desc.name = "window_frame";
+    desc.format = VK_FORMAT_R8G8B8A8_UNORM;
+    desc.width = width;
+    desc.height = height;
+    desc.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    PersistentImage image{Image(ctx(), desc), {}};
+    ctx().submitAndWait([&](VkCommandBuffer cmd) {
+      VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
+      b.dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+      b.newLayout = kLayout;
+      b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+      b.image = image.image.image();
+      b.subresourceRange = image.image.range();
+      VkDependencyInfo d{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+      d.imageMemoryBarrierCount = 1;
+      d.pImageMemoryBarriers = &b;
+      vkCmdPipelineBarrier2(cmd, &d);
+    });
+    return image;
+  };
+  PersistentImage target = makeTarget(96, 54);
+  options.displayTarget = &target;
+  options.displayTargetLayout = kLayout;
+  const RenderedFrame direct = renderer.render(scene, scene.time.start, options);
+  EXPECT_TRUE(direct.display.empty()) << "the codes stay on the GPU";
+  for (const ReadbackImage& o : direct.frame.outputs) ADD_FAILURE() << "read back: " << o.label;
+
+  Buffer host(ctx(), {"codes", 96 * 54 * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                      BufferMemory::HostVisible});
+  ctx().submitAndWait([&](VkCommandBuffer cmd) {
+    VkBufferImageCopy region{};
+    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    region.imageExtent = {96, 54, 1};
+    vkCmdCopyImageToBuffer(cmd, target.image.image(), kLayout, host.buffer(), 1, &region);
+    VkMemoryBarrier2 toHost{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+    toHost.srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
+    toHost.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
+    toHost.dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT;
+    toHost.dstAccessMask = VK_ACCESS_2_HOST_READ_BIT;
+    VkDependencyInfo d{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+    d.memoryBarrierCount = 1;
+    d.pMemoryBarriers = &toHost;
+    vkCmdPipelineBarrier2(cmd, &d);
+  });
+  const auto* codes = static_cast<const uint8_t*>(host.mapped());
+  EXPECT_TRUE(std::equal(readBack.display.begin(), readBack.display.end(), codes))
+      << "the codes in the caller's image differ from the read-back's";
+
+  // An image of another size is the caller's mistake, said before anything runs.
+  PersistentImage small = makeTarget(48, 27);
+  options.displayTarget = &small;
+  EXPECT_THROW(renderer.render(scene, scene.time.start, options), Error);
 }
 
 }  // namespace
