@@ -1,12 +1,12 @@
 #include "engine/render/cloud_reuse.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>
 
 #include "engine/core/error.h"
-#include "engine/scene/scene_io.h"
 #include "engine/weather/geo.h"
 #include "passes/volumetric_clouds/volumetric_clouds.h"
 
@@ -20,14 +20,30 @@ constexpr double kHistoryMaxMoveM = 5000.0;
 
 }  // namespace
 
-std::string settingsWithoutPose(const Scene& scene) {
+Scene withoutPose(const Scene& scene) {
   Scene s = scene;
   s.camera.heading = s.camera.pitch = s.camera.roll = 0.0;
   s.camera.latitude = s.camera.longitude = s.camera.altitudeM = 0.0;
   s.time.start = IsoTime{};
   s.time.end.reset();
   s.time.stepSeconds = 0.0;
-  return writeScene(s, ConfigFormat::Json);
+  return s;
+}
+
+uint64_t SettingsRevisions::of(const Scene& scene) {
+  Scene settings = withoutPose(scene);
+  auto known = std::find_if(mKnown.begin(), mKnown.end(),
+                            [&](const auto& k) { return k.first == settings; });
+  std::pair<Scene, uint64_t> entry;
+  if (known != mKnown.end()) {
+    entry = std::move(*known);
+    mKnown.erase(known);
+  } else {
+    entry = {std::move(settings), mNext++};
+    if (mKnown.size() >= kRemembered) mKnown.pop_back();
+  }
+  mKnown.insert(mKnown.begin(), std::move(entry));
+  return mKnown.front().second;
 }
 
 CloudReuse::CloudReuse(const Context& ctx, ShaderCompiler& compiler)
@@ -50,7 +66,7 @@ CloudReuse::Step CloudReuse::step(const Scene& scene, const IsoTime& time,
   mDepth.ensure(mCtx, desc);
 
   Held next;
-  next.settings = settingsWithoutPose(scene);
+  next.settings = mSettings.of(scene);
   next.view = view;
   next.latDeg = scene.camera.latitude;
   next.lonDeg = scene.camera.longitude;

@@ -8,6 +8,8 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <glm/vec2.hpp>
 
@@ -22,10 +24,24 @@ namespace sky {
 class Context;
 class ShaderCompiler;
 
-// The scene written out without the camera's pose and the time: what temporal reuse and the
-// clouds' kept products (light volume, shadow map) compare to see whether anything else
-// changed.
-std::string settingsWithoutPose(const Scene& scene);
+// `scene` without the camera's pose and the time: what temporal reuse and the clouds' kept
+// products (light volume, shadow map) compare to see whether anything else changed.
+Scene withoutPose(const Scene& scene);
+
+// A revision number for each distinct scene it is shown, compared without the camera's pose
+// and the time, field by field (Scene's operator==, which the compiler writes, so a new key
+// is compared without anyone remembering to). A kept product carries the number, not the
+// scene. The last kRemembered distinct scenes keep their numbers: the views of a rig differ
+// in size and field of view, and each finds its own number again frame after frame.
+class SettingsRevisions {
+public:
+  static constexpr size_t kRemembered = 8;
+  uint64_t of(const Scene& scene);
+
+private:
+  std::vector<std::pair<Scene, uint64_t>> mKnown;  // the most recently shown first
+  uint64_t mNext = 1;
+};
 
 class CloudReuse {
 public:
@@ -60,7 +76,7 @@ public:
 private:
   // The frame the history images hold.
   struct Held {
-    std::string settings;  // settingsWithoutPose
+    uint64_t settings = 0;  // mSettings' number of the frame's scene
     shared::ViewState view{};
     double latDeg = 0.0, lonDeg = 0.0, altitudeM = 0.0;
     IsoTime time;
@@ -69,10 +85,11 @@ private:
   };
   const Context& mCtx;
   CloudTemporalPass mTemporal;
-  Sampler mSampler;           // linear, clamp
-  HistoryImage mClouds;       // RGBA32F: premultiplied radiance and opacity, the view's size
-  HistoryImage mDepth;        // RG32F: transmittance-weighted distance (m) in r
-  Held mHeld;                 // the frame they hold
+  Sampler mSampler;      // linear, clamp
+  HistoryImage mClouds;  // RGBA32F: premultiplied radiance and opacity, the view's size
+  HistoryImage mDepth;   // RG32F: transmittance-weighted distance (m) in r
+  Held mHeld;            // the frame they hold
+  SettingsRevisions mSettings;
   std::optional<Held> mNext;  // the last step's frame, until commit()
 };
 

@@ -295,7 +295,7 @@ Renderer::CloudImages Renderer::addClouds(FrameGraph& graph, const FrameInputs& 
   std::optional<CloudLightVolumePass::Outputs> lightVolume;
   // What the light volume and the shadow map are made from: kept while it holds.
   CloudFieldKey field;
-  field.clouds = settingsWithoutPose(cloudScene);
+  field.settings = mFieldSettings.of(cloudScene);
   field.mapRevision = mClouds.mapRevision();
   field.camera = glm::dvec3(geometry.latDeg, geometry.lonDeg, geometry.altitudeM);
   field.sun = glm::vec3(in.params.sunDirection);

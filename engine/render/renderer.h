@@ -279,6 +279,7 @@ private:
   VolumetricCloudsPass mVolumetric;
   CloudShadowPass mShadow;
   CloudReuse mReuse;  // the cloud history: temporal reuse across a sequence's frames
+  SettingsRevisions mFieldSettings;  // what the light volume and shadow map were made for
   CloudUpsamplePass mUpsample;
   CloudLightVolumePass mLightVolume;
   DisplayTransformPass mDisplay;

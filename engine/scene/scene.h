@@ -44,6 +44,8 @@ struct OutputSettings {
   std::string display = "sRGB";  // OCIO display
   std::string view = "ACES 1.0 - SDR Video";  // OCIO view
   bool dither = true;  // dither the 8-bit PNG (not the EXR) so smooth gradients do not band
+
+  bool operator==(const OutputSettings&) const = default;
 };
 
 // camera.projection: a pinhole, or the whole sphere (360 x 180 degrees centred on `heading`;
@@ -77,6 +79,8 @@ struct CameraSettings {
   // edge, column 0 = west edge, equal lat/lon spacing), rays straight down from above the
   // top cloud layer; the other camera keys are ignored.
   CameraMode mode = CameraMode::Observer;
+
+  bool operator==(const CameraSettings&) const = default;
 };
 
 // `time` is one instant or a time-lapse range. In a file: a single ISO 8601 string, the
@@ -91,6 +95,8 @@ struct TimeSettings {
   bool isRange() const { return end.has_value(); }
   int64_t frameCount() const;          // 1 for an instant
   IsoTime frame(int64_t index) const;  // written in the zone of `start`
+
+  bool operator==(const TimeSettings&) const = default;
 };
 
 // An explicit sun placement (art direction, tests). When azimuth/elevation are absent the
@@ -100,6 +106,8 @@ struct SunSettings {
   std::optional<double> elevation;  // degrees above the horizon, -90..90
   double angularDiameter = 0.53;    // degrees, 0.01..20
   double discScale = 1.0;           // multiplies the physical disc radiance, 0..1e3
+
+  bool operator==(const SunSettings&) const = default;
 };
 
 // The moon follows `time` and place; azimuth/elevation override its placement only (phase,
@@ -109,6 +117,8 @@ struct MoonSettings {
   std::optional<double> elevation;
   double discScale = 1.0;   // multiplies the physical disc radiance, 0..1e3
   double earthshine = 1.0;  // multiplies the modelled earthshine on the dark limb, 0..100
+
+  bool operator==(const MoonSettings&) const = default;
 };
 
 // sky.model: Kozlov 3.1 (colours from the lighting palette) or Hillaire 2020's physically
@@ -126,6 +136,8 @@ struct SkySettings {
   double glowSize = 0.50;      // s, 0..1 (kozlov)
   double glowExponent = 8.0;   // n in l = s max(V.S, 0)^n, 1..64 (kozlov; Kozlov 3.1: 2)
   double hazeHeight = 0.70;    // hmax as a fraction of the dome height, 0.001..1 (kozlov)
+
+  bool operator==(const SkySettings&) const = default;
 };
 
 // atmosphere.aerosols: the Mie coefficients from lighting.turbidity (one atmosphere for the
@@ -223,6 +235,8 @@ struct HighCloudSettings {
   // weather map's high-layer cover per pixel, from a forecast file) or Auto (Weather when
   // the weather map has a high layer, else Scene).
   HighCloudCoverSource coverSource = HighCloudCoverSource::Auto;
+
+  bool operator==(const HighCloudSettings&) const = default;
 };
 
 // A volumetric cloud layer: a spherical shell between two altitudes above sea level.
@@ -297,6 +311,8 @@ struct CloudTemporalSettings {
   CloudTemporalMode mode = CloudTemporalMode::Off;
   int block = 4;  // 1..4: a frame marches 1 / block^2 of the pixels
   CloudTemporalResolution resolution = CloudTemporalResolution::Full;
+
+  bool operator==(const CloudTemporalSettings&) const = default;
 };
 
 // The volumetric low and mid clouds (Lu et al. 2023, Tang et al. 2019), raymarched through
@@ -331,6 +347,8 @@ struct CloudSettings {
   double windFrom = 270.0;            // degrees clockwise from north
   CloudLayerSettings low{500.0, 2500.0};
   CloudLayerSettings mid{3000.0, 6500.0};
+
+  bool operator==(const CloudSettings&) const = default;
 };
 
 // The weather region: latitudes [south, north] and longitudes [west, east] in degrees. It has
@@ -478,6 +496,8 @@ struct LightingSettings {
   double starBrightness = 1.0;  // multiplies catalogue star fluxes, 0..1e6
   double starExtinction = 0.2;  // magnitudes per air mass, 0..2
   std::vector<PaletteKey> palette = defaultPalette();
+
+  bool operator==(const LightingSettings&) const = default;
 };
 
 struct Scene {
@@ -502,6 +522,8 @@ struct Scene {
   // weather.image, weather.file) made absolute, so its printed text means the same from any
   // folder (`skyrender validate`, render reports).
   Scene withAbsolutePaths() const;
+
+  bool operator==(const Scene&) const = default;
 };
 
 // A file a render of the scene reads, by the key that names it.

@@ -98,7 +98,7 @@ const ComputePipeline& CloudPipelines::get(const CloudVariant& variant) {
 bool cloudFieldReusable(const CloudFieldKey& m, const CloudFieldKey& k, double maxShiftM) {
   // The lights may turn this far (degrees), and the camera move this far (m).
   constexpr double kMaxLightTurnDeg = 0.05, kMaxCameraMoveM = 50.0;
-  if (k.clouds != m.clouds || k.mapRevision != m.mapRevision || k.lights != m.lights) return false;
+  if (k.settings != m.settings || k.mapRevision != m.mapRevision || k.lights != m.lights) return false;
   if (glm::length(k.drift - m.drift) > maxShiftM) return false;
   auto turned = [](const glm::vec3& a, const glm::vec3& b) {
     return std::acos(std::clamp(static_cast<double>(glm::dot(a, b)), -1.0, 1.0)) / kDeg;

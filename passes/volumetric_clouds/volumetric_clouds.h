@@ -157,7 +157,8 @@ struct NoiseMeans {
 // drift has gone further than `maxShiftM` (the cover the noise drifts through stays put),
 // makes it again; within that, the product is read shifted by the drift since.
 struct CloudFieldKey {
-  std::string clouds;      // the scene written out but for the camera's pose and the time
+  uint64_t settings = 0;  // the scene but for the camera's pose and the time, as a revision
+                          // number (engine/render/cloud_reuse.h, SettingsRevisions)
   uint64_t mapRevision = 0;
   glm::dvec3 camera{0.0};           // latitude, longitude (degrees), altitude (m)
   glm::vec3 sun{0.0f}, moon{0.0f};  // directions (ENU)

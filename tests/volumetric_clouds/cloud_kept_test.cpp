@@ -10,6 +10,7 @@
 
 #include "cloud_test_util.h"
 #include "engine/io/image_metrics.h"
+#include "engine/render/cloud_reuse.h"
 
 namespace sky {
 namespace {
@@ -29,6 +30,38 @@ protected:
 
 std::vector<float> beauty(const RenderedFrame& f) {
   return f.image.find("")->pixels;
+}
+
+// What the kept products and the cloud history are keyed by: a number per distinct scene,
+// compared field by field without the camera's pose and the time.
+TEST(SettingsRevisions, ANumberPerSceneButForThePoseAndTheTime) {
+  SettingsRevisions revisions;
+  Scene a;
+  const uint64_t first = revisions.of(a);
+  Scene moved = a;
+  moved.camera.heading = 10.0;
+  moved.camera.latitude = 30.0;
+  moved.time.start = IsoTime::parse("2025-01-01T00:00:00Z").value();
+  EXPECT_EQ(revisions.of(moved), first) << "the pose and the time are not settings";
+  // Any other key is: one the JSON of the scene held, and the folder its paths resolve in.
+  Scene palette = a;
+  palette.lighting.palette.back().skyColor.r += 0.01f;
+  const uint64_t second = revisions.of(palette);
+  EXPECT_NE(second, first);
+  Scene folder = a;
+  folder.baseDir = "/elsewhere";
+  EXPECT_NE(revisions.of(folder), first);
+  EXPECT_NE(revisions.of(folder), second);
+  // A scene seen again keeps its number (a rig's views, each its own size), while it is one of
+  // the last kRemembered.
+  EXPECT_EQ(revisions.of(a), first);
+  EXPECT_EQ(revisions.of(palette), second);
+  for (size_t i = 0; i < SettingsRevisions::kRemembered; ++i) {
+    Scene other = a;
+    other.output.width = 100 + static_cast<int>(i);
+    revisions.of(other);
+  }
+  EXPECT_NE(revisions.of(a), first) << "forgotten: a new number, so nothing stale is reused";
 }
 
 TEST_F(CloudKeptTest, TheShadowMapIsKeptWhileTheCloudsAndTheSunStay) {
@@ -51,8 +84,7 @@ TEST_F(CloudKeptTest, TheShadowMapIsKeptWhileTheCloudsAndTheSunStay) {
   const Scene turned = scene({"sun.azimuth=200", "sun.elevation=40"});
   EXPECT_TRUE(hasPass(r.render(turned, t.plusSeconds(60.0)), "cloud_shadow"));
   EXPECT_FALSE(hasPass(r.render(turned, t.plusSeconds(60.0)), "cloud_shadow"));
-  EXPECT_TRUE(hasPass(r.render(scene({"sun.azimuth=201", "sun.elevation=40"}),
-                               t.plusSeconds(60.0)),
+  EXPECT_TRUE(hasPass(r.render(scene({"sun.azimuth=201", "sun.elevation=40"}), t.plusSeconds(60.0)),
                       "cloud_shadow"));
 }
 
