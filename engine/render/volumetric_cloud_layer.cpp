@@ -1,0 +1,238 @@
+#include "engine/render/volumetric_cloud_layer.h"
+
+#include <chrono>
+
+#include "engine/core/error.h"
+#include "engine/render/camera.h"
+#include "engine/weather/weather_map.h"
+
+namespace sky {
+VolumetricCloudLayer::VolumetricCloudLayer(const Context& ctx, ShaderCompiler& compiler,
+                                           GraphRuntime& runtime, CloudLayers& weather)
+    : mRuntime(runtime),
+      mWeather(weather),
+      mAmbient(ctx, compiler),
+      mVolumetric(ctx, compiler),
+      mShadow(ctx, compiler),
+      mReuse(ctx, compiler),
+      mUpsample(ctx, compiler),
+      mLightVolume(ctx, compiler),
+      mSlice(ctx, compiler),
+      mVolumeExport(ctx, compiler) {}
+
+void VolumetricCloudLayer::forgetKept() {
+  mLightVolume.invalidate();
+  mShadow.invalidate();
+}
+
+CloudSetup VolumetricCloudLayer::setup(const Scene& scene, const IsoTime& time) {
+  const WeatherMap& weather = mWeather.weatherMap(scene, time);
+  CloudSetup s{scene, {}, {}, {}, {}, &weather};
+  // The map's region, resolved from the camera when the scene gives none.
+  s.cloudScene.weather.region = weather.region;
+  // A forecast file places the layers at the altitudes of its pressure levels (from gh); the
+  // scene's clouds.low/mid apply otherwise.
+  if (weather.layerAltitudesM) {
+    const glm::dvec4& a = *weather.layerAltitudesM;
+    s.cloudScene.clouds.low = {a.x, a.y};
+    s.cloudScene.clouds.mid = {a.z, a.w};
+  }
+  // A top-down view is lit as seen from the middle of the weather region.
+  s.volumetric = volumetricCloudsSettings(s.cloudScene);
+  s.geometry = cloudFrameGeometry(s.volumetric);
+  Scene litScene = scene;
+  litScene.camera.latitude = s.geometry.latDeg;
+  litScene.camera.longitude = s.geometry.lonDeg;
+  s.lighting = computeLighting(litScene, time);
+  // The weather where the camera stands sets the ambient light and the haze.
+  s.localWeather =
+      localWeather(weather, s.geometry.latDeg, s.geometry.lonDeg, scene.weather.localRadiusKm);
+  applyOvercast(s.lighting, scene.sky, s.localWeather.overcast);
+  return s;
+}
+
+VolumetricCloudLayer::Images VolumetricCloudLayer::addTo(FrameGraph& graph, const FrameInputs& f,
+                                                         const SkyLayer::Images& sky,
+                                                         const AtmosphereLuts& atmosphere) {
+  const Scene& scene = f.scene;
+  const Scene& cloudScene = f.setup.cloudScene;
+  const CloudFrameGeometry& geometry = f.setup.geometry;
+  Images c;
+  SharedFrame* shared = f.shared;
+  const SharedFrame::Clouds* made = shared && shared->clouds ? &*shared->clouds : nullptr;
+  const auto texturesStart = std::chrono::steady_clock::now();
+  c.frame = made ? made->frame : mWeather.addTo(graph, cloudScene, f.time);
+  c.texturesMs = msSince(texturesStart);
+  c.noise = mWeather.noiseActivity();
+  // Temporal reuse: a sequence's frames march a share of the pixels and reproject the rest,
+  // at the view's size or at half its width and height. Not in a frame of several views.
+  const bool temporal = scene.clouds.temporal.mode == CloudTemporalMode::On &&
+                        scene.clouds.quality == CloudQuality::Standard && !f.topDown && !shared;
+  const bool half = temporal && scene.clouds.temporal.resolution == CloudTemporalResolution::Half;
+  const uint32_t cloudWidth = half ? (f.width + 1) / 2 : f.width;
+  const uint32_t cloudHeight = half ? (f.height + 1) / 2 : f.height;
+  const shared::ViewState cloudView =
+      half ? makeViewState(scene.camera, cloudWidth, cloudHeight) : f.view;
+  VolumetricCloudsPass::Inputs in;
+  in.params = cloudParams(f.setup.volumetric, f.lighting, f.time, cloudView, c.frame.maxCover,
+                          c.frame.coverage, c.frame.noiseMeans);
+  in.variant = cloudVariant(f.setup.volumetric, c.frame.lowRolls);
+  in.lighting = f.lighting.gpu;
+  in.textures = c.frame.textures;
+  // The ambient light from the sky the frame draws (either model) and the ground under it.
+  CloudAmbientPass::Inputs ambient;
+  const bool dualLobe = in.variant.phase == CloudPhase::DualLobe;
+  ambient.params = cloudAmbientParams({scene.ground.albedo, scene.lighting.turbidity,
+                                       in.params.shellBaseM, f.lighting.overcast, in.params.g,
+                                       in.params.gBack, dualLobe ? in.params.backWeight : 0.0f});
+  ambient.lighting = f.lighting.gpu;
+  ambient.moon = !moonLightNegligible(f.lighting.gpu);
+  if (f.physical)
+    ambient.atmosphere = CloudAmbientPass::Atmosphere{
+        atmosphere.cloudParams(), sky.luts.transmittance, sky.luts.skyViewSunClouds,
+        sky.luts.skyViewMoonClouds, &atmosphere.sampler()};
+  in.ambient = made ? made->ambient : graph.add(mAmbient, ambient).ambient;
+  std::optional<CloudLightVolumePass::Outputs> lightVolume;
+  // What the light volume and the shadow map are made from: kept while it holds.
+  CloudFieldKey field;
+  field.settings = mFieldSettings.of(cloudScene);
+  field.mapRevision = mWeather.mapRevision();
+  field.camera = glm::dvec3(geometry.latDeg, geometry.lonDeg, geometry.altitudeM);
+  field.sun = glm::vec3(in.params.sunDirection);
+  field.moon = glm::vec3(in.params.moonDirection);
+  field.lights =
+      (in.params.sunMarched != 0.0f ? 1u : 0u) | (in.params.moonMarched != 0.0f ? 2u : 0u);
+  field.drift = cloudWindDriftM(scene.clouds, f.time.secondsSince(scene.time.start));
+  // The light through the clouds from the light volume (the reference marches it).
+  if (in.variant.light == CloudLight::Volume) {
+    CloudLightVolumePass::Inputs v;
+    v.params = in.params;
+    v.variant = in.variant;
+    v.params.lightVolume = cloudLightVolumePlace(in.params, geometry.altitudeM);
+    v.textures = in.textures;
+    v.key = field;
+    const CloudLightVolumePass::Outputs volume =
+        made && made->volume ? *made->volume : mLightVolume.addTo(graph, v);
+    if (shared) lightVolume = volume;
+    in.params.lightVolume = volume.place;
+    in.lightVolume = volume.volume;
+    in.lightVolumeSampler = &mLightVolume.sampler();
+  }
+  std::optional<CloudReuse::Step> step;
+  if (temporal) {
+    step = mReuse.step(scene, f.time, cloudView, mWeather.mapRevision());
+    in.params.marchBlock = step->block;
+    in.params.marchOffsetX = step->offset.x;
+    in.params.marchOffsetY = step->offset.y;
+    // A new jitter every frame, so a pixel marched again averages differently.
+    in.params.frameIndex =
+        (in.params.frameIndex + static_cast<uint32_t>(step->frame) * 0x9E3779B9u) & 0x7fffffffu;
+  }
+  const VolumetricCloudsPass::Outputs marched = graph.add(mVolumetric, in);
+  c.clouds = marched.clouds;
+  c.depth = marched.depth;
+  if (temporal) {
+    const CloudTemporalPass::Outputs resolved =
+        mReuse.addTo(graph, *step, c.clouds, c.depth,
+                     {in.params.geo.origin.w, scene.camera.altitudeM, in.params.shellBaseM,
+                      in.params.shellTopM});
+    c.clouds = resolved.clouds;
+    c.depth = resolved.depth;
+    c.reuseStep = true;
+  }
+  if (half) {
+    CloudUpsamplePass::Inputs u;
+    u.params.view = f.view;
+    u.params.source = cloudView;
+    u.params.planetRadiusM = in.params.geo.origin.w;
+    u.params.cameraAltitudeM = static_cast<float>(scene.camera.altitudeM);
+    u.params.shellBaseM = in.params.shellBaseM;
+    u.params.shellTopM = in.params.shellTopM;
+    u.clouds = c.clouds;
+    u.depth = c.depth;
+    const CloudUpsamplePass::Outputs full = graph.add(mUpsample, u);
+    c.clouds = full.clouds;
+    c.depth = full.depth;
+  }
+  // The clouds' shadows on the ground around the observer (a top-down render draws no
+  // ground, but the composite's cloud variant binds a map all the same).
+  if (made) {
+    c.shadow = made->shadow;
+  } else {
+    c.shadow =
+        mShadow.addTo(graph, CloudShadowPass::Inputs{in.params, in.variant,
+                                                     cloudShadowMap(in.params, geometry.altitudeM),
+                                                     in.textures, field});
+    // A cut through the density field for the debug view: culled unless it is asked for.
+    graph.add(mSlice, CloudDensitySlicePass::Inputs{in.params, in.variant, in.textures});
+    if (shared) shared->clouds = SharedFrame::Clouds{c.frame, in.ambient, lightVolume, c.shadow};
+  }
+  return c;
+}
+
+CloudVolume VolumetricCloudLayer::exportVolume(const Scene& scene, const IsoTime& time,
+                                               const std::optional<CloudVolumeBox>& box,
+                                               double voxelM) {
+  const CloudSetup setup = this->setup(scene, time);
+  if (setup.geometry.topDown)
+    inputError(
+        "export-volume: camera.mode geographic_topdown has no camera to export the "
+        "clouds around (use camera.mode observer)");
+  const glm::vec2 maxCover = setup.weather->maxCover();
+  if (maxCover.x <= 0.0f && maxCover.y <= 0.0f)
+    inputError("export-volume: the scene has no low or mid clouds (weather cover is 0 everywhere)");
+  const CloudVolumeGrid grid =
+      cloudVolumeGrid(box.value_or(defaultCloudVolumeBox(setup.cloudScene, maxCover)), voxelM);
+
+  FrameGraph graph(mRuntime);
+  const CloudLayers::Frame cloudFrame = mWeather.addTo(graph, setup.cloudScene, time);
+  const shared::ViewState view =
+      makeViewState(scene.camera, static_cast<uint32_t>(scene.output.width),
+                    static_cast<uint32_t>(scene.output.height));
+  // The raymarch's own parameters, so the grid holds the very field it marches through.
+  CloudVolumeExportPass::Inputs in;
+  in.params = cloudParams(setup.volumetric, setup.lighting, time, view, cloudFrame.maxCover,
+                          cloudFrame.coverage, cloudFrame.noiseMeans);
+  in.variant = cloudVariant(setup.volumetric, cloudFrame.lowRolls);
+  in.box = grid.params;
+  in.textures = cloudFrame.textures;
+  graph.requestOutput(graph.add(mVolumeExport, in).grid, "cloud_volume");
+  FrameResult result = graph.execute();
+  return makeCloudVolume(setup.cloudScene, setup.lighting, time, view, grid,
+                         std::move(result.output("cloud_volume").pixels));
+}
+
+CloudField VolumetricCloudLayer::field(const Scene& scene, const IsoTime& time) {
+  const CloudSetup setup = this->setup(scene, time);
+  if (setup.geometry.topDown)
+    inputError(
+        "cloud queries: camera.mode geographic_topdown has no observer to place the clouds "
+        "around (use camera.mode observer)");
+  CloudFieldInputs in;
+  in.camera = {setup.geometry.latDeg, setup.geometry.lonDeg, setup.geometry.altitudeM};
+  in.weather = *setup.weather;
+  in.air = atmosphereParams(physicalAtmosphere(scene));
+  const glm::vec2 maxCover = setup.weather->maxCover();
+  in.anyCover = maxCover.x > 0.0f || maxCover.y > 0.0f;
+  if (in.anyCover) {
+    // As exportCloudVolume: the textures and tables a frame would import, then the
+    // raymarch's own uniforms.
+    FrameGraph graph(mRuntime);
+    const CloudLayers::Frame cloudFrame = mWeather.addTo(graph, setup.cloudScene, time);
+    const shared::ViewState view =
+        makeViewState(scene.camera, static_cast<uint32_t>(scene.output.width),
+                      static_cast<uint32_t>(scene.output.height));
+    in.params = cloudParams(setup.volumetric, setup.lighting, time, view, cloudFrame.maxCover,
+                            cloudFrame.coverage, cloudFrame.noiseMeans);
+    const CloudVariant variant = cloudVariant(setup.volumetric, cloudFrame.lowRolls);
+    in.tang = variant.model == CloudModel::Tang2019;
+    in.calibrated = variant.coverage == CloudCoverageMode::Calibrated;
+    in.rolls = variant.rolls == CloudRolls::On;
+    in.shape = mWeather.noise().shapeVolume();
+    in.detail = mWeather.noise().detailVolume();
+    in.curl = mWeather.noise().curlPlane();
+  }
+  return CloudField(std::move(in));
+}
+
+}  // namespace sky
