@@ -22,7 +22,7 @@
 // ATMOSPHERE_COMPOSITE_HOST draws into a host's own scene-linear colour image as well
 // (skylayers::Sky::record): where its depth image (ATMOSPHERE_COMPOSITE_HOST_DEPTH) holds no
 // geometry, the frame; where it does, the host's pixel seen through the air to it, behind the
-// volumetric clouds whose transmittance-weighted depth lies nearer.
+// volumetric clouds in front of it (their march stopped at its depth).
 #include "common/params_block.glsl"
 #include "common/atmosphere_composite_shared.h"
 #include "common/view.glsl"
@@ -76,6 +76,7 @@ layout(binding = ATMOSPHERE_COMPOSITE_BINDING_CLOUD_SHADOW) uniform sampler2D cl
 layout(binding = ATMOSPHERE_COMPOSITE_BINDING_HOST_COLOUR, ATMOSPHERE_COMPOSITE_HOST_FORMAT)
 uniform image2D hostColour;
 #if ATMOSPHERE_COMPOSITE_HOST_DEPTH
+#include "common/host_depth.glsl"
 layout(binding = ATMOSPHERE_COMPOSITE_BINDING_HOST_DEPTH) uniform sampler2D hostDepth;
 #endif
 #endif
@@ -352,11 +353,9 @@ void main() {
 #if ATMOSPHERE_COMPOSITE_HOST
   vec4 host = vec4(frame, 1.0);
 #if ATMOSPHERE_COMPOSITE_HOST_DEPTH
-  float d = texelFetch(hostDepth, ivec2(p), 0).r;
-  HostDepth hd = params.host;
-  float along = hd.depthB / (d + hd.depthA);  // metres along the view axis
-  if (d != hd.emptyDepth && along > 0.0) {
-    float t = along / max(dot(V, params.view.forward.xyz), 1e-6);
+  float t = hostDistance(params.host, texelFetch(hostDepth, ivec2(p), 0).r, V,
+                         params.view.forward.xyz);
+  if (t > 0.0) {
     host = imageLoad(hostColour, ivec2(p));
     // The host's pixel through the air in front of it.
 #if ATMOSPHERE_COMPOSITE_PHYSICAL
@@ -365,16 +364,12 @@ void main() {
     Air air = airTo(V, t, horizon);
 #endif
     vec3 object = host.rgb * air.transmittance + air.inScattered;
-    // The volumetric clouds hide it as far as they lie in front of it: by their
-    // transmittance-weighted depth, blended over a fifth of it (50 m at least) so an object
-    // moving into a cloud fades rather than pops. (The march does not stop at the host's
-    // depth: a thin veil in front of an opaque cloud behind the object counts as in front.)
+    // The volumetric clouds in front of it: their march stopped at the host's depth
+    // (volumetric_clouds.comp, VOLUMETRIC_CLOUDS_HOST_DEPTH), so all of what they hold lies
+    // in front, and an object inside a cloud is seen through exactly the cloud before it.
     vec4 front = vec4(0.0);
 #if ATMOSPHERE_COMPOSITE_CLOUDS
-    if (params.observer != 0u && clouds.a > 0.0) {
-      float depth = cloudDepth > 0.0 ? cloudDepth : imageLoad(cloudDepthImage, ivec2(p)).r;
-      front = clouds * clamp((t - depth) / max(0.2 * depth, 50.0) + 0.5, 0.0, 1.0);
-    }
+    if (params.observer != 0u) front = clouds;
 #endif
     // Above the high clouds they lie in front of everything the host draws below them.
     if (params.aboveHighClouds != 0u) front = highClouds + front * (1.0 - highClouds.a);

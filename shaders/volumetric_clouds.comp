@@ -73,6 +73,20 @@ float cloudDensityForLight(CloudLightPath path, vec3 p, float lengthM, int part)
   return s.density;
 }
 
+// VOLUMETRIC_CLOUDS_HOST_DEPTH: a host's depth image (skylayers::Sky::record), at the view's
+// pixels; each march stops at the host's geometry, so the clouds hold only what lies in front
+// of it (the composite then lays all of them over the host's pixel).
+#ifndef VOLUMETRIC_CLOUDS_HOST_DEPTH
+#define VOLUMETRIC_CLOUDS_HOST_DEPTH 0
+#endif
+#if VOLUMETRIC_CLOUDS_HOST_DEPTH
+#include "common/host_depth.glsl"
+layout(binding = VOLUMETRIC_CLOUDS_BINDING_HOST_DEPTH) uniform sampler2D hostDepth;
+layout(std140, binding = VOLUMETRIC_CLOUDS_BINDING_HOST_DEPTH_PARAMS) uniform HostDepthBlock {
+  HostDepth hostDepthBlock[1];
+};
+#define hostDepthParams hostDepthBlock[SKY_PARAMS_INDEX]
+#endif
 #if CLOUD_LIGHT_VOLUME
 #include "common/cloud_light_volume.glsl"
 layout(binding = CLOUD_LIGHT_VOLUME_BINDING_IMAGE) uniform sampler3D lightVolume;
@@ -260,6 +274,7 @@ struct CloudRay {
   CloudRayAmbient ambient;
   int longShare;     // how many of the pixel's marches share their light marches' long step
                      // (the horizon band's rays; cloudLightPath), 1: each reads all of it
+  float maxT;        // where the march stops: a host's geometry (VOLUMETRIC_CLOUDS_HOST_DEPTH)
 };
 
 // Sub-pixel position `pixel` (in the view's pixels) of the ray: the camera's, or for a
@@ -267,7 +282,8 @@ struct CloudRay {
 // north edge, column 0 the west edge, equal lat/lon spacing).
 CloudRay cloudViewRay(vec2 pixel, uvec2 id, uint seed, float jitter, float spreadPerM) {
   vec3 d = viewDirection(params.view, pixel);
-  CloudRay ray = CloudRay(vec3(0.0), d, id, seed, jitter, spreadPerM, cloudRayAmbient(d), 1);
+  CloudRay ray =
+      CloudRay(vec3(0.0), d, id, seed, jitter, spreadPerM, cloudRayAmbient(d), 1, 3.0e38);
   if (CLOUD_TOPDOWN != 0) {
     vec2 uv = pixel / vec2(params.view.size.xy);
     vec4 b = params.region.bounds;
@@ -544,6 +560,12 @@ CloudMarch cloudMarchRay(CloudRay ray) {
   vec2 iv[2];
   float tauTotal = 0.0;
   int n = cloudRayIntervals(ray, iv);
+#if VOLUMETRIC_CLOUDS_HOST_DEPTH
+  // The host's geometry hides what lies behind it: the intervals end there.
+  for (int k = 0; k < n; ++k) iv[k].y = min(iv[k].y, ray.maxT);
+  if (n > 1 && iv[1].x >= iv[1].y) n = 1;
+  if (n > 0 && iv[0].x >= iv[0].y) n = 0;
+#endif
   for (int k = 0; k < n && m.samples < int(params.maxSteps); ++k) {
     CloudSeek seek = CloudSeek(iv[k].x + ray.jitter * cloudBaseStep(ray, iv[k].x), 1.0, 0.0,
                                CLOUD_NO_DEPTH_LIMIT);
@@ -631,6 +653,11 @@ void main() {
     // A still that asked for as many marches (clouds.samples) keeps each one's whole long
     // step: it averages them to converge.
     if (bandRays) ray.longShare = count;
+#if VOLUMETRIC_CLOUDS_HOST_DEPTH
+    float host = hostDistance(hostDepthParams, texelFetch(hostDepth, ivec2(id), 0).r,
+                              ray.direction, params.view.forward.xyz);
+    if (host > 0.0) ray.maxT = host;
+#endif
     CloudMarch m = cloudMarchRay(ray);
     radiance += m.radiance;
     alphaSum += 1.0 - m.transmittance;

@@ -3,6 +3,7 @@
 #include <cstring>
 
 #include "engine/core/error.h"
+#include "engine/gpu/barriers.h"
 #include "engine/gpu/context.h"
 #include "engine/gpu/vk_check.h"
 #include "swapchain.h"
@@ -111,15 +112,7 @@ std::vector<uint8_t> WindowImage::read() const {
     region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
     region.imageExtent = {width(), height(), 1};
     vkCmdCopyImageToBuffer(cmd, image(), kLayout, readback.buffer(), 1, &region);
-    VkMemoryBarrier2 toHost{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-    toHost.srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
-    toHost.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
-    toHost.dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT;
-    toHost.dstAccessMask = VK_ACCESS_2_HOST_READ_BIT;
-    VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-    dep.memoryBarrierCount = 1;
-    dep.pMemoryBarriers = &toHost;
-    vkCmdPipelineBarrier2(cmd, &dep);
+    copiesVisibleToHost(cmd);
   });
   const auto* codes = static_cast<const uint8_t*>(readback.mapped());
   return {codes, codes + bytes};
@@ -229,15 +222,8 @@ PresentStatus Presenter::present(const DebugPlacement& placement,
   const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
   vkCmdClearColorImage(mCmd, target, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &grey, 1, &all);
   // The blits write where the clear wrote.
-  VkMemoryBarrier2 afterClear{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-  afterClear.srcStageMask = VK_PIPELINE_STAGE_2_CLEAR_BIT;
-  afterClear.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
-  afterClear.dstStageMask = VK_PIPELINE_STAGE_2_BLIT_BIT;
-  afterClear.dstAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
-  VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-  dep.memoryBarrierCount = 1;
-  dep.pMemoryBarriers = &afterClear;
-  vkCmdPipelineBarrier2(mCmd, &dep);
+  memoryBarrier(mCmd, VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
   blit(mCmd, mFrame, placement.frame, target);
   blit(mCmd, mTile, placement.tile, target);
   imageBarrier(mCmd, target, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,

@@ -4,6 +4,7 @@
 #include <set>
 
 #include "engine/core/error.h"
+#include "engine/gpu/barriers.h"
 #include "engine/gpu/context.h"
 #include "engine/gpu/texel_convert.h"
 #include "engine/gpu/timestamp_pool.h"
@@ -283,18 +284,8 @@ FrameResult FrameGraph::execute() {
   TimestampPool timestamps(ctx, static_cast<uint32_t>(c.order.size()));
   timestamps.reset(cmd);
   recordPasses(cmd, &timestamps);
-  if (!mOutputs.empty()) {
-    // The copies must be visible to the host reading the mapped buffers after the fence.
-    VkMemoryBarrier2 host{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-    host.srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
-    host.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
-    host.dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT;
-    host.dstAccessMask = VK_ACCESS_2_HOST_READ_BIT;
-    VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-    dep.memoryBarrierCount = 1;
-    dep.pMemoryBarriers = &host;
-    vkCmdPipelineBarrier2(cmd, &dep);
-  }
+  // The copies must be visible to the host reading the mapped buffers after the fence.
+  if (!mOutputs.empty()) copiesVisibleToHost(cmd);
   runtime.submitAndWait();
 
   FrameResult result;

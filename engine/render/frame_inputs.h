@@ -60,6 +60,8 @@ struct FrameInputs {
   // whether the weather map has low or mid cover.
   const LightingState& lighting;
   bool clouds;
+  // Drawing into a host's images with its depth (RenderOptions::host): where its geometry is.
+  std::optional<VolumetricCloudsPass::Inputs::HostDepth> hostDepth;
 };
 
 // Milliseconds of wall time since `start`: what a part of a frame reports it spent.

@@ -46,6 +46,12 @@ FramePlan Renderer::buildFrame(FrameGraph& graph, const Scene& scene, const IsoT
   out.clouds = maxCover.x > 0.0f || maxCover.y > 0.0f;
   const uint32_t width = static_cast<uint32_t>(scene.output.width);
   const uint32_t height = static_cast<uint32_t>(scene.output.height);
+  // A host's depth, imported once: the clouds stop at it and the composite sees through it.
+  std::optional<VolumetricCloudsPass::Inputs::HostDepth> hostDepth;
+  if (options.host && options.host->depth)
+    hostDepth = VolumetricCloudsPass::Inputs::HostDepth{
+        graph.importExternal(*options.host->depth, options.host->depthLayout), &mHostDepthSampler,
+        options.host->depthMapping};
   const FrameInputs f{scene,
                       time,
                       setup,
@@ -56,7 +62,8 @@ FramePlan Renderer::buildFrame(FrameGraph& graph, const Scene& scene, const IsoT
                       setup.geometry.topDown,
                       shared,
                       setup.lighting,
-                      out.clouds};
+                      out.clouds,
+                      hostDepth};
   FramePlan plan;
   const SkyLayer::Images sky = mSky.addTo(graph, f);
   out.costs.texturesMs += sky.texturesMs;
@@ -101,7 +108,7 @@ FramePlan Renderer::buildFrame(FrameGraph& graph, const Scene& scene, const IsoT
     AtmosphereCompositePass::Host h;
     h.colour = graph.importExternal(*host->colour, host->colourLayout);
     h.colourFormat = host->colour->image.desc().format;
-    if (host->depth) h.depth = graph.importExternal(*host->depth, host->depthLayout);
+    if (hostDepth) h.depth = hostDepth->depth;
     h.depthMapping = host->depthMapping;
     h.depthSampler = &mHostDepthSampler;
     composite.host = h;

@@ -66,8 +66,10 @@ VolumetricCloudLayer::Images VolumetricCloudLayer::addTo(FrameGraph& graph, cons
   c.noise = mWeather.noiseActivity();
   // Temporal reuse: a sequence's frames march a share of the pixels and reproject the rest,
   // at the view's size or at half its width and height. Not in a frame of several views.
+  // Nor with a host's depth: the march stops at its geometry, which a history would not know.
   const bool temporal = scene.clouds.temporal.mode == CloudTemporalMode::On &&
-                        scene.clouds.quality == CloudQuality::Standard && !f.topDown && !shared;
+                        scene.clouds.quality == CloudQuality::Standard && !f.topDown && !shared &&
+                        !f.hostDepth;
   const bool half = temporal && scene.clouds.temporal.resolution == CloudTemporalResolution::Half;
   const uint32_t cloudWidth = half ? (f.width + 1) / 2 : f.width;
   const uint32_t cloudHeight = half ? (f.height + 1) / 2 : f.height;
@@ -79,6 +81,7 @@ VolumetricCloudLayer::Images VolumetricCloudLayer::addTo(FrameGraph& graph, cons
   in.variant = cloudVariant(f.setup.volumetric, c.frame.lowRolls);
   in.lighting = f.lighting.gpu;
   in.textures = c.frame.textures;
+  in.hostDepth = f.hostDepth;
   // The ambient light from the sky the frame draws (either model) and the ground under it.
   CloudAmbientPass::Inputs ambient;
   const bool dualLobe = in.variant.phase == CloudPhase::DualLobe;

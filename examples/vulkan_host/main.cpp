@@ -2,14 +2,17 @@
 // clouds and the haze around it (docs/library.md, "Into the host's images").
 //
 // The host makes its own instance, device, colour image (scene-linear RGBA16F) and depth
-// image (D32, reverse-Z with an infinite far plane, as many engines use). It draws four
+// image (D32, reverse-Z with an infinite far plane, as many engines use). It draws five
 // boxes facing the camera, cleared into its colour and depth: one 200 m away, one 2 km away,
-// one inside a cloud (found with the Sky's own line-of-sight query) and one 20 km away near
-// the horizon. Then Sky::record draws the sky into the same command buffer, and the host
-// submits it. It checks what a viewer would see, and exits 1 when a check fails:
+// one 20 km away near the horizon, one deep inside a cloud and one a little way into another
+// (both found with the Sky's own line-of-sight query). Then Sky::record draws the sky into the same
+// command buffer, and the host submits it. It checks what a viewer would see, and exits 1 when a
+// check fails:
 //   - the near box is clear (the air changes it by under 5 %);
 //   - the far box is hazed toward the horizon's colour (the air takes over a quarter of it);
 //   - the box inside the cloud is hidden (under a fifth of it shows);
+//   - the box one optical depth into a cloud shows what the cloud in front of it lets through
+//     (the Sky's transmittance query, within 0.1);
 //   - where it drew nothing, its image is the Sky's own render() of the view (>= 40 dB).
 //
 // Usage: vulkan_host [--validate] [--size WxH] [--set key=value]... [--depth CONVENTION]
@@ -25,6 +28,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -333,33 +337,66 @@ int main(int argc, char** argv) {
                    v = (1.0 - 2.0 * y / height) * tanHalf;
       return along / std::sqrt(1.0 + u * u + v * v);
     };
+    // A box in a cloud: the nearest place (on a grid of the upper half) where all four of its
+    // corners lie `opticalDepth` into cloud by its depth, `beyondM` behind that, clear of `avoid`.
     const int half = std::max(2, height / 40);
-    double best = 1e30;
-    Box cloudBox{"in a cloud", 0, 0, 0, 0, 0.0, {0.8f, 0.1f, 0.8f}};
     const int stride = std::max(4, width / 40);
-    for (int y = half + 1; y < height / 2; y += stride)
-      for (int x = half + 1; x + half + 1 < width; x += stride) {
-        // The box's four corners must all be 3 optical depths deep into cloud by its depth.
-        double deepest = 0.0;
-        for (int corner = 0; corner < 4 && deepest >= 0.0; ++corner) {
-          const double cx = x + (corner & 1 ? half : -half), cy = y + (corner & 2 ? half : -half);
-          const double d = sky.firstCloud(eye, sky.pixelPoint(cx, cy, 15000.0), 3.0);
-          deepest = d < 0.0 ? -1.0 : std::max(deepest, axial(cx, cy, d));
+    const auto cloudBox = [&](const char* name, double opticalDepth, double beyondM,
+                              std::array<float, 3> albedo, const Box* avoid) -> std::optional<Box> {
+      double best = 1e30;
+      Box box{name, 0, 0, 0, 0, 0.0, albedo};
+      for (int y = half + 1; y < height / 2; y += stride)
+        for (int x = half + 1; x + half + 1 < width; x += stride) {
+          if (avoid && x + half + 1 > avoid->x0 && x - half < avoid->x1 &&
+              y + half + 1 > avoid->y0 && y - half < avoid->y1)
+            continue;
+          double deepest = 0.0;
+          for (int corner = 0; corner < 4 && deepest >= 0.0; ++corner) {
+            const double cx = x + (corner & 1 ? half : -half), cy = y + (corner & 2 ? half : -half);
+            const double d = sky.firstCloud(eye, sky.pixelPoint(cx, cy, 15000.0), opticalDepth);
+            deepest = d < 0.0 ? -1.0 : std::max(deepest, axial(cx, cy, d));
+          }
+          if (deepest > 0.0 && deepest < best) {
+            best = deepest;
+            box.x0 = x - half;
+            box.x1 = x + half + 1;
+            box.y0 = y - half;
+            box.y1 = y + half + 1;
+            box.depthM = deepest + beyondM;
+          }
         }
-        if (deepest > 0.0 && deepest < best) {
-          best = deepest;
-          cloudBox.x0 = x - half;
-          cloudBox.x1 = x + half + 1;
-          cloudBox.y0 = y - half;
-          cloudBox.y1 = y + half + 1;
-          cloudBox.depthM = deepest + 100.0;
-        }
-      }
-    if (best >= 1e30) {
+      if (best >= 1e30) return std::nullopt;
+      return box;
+    };
+    const std::optional<Box> hidden =
+        cloudBox("in a cloud", 3.0, 100.0, {0.8f, 0.1f, 0.8f}, nullptr);
+    if (!hidden) {
       std::fprintf(stderr, "vulkan_host: no cloud within 15 km of the view to hide a box in\n");
       return 1;
     }
-    boxes.push_back(cloudBox);
+    boxes.push_back(*hidden);
+    // One a little way into a cloud: it shows through what lies in front of it.
+    const std::optional<Box> veiled = cloudBox("veiled", 0.5, 0.0, {0.9f, 0.8f, 0.1f}, &*hidden);
+    if (!veiled) {
+      std::fprintf(stderr, "vulkan_host: no second cloud within 15 km of the view\n");
+      return 1;
+    }
+    boxes.push_back(*veiled);
+    // What the Sky's query says the cloud and the air in front of it let through, over its
+    // pixels (the mean of the three channels).
+    double veiledTransmittance = 0.0, veiledCloud = 0.0;
+    for (int y = veiled->y0; y < veiled->y1; ++y)
+      for (int x = veiled->x0; x < veiled->x1; ++x) {
+        const double along = veiled->depthM / axial(x + 0.5, y + 0.5, 1.0);
+        const skylayers::Transmittance t =
+            sky.transmittance(eye, sky.pixelPoint(x + 0.5, y + 0.5, along));
+        const std::array<double, 3> total = t.total();
+        veiledTransmittance += (total[0] + total[1] + total[2]) / 3.0;
+        veiledCloud += t.cloud;
+      }
+    const double veiledPixels = double((veiled->x1 - veiled->x0) * (veiled->y1 - veiled->y0));
+    veiledTransmittance /= veiledPixels;
+    veiledCloud /= veiledPixels;
 
     // Light the boxes as a host would: the sun through the clouds (lighting()) on their
     // faces, which look back at the camera, and the sky's ambient on them.
@@ -410,118 +447,132 @@ int main(int argc, char** argv) {
     check(vkAllocateMemory(host.device, &ba, nullptr, &readbackMemory), "vkAllocateMemory");
     check(vkBindBufferMemory(host.device, readback, readbackMemory, 0), "vkBindBufferMemory");
 
-    VkCommandBuffer cmd;
-    VkCommandBufferAllocateInfo ca{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-    ca.commandPool = host.pool;
-    ca.commandBufferCount = 1;
-    check(vkAllocateCommandBuffers(host.device, &ca, &cmd), "vkAllocateCommandBuffers");
-    VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-    check(vkBeginCommandBuffer(cmd, &begin), "vkBeginCommandBuffer");
+    // One frame of the host: its boxes, then the Sky's record() into the same command buffer,
+    // submitted and read back.
+    skylayers::Frame recorded;
+    const auto drawFrame = [&](const std::vector<Box>& drawnBoxes) {
+      VkCommandBuffer cmd;
+      VkCommandBufferAllocateInfo ca{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+      ca.commandPool = host.pool;
+      ca.commandBufferCount = 1;
+      check(vkAllocateCommandBuffers(host.device, &ca, &cmd), "vkAllocateCommandBuffers");
+      VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+      begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+      check(vkBeginCommandBuffer(cmd, &begin), "vkBeginCommandBuffer");
 
-    // The host's pass: clear, then the boxes.
-    const VkImageLayout depthLayout = depthName == "d32s8"
-                                          ? VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL
-                                          : VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
-    barrier(cmd, colour.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
-            VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
-    barrier(cmd, depth.image, depthAspect, VK_IMAGE_LAYOUT_UNDEFINED, depthLayout);
-    VkRenderingAttachmentInfo ci{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-    ci.imageView = colour.view;
-    ci.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-    ci.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-    ci.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-    VkRenderingAttachmentInfo di = ci;
-    di.imageView = depth.view;
-    di.imageLayout = depthLayout;
-    di.clearValue.depthStencil = {reverse ? 0.0f : 1.0f, 0};  // the far plane: nothing drawn
-    VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
-    ri.renderArea = {{0, 0}, {uint32_t(width), uint32_t(height)}};
-    ri.layerCount = 1;
-    ri.colorAttachmentCount = 1;
-    ri.pColorAttachments = &ci;
-    ri.pDepthAttachment = &di;
-    if (depthName == "d32s8") ri.pStencilAttachment = &di;
-    vkCmdBeginRendering(cmd, &ri);
-    for (const Box& b : boxes) {
-      VkClearAttachment clears[2] = {};
-      clears[0].aspectMask = VK_IMAGE_ASPECT_COLOR_BIT;
-      clears[0].clearValue.color = {{b.radiance[0], b.radiance[1], b.radiance[2], 1.0f}};
-      clears[1].aspectMask = VK_IMAGE_ASPECT_DEPTH_BIT;
-      clears[1].clearValue.depthStencil = {float(depthOf(b.depthM)), 0};
-      const VkClearRect rect{{{b.x0, b.y0}, {uint32_t(b.x1 - b.x0), uint32_t(b.y1 - b.y0)}}, 0, 1};
-      vkCmdClearAttachments(cmd, 2, clears, 1, &rect);
-    }
-    vkCmdEndRendering(cmd);
+      // The host's pass: clear, then the boxes.
+      const VkImageLayout depthLayout = depthName == "d32s8"
+                                            ? VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL
+                                            : VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+      barrier(cmd, colour.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+              VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+      barrier(cmd, depth.image, depthAspect, VK_IMAGE_LAYOUT_UNDEFINED, depthLayout);
+      VkRenderingAttachmentInfo ci{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+      ci.imageView = colour.view;
+      ci.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+      ci.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+      ci.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+      VkRenderingAttachmentInfo di = ci;
+      di.imageView = depth.view;
+      di.imageLayout = depthLayout;
+      di.clearValue.depthStencil = {reverse ? 0.0f : 1.0f, 0};  // the far plane: nothing drawn
+      VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
+      ri.renderArea = {{0, 0}, {uint32_t(width), uint32_t(height)}};
+      ri.layerCount = 1;
+      ri.colorAttachmentCount = 1;
+      ri.pColorAttachments = &ci;
+      ri.pDepthAttachment = &di;
+      if (depthName == "d32s8") ri.pStencilAttachment = &di;
+      vkCmdBeginRendering(cmd, &ri);
+      for (const Box& b : drawnBoxes) {
+        VkClearAttachment clears[2] = {};
+        clears[0].aspectMask = VK_IMAGE_ASPECT_COLOR_BIT;
+        clears[0].clearValue.color = {{b.radiance[0], b.radiance[1], b.radiance[2], 1.0f}};
+        clears[1].aspectMask = VK_IMAGE_ASPECT_DEPTH_BIT;
+        clears[1].clearValue.depthStencil = {float(depthOf(b.depthM)), 0};
+        const VkClearRect rect{
+            {{b.x0, b.y0}, {uint32_t(b.x1 - b.x0), uint32_t(b.y1 - b.y0)}}, 0, 1};
+        vkCmdClearAttachments(cmd, 2, clears, 1, &rect);
+      }
+      vkCmdEndRendering(cmd);
 
-    // skylayers draws the sky, the clouds and the haze into the same command buffer.
-    skylayers::HostFrame frame;
-    frame.commandBuffer = cmd;
-    frame.colour = {colour.image, colourFormat, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-                    uint32_t(width), uint32_t(height)};
-    frame.depth = {depth.image, depthFormat, depthLayout, uint32_t(width), uint32_t(height)};
-    if (convention == "projection") {
-      // A perspective matrix as a host makes it (column-major, Vulkan clip space).
-      const double f = 1.0 / tanHalf;
-      frame.depthConvention.useProjection = true;
-      frame.depthConvention.projection = {f / aspect,
-                                          0,
-                                          0,
-                                          0,
-                                          0,
-                                          -f,
-                                          0,
-                                          0,
-                                          0,
-                                          0,
-                                          farM / (nearM - farM),
-                                          -1,
-                                          0,
-                                          0,
-                                          nearM * farM / (nearM - farM),
-                                          0};
-      sky.setProjectionMatrix(frame.depthConvention.projection);
-    } else {
-      frame.depthConvention.reverseZ = reverse;
-      frame.depthConvention.nearM = nearM;
-      frame.depthConvention.farM = reverse ? INFINITY : farM;
-    }
-    const skylayers::Frame recorded = sky.record(frame);
+      // skylayers draws the sky, the clouds and the haze into the same command buffer.
+      skylayers::HostFrame frame;
+      frame.commandBuffer = cmd;
+      frame.colour = {colour.image, colourFormat, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                      uint32_t(width), uint32_t(height)};
+      frame.depth = {depth.image, depthFormat, depthLayout, uint32_t(width), uint32_t(height)};
+      if (convention == "projection") {
+        // A perspective matrix as a host makes it (column-major, Vulkan clip space).
+        const double f = 1.0 / tanHalf;
+        frame.depthConvention.useProjection = true;
+        frame.depthConvention.projection = {f / aspect,
+                                            0,
+                                            0,
+                                            0,
+                                            0,
+                                            -f,
+                                            0,
+                                            0,
+                                            0,
+                                            0,
+                                            farM / (nearM - farM),
+                                            -1,
+                                            0,
+                                            0,
+                                            nearM * farM / (nearM - farM),
+                                            0};
+        sky.setProjectionMatrix(frame.depthConvention.projection);
+      } else {
+        frame.depthConvention.reverseZ = reverse;
+        frame.depthConvention.nearM = nearM;
+        frame.depthConvention.farM = reverse ? INFINITY : farM;
+      }
+      recorded = sky.record(frame);
 
-    // The host reads its image back (a real host would go on to tonemap and present).
-    barrier(cmd, colour.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-            VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
-    VkBufferImageCopy region{};
-    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    region.imageExtent = {uint32_t(width), uint32_t(height), 1};
-    vkCmdCopyImageToBuffer(cmd, colour.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback, 1,
-                           &region);
-    VkMemoryBarrier2 toHost{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-    toHost.srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
-    toHost.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
-    toHost.dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT;
-    toHost.dstAccessMask = VK_ACCESS_2_HOST_READ_BIT;
-    VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-    dep.memoryBarrierCount = 1;
-    dep.pMemoryBarriers = &toHost;
-    vkCmdPipelineBarrier2(cmd, &dep);
-    check(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
-    VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
-    submit.commandBufferCount = 1;
-    submit.pCommandBuffers = &cmd;
-    check(vkQueueSubmit(host.queue, 1, &submit, VK_NULL_HANDLE), "vkQueueSubmit");
-    check(vkQueueWaitIdle(host.queue), "vkQueueWaitIdle");
+      // The host reads its image back (a real host would go on to tonemap and present).
+      barrier(cmd, colour.image, VK_IMAGE_ASPECT_COLOR_BIT,
+              VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+      VkBufferImageCopy region{};
+      region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+      region.imageExtent = {uint32_t(width), uint32_t(height), 1};
+      vkCmdCopyImageToBuffer(cmd, colour.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback, 1,
+                             &region);
+      VkMemoryBarrier2 toHost{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+      toHost.srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
+      toHost.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
+      toHost.dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT;
+      toHost.dstAccessMask = VK_ACCESS_2_HOST_READ_BIT;
+      VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+      dep.memoryBarrierCount = 1;
+      dep.pMemoryBarriers = &toHost;
+      vkCmdPipelineBarrier2(cmd, &dep);
+      check(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
+      VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+      submit.commandBufferCount = 1;
+      submit.pCommandBuffers = &cmd;
+      check(vkQueueSubmit(host.queue, 1, &submit, VK_NULL_HANDLE), "vkQueueSubmit");
+      check(vkQueueWaitIdle(host.queue), "vkQueueWaitIdle");
+      vkFreeCommandBuffers(host.device, host.pool, 1, &cmd);
 
-    std::vector<float> image(size_t(width) * height * 4);
-    void* mapped = nullptr;
-    check(vkMapMemory(host.device, readbackMemory, 0, bytes, 0, &mapped), "vkMapMemory");
-    if (texel == 16) {
-      std::memcpy(image.data(), mapped, image.size() * sizeof(float));
-    } else {
-      const uint16_t* halves = static_cast<const uint16_t*>(mapped);
-      for (size_t i = 0; i < image.size(); ++i) image[i] = halfToFloat(halves[i]);
-    }
-    vkUnmapMemory(host.device, readbackMemory);
+      std::vector<float> image(size_t(width) * height * 4);
+      void* mapped = nullptr;
+      check(vkMapMemory(host.device, readbackMemory, 0, bytes, 0, &mapped), "vkMapMemory");
+      if (texel == 16) {
+        std::memcpy(image.data(), mapped, image.size() * sizeof(float));
+      } else {
+        const uint16_t* halves = static_cast<const uint16_t*>(mapped);
+        for (size_t i = 0; i < image.size(); ++i) image[i] = halfToFloat(halves[i]);
+      }
+      vkUnmapMemory(host.device, readbackMemory);
+      return image;
+    };
+    const std::vector<float> image = drawFrame(boxes);
+    // The same with the box a little way into a cloud black: what its pixels gain from the
+    // box's own light is what the cloud and the air in front of it let through.
+    std::vector<Box> blackVeiled = boxes;
+    blackVeiled[4].radiance = {0.0f, 0.0f, 0.0f};
+    const std::vector<float> imageBlack = drawFrame(blackVeiled);
     vkDestroyBuffer(host.device, readback, nullptr);
     vkFreeMemory(host.device, readbackMemory, nullptr);
 
@@ -562,8 +613,8 @@ int main(int argc, char** argv) {
     sky.forgetHostImages();  // the frame has run; the images go before the Sky
     std::printf("vulkan_host: %dx%d %s, %s depth (%s) on %s\n", width, height, colourName.c_str(),
                 convention.c_str(), depthName.c_str(), sky.deviceName().c_str());
-    double share[4];
-    for (int i = 0; i < 4; ++i) report(boxes[i], share[i]);
+    double share[5];
+    for (int i = 0; i < 5; ++i) report(boxes[i], share[i]);
     const auto expect = [&](bool ok, const std::string& what) {
       std::printf("  %s: %s\n", ok ? "ok  " : "FAIL", what.c_str());
       if (!ok) ++failures;
@@ -588,6 +639,23 @@ int main(int argc, char** argv) {
       expect(share[1] > share[2] && share[1] < share[0] + 0.02, "the haze grows with distance");
     }
     expect(share[3] < 0.2, "the box inside the cloud is hidden (under 20 % shows)");
+    {
+      // What the box's light reaches the image with: its pixels' gain over the frame with the
+      // box black, per unit of its radiance.
+      const Box& b = boxes[4];
+      double through = 0.0;
+      int n = 0;
+      for (int y = b.y0; y < b.y1; ++y)
+        for (int x = b.x0; x < b.x1; ++x)
+          for (int c = 0; c < 3; ++c, ++n)
+            through += (at(image, x, y)[c] - at(imageBlack, x, y)[c]) / b.radiance[c];
+      through /= n;
+      std::printf("  %s: %.1f %% of its light comes through; the query: %.1f %% (cloud %.1f %%)\n",
+                  b.name, 100.0 * through, 100.0 * veiledTransmittance, 100.0 * veiledCloud);
+      expect(std::abs(through - veiledTransmittance) < 0.05,
+             "a box inside a cloud is seen through exactly the cloud and air in front of it "
+             "(the query's transmittance, within 0.05)");
+    }
     // Where the host drew nothing: the Sky's own frame.
     double err = 0.0, peak = 0.0;
     size_t n = 0;
@@ -627,7 +695,6 @@ int main(int argc, char** argv) {
       }
       std::printf("  wrote %s\n", out.c_str());
     }
-    vkFreeCommandBuffers(host.device, host.pool, 1, &cmd);
   } catch (const skylayers::Error& e) {
     std::fprintf(stderr, "vulkan_host: %s\n", e.what());
     return e.kind() == skylayers::Error::Kind::BadInput ? 2 : 1;

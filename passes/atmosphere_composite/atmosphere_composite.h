@@ -82,8 +82,9 @@ public:
     const Sampler* sampler = nullptr;
   };
   // Drawing into the host's own images (skylayers::Sky::record): the sky behind the host's
-  // geometry, the volumetric clouds in front of it or behind it by their depth, and the
-  // host's pixels seen through the aerial perspective by theirs.
+  // geometry, the volumetric clouds over it, and the host's pixels seen through the aerial
+  // perspective by their depth. The clouds must have been marched to the same depth
+  // (VolumetricCloudsPass::Inputs::hostDepth): all of them then lie in front.
   struct Host {
     ImageId colour;                // the host's scene-linear colour: read and written
     std::optional<ImageId> depth;  // the host's depth; none: the sky everywhere

@@ -91,14 +91,18 @@ CloudPipelines::CloudPipelines(const Context& ctx, ShaderCompiler& compiler, con
                                const char* name)
     : mVariants(ctx, compiler, file, name) {}
 
-const ComputePipeline& CloudPipelines::get(const CloudVariant& variant) {
-  return mVariants.get(cloudVariantDefines(variant));
+const ComputePipeline& CloudPipelines::get(const CloudVariant& variant,
+                                           const std::vector<ShaderDefine>& extra) {
+  std::vector<ShaderDefine> defines = cloudVariantDefines(variant);
+  defines.insert(defines.end(), extra.begin(), extra.end());
+  return mVariants.get(defines);
 }
 
 bool cloudFieldReusable(const CloudFieldKey& m, const CloudFieldKey& k, double maxShiftM) {
   // The lights may turn this far (degrees), and the camera move this far (m).
   constexpr double kMaxLightTurnDeg = 0.05, kMaxCameraMoveM = 50.0;
-  if (k.settings != m.settings || k.mapRevision != m.mapRevision || k.lights != m.lights) return false;
+  if (k.settings != m.settings || k.mapRevision != m.mapRevision || k.lights != m.lights)
+    return false;
   if (glm::length(k.drift - m.drift) > maxShiftM) return false;
   auto turned = [](const glm::vec3& a, const glm::vec3& b) {
     return std::acos(std::clamp(static_cast<double>(glm::dot(a, b)), -1.0, 1.0)) / kDeg;
@@ -282,7 +286,14 @@ VolumetricCloudsPass::VolumetricCloudsPass(const Context& ctx, ShaderCompiler& c
 VolumetricCloudsPass::Outputs VolumetricCloudsPass::setup(GraphBuilder& b, const Inputs& in,
                                                           Data& d) {
   d.inputs = in;
-  d.pipeline = &mPipelines.get(in.variant);
+  if (in.hostDepth) {
+    if (!in.hostDepth->sampler) internalError("volumetric_clouds: no host depth sampler");
+    if (in.params.marchBlock > 1)
+      internalError("volumetric_clouds: a host's depth with temporal reuse's sparse march");
+    b.read(in.hostDepth->depth, Access::SampledCompute);
+  }
+  d.pipeline = in.hostDepth ? &mPipelines.get(in.variant, {{"VOLUMETRIC_CLOUDS_HOST_DEPTH", "1"}})
+                            : &mPipelines.get(in.variant);
   readCloudTextures(b, in.textures);
   b.read(in.ambient, Access::StorageReadCompute);
   if (in.variant.light == CloudLight::Volume) {
@@ -331,6 +342,12 @@ void VolumetricCloudsPass::execute(PassContext& ctx, const Data& d) const {
   if (d.inputs.variant.light == CloudLight::Volume)
     bindings.push_back(Binding::of(CLOUD_LIGHT_VOLUME_BINDING_IMAGE, d.inputs.lightVolume,
                                    d.inputs.lightVolumeSampler));
+  if (const auto& host = d.inputs.hostDepth) {
+    bindings.push_back(
+        Binding::of(VOLUMETRIC_CLOUDS_BINDING_HOST_DEPTH, host->depth, host->sampler));
+    bindings.push_back(
+        Binding::of(VOLUMETRIC_CLOUDS_BINDING_HOST_DEPTH_PARAMS, ctx.uniform(host->mapping)));
+  }
   ctx.dispatch(*d.pipeline, bindings, d.pipeline->groupsX(size.width),
                d.pipeline->groupsY(size.height));
 }

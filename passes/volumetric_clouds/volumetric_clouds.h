@@ -7,6 +7,7 @@
 #include <array>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -15,6 +16,7 @@
 #include "engine/graph/pass_context.h"
 #include "engine/lighting/lighting_state.h"
 #include "engine/scene/scene.h"
+#include "shaders/common/host_depth_shared.h"
 #include "shaders/common/lighting_shared.h"
 #include "shaders/common/volumetric_clouds_shared.h"
 
@@ -80,7 +82,9 @@ std::vector<ShaderDefine> cloudVariantDefines(const CloudVariant& v);
 class CloudPipelines {
 public:
   CloudPipelines(const Context& ctx, ShaderCompiler& compiler, const char* file, const char* name);
-  const ComputePipeline& get(const CloudVariant& variant);
+  // `extra`: a pass's own defines beside the variant's (the raymarch's host depth).
+  const ComputePipeline& get(const CloudVariant& variant,
+                             const std::vector<ShaderDefine>& extra = {});
 
 private:
   ComputePipelineVariants mVariants;
@@ -98,6 +102,15 @@ public:
     // With variant.light Volume: passes/cloud_light_volume's volume and its sampler.
     ImageId lightVolume;
     const Sampler* lightVolumeSampler = nullptr;
+    // A host's depth image at the view's size (skylayers::Sky::record): each march stops at
+    // the host's geometry, so the clouds hold only what lies in front of it. Marching every
+    // pixel (params.marchBlock 1): a history would not know where the geometry was.
+    struct HostDepth {
+      ImageId depth;
+      const Sampler* sampler = nullptr;  // nearest, clamp
+      shared::HostDepth mapping{};
+    };
+    std::optional<HostDepth> hostDepth;
   };
   struct Outputs {
     ImageId clouds;  // RGBA16F: rgb radiance premultiplied, a opacity (1 - transmittance)

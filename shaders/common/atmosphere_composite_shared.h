@@ -10,6 +10,7 @@
 #define SKY_ATMOSPHERE_COMPOSITE_SHARED_H
 #include "shared_prelude.h"
 #include "cloud_shadow_shared.h"
+#include "host_depth_shared.h"
 #include "view_shared.h"
 
 #define ATMOSPHERE_COMPOSITE_GROUP_X 8
@@ -37,19 +38,6 @@
 #define CLOUD_DIFFUSE_TRANSMISSION 0.25
 
 SKY_SHARED_BEGIN
-
-// How the host's depth buffer maps to distance (ATMOSPHERE_COMPOSITE_HOST). A perspective
-// projection P in Vulkan's clip space (depth 0..1, w = -z of the view; column-major) stores
-// d = B / z - A for a point z metres in front of the camera along its axis, with A = P[2][2]
-// and B = P[3][2]; so z = B / (d + A), and the distance along a pixel's ray is
-// z / dot(ray, forward). Standard depth (near 0, far 1) and reverse-Z alike, an infinite far
-// plane included.
-struct HostDepth {
-  float depthA;
-  float depthB;
-  float emptyDepth;  // the value where the host drew nothing (its far plane: 1, or 0 reverse-Z)
-  uint present;      // 1: a depth image is bound; 0: the host drew nothing yet, all is sky
-};
 
 struct AtmosphereCompositeParams {
   ViewState view;

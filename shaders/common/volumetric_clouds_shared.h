@@ -6,6 +6,7 @@
 #include "geo_shared.h"
 #include "view_shared.h"
 #include "cloud_light_volume_shared.h"
+#include "host_depth_shared.h"
 
 #define VOLUMETRIC_CLOUDS_GROUP_X 8
 #define VOLUMETRIC_CLOUDS_GROUP_Y 8
@@ -22,6 +23,8 @@
 #define VOLUMETRIC_CLOUDS_BINDING_WEATHER_COARSE 9
 // 10: the light volume (cloud_light_volume_shared.h).
 #define VOLUMETRIC_CLOUDS_BINDING_AMBIENT 11  // the CloudAmbient buffer (cloud_ambient_shared.h)
+#define VOLUMETRIC_CLOUDS_BINDING_HOST_DEPTH 12  // VOLUMETRIC_CLOUDS_HOST_DEPTH: a host's depth
+#define VOLUMETRIC_CLOUDS_BINDING_HOST_DEPTH_PARAMS 13  // and how it maps to distance
 
 // Density slice (the debug output "cloud_density_slice"): same params, its own image.
 #define CLOUD_SLICE_BINDING_IMAGE 2

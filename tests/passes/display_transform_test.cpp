@@ -12,6 +12,7 @@
 
 #include "engine/color/ocio_output.h"
 #include "engine/core/error.h"
+#include "engine/gpu/barriers.h"
 #include "engine/core/paths.h"
 #include "engine/gpu/buffer.h"
 #include "engine/gpu/context.h"
@@ -120,22 +121,14 @@ TEST_F(DisplayTransformTest, WritesIntoTheCallersImageWithNothingReadBack) {
   EXPECT_TRUE(direct.display.empty()) << "the codes stay on the GPU";
   for (const ReadbackImage& o : direct.frame.outputs) ADD_FAILURE() << "read back: " << o.label;
 
-  Buffer host(ctx(), {"codes", 96 * 54 * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                      BufferMemory::HostVisible});
+  Buffer host(ctx(),
+              {"codes", 96 * 54 * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, BufferMemory::HostVisible});
   ctx().submitAndWait([&](VkCommandBuffer cmd) {
     VkBufferImageCopy region{};
     region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
     region.imageExtent = {96, 54, 1};
     vkCmdCopyImageToBuffer(cmd, target.image.image(), kLayout, host.buffer(), 1, &region);
-    VkMemoryBarrier2 toHost{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-    toHost.srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
-    toHost.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
-    toHost.dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT;
-    toHost.dstAccessMask = VK_ACCESS_2_HOST_READ_BIT;
-    VkDependencyInfo d{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-    d.memoryBarrierCount = 1;
-    d.pMemoryBarriers = &toHost;
-    vkCmdPipelineBarrier2(cmd, &d);
+    copiesVisibleToHost(cmd);
   });
   const auto* codes = static_cast<const uint8_t*>(host.mapped());
   EXPECT_TRUE(std::equal(readBack.display.begin(), readBack.display.end(), codes))
