@@ -223,28 +223,92 @@ GeoPose Sky::camera() const {
   return {c.latitude, c.longitude, c.altitudeM, c.heading, c.pitch, c.roll};
 }
 
+namespace {
+
+constexpr double kDegPerRad = 180.0 / 3.14159265358979323846;
+
+// Heading, pitch and roll (degrees) of a camera whose forward and up vectors are `forward` and
+// `up` in its east-north-up frame; `who` names the call in errors.
+glm::dvec3 headingPitchRoll(const glm::dvec3& forward, const glm::dvec3& up, const char* who) {
+  if (!(glm::length(forward) > 0.0) || !(glm::length(up) > 0.0))
+    sky::inputError(std::string(who) + ": forward and up must be non-zero vectors");
+  const glm::dvec3 fn = glm::normalize(forward);
+  // Up with its part along forward taken off: the camera's true up.
+  const glm::dvec3 ortho = up - glm::dot(up, fn) * fn;
+  if (glm::length(ortho) < 1e-9 * glm::length(up))
+    sky::inputError(std::string(who) + ": up lies along forward");
+  const glm::dvec3 un = glm::normalize(ortho);
+  const double heading = std::atan2(fn.x, fn.y) * kDegPerRad;
+  const double pitch = std::asin(std::clamp(fn.z, -1.0, 1.0)) * kDegPerRad;
+  // makeViewState's unrolled axes for that heading and pitch, then the roll between them
+  // (engine/render/camera.cpp: up = sin(roll) level + cos(roll) levelUp).
+  const glm::dvec3 level(sky::directionFromAzEl(heading + 90.0, 0.0));
+  const glm::dvec3 levelUp = glm::normalize(glm::cross(level, fn));
+  const double roll = std::atan2(glm::dot(un, level), glm::dot(un, levelUp)) * kDegPerRad;
+  return {heading, pitch, roll};
+}
+
+std::vector<std::string> orientationKeys(const glm::dvec3& hpr) {
+  return {"camera.heading=" + exact(hpr.x), "camera.pitch=" + exact(hpr.y),
+          "camera.roll=" + exact(hpr.z)};
+}
+
+// WGS84: the semi-major axis (m) and the first eccentricity squared.
+constexpr double kWgs84A = 6378137.0;
+constexpr double kWgs84E2 = 6.69437999014e-3;
+
+// Geodetic latitude, longitude (degrees) and height above the WGS84 ellipsoid (m) of an ECEF
+// point: Bowring's iteration from the geocentric guess, to well under a millimetre in a few
+// steps anywhere outside the Earth's core.
+glm::dvec3 geodeticFromEcef(const glm::dvec3& p) {
+  const double lon = std::atan2(p.y, p.x);
+  const double r = std::hypot(p.x, p.y);
+  double lat = std::atan2(p.z, r * (1.0 - kWgs84E2));
+  double h = 0.0;
+  for (int i = 0; i < 8; ++i) {
+    const double s = std::sin(lat);
+    const double n = kWgs84A / std::sqrt(1.0 - kWgs84E2 * s * s);
+    // Far from the poles height from the equatorial distance, near them from z.
+    h = std::abs(std::cos(lat)) > 0.1 ? r / std::cos(lat) - n : p.z / s - n * (1.0 - kWgs84E2);
+    lat = std::atan2(p.z, r * (1.0 - kWgs84E2 * n / (n + h)));
+  }
+  return {lat * kDegPerRad, lon * kDegPerRad, h};
+}
+
+}  // namespace
+
 void Sky::setCameraAxes(const std::array<double, 3>& forward, const std::array<double, 3>& up) {
   translated([&] {
-    constexpr double kDegPerRad = 180.0 / 3.14159265358979323846;
-    const glm::dvec3 f(forward[0], forward[1], forward[2]);
-    const glm::dvec3 u(up[0], up[1], up[2]);
-    if (!(glm::length(f) > 0.0) || !(glm::length(u) > 0.0))
-      sky::inputError("setCameraAxes: forward and up must be non-zero vectors");
-    const glm::dvec3 fn = glm::normalize(f);
-    // Up with its part along forward taken off: the camera's true up.
-    const glm::dvec3 ortho = u - glm::dot(u, fn) * fn;
-    if (glm::length(ortho) < 1e-9 * glm::length(u))
-      sky::inputError("setCameraAxes: up lies along forward");
-    const glm::dvec3 un = glm::normalize(ortho);
-    const double heading = std::atan2(fn.x, fn.y) * kDegPerRad;
-    const double pitch = std::asin(std::clamp(fn.z, -1.0, 1.0)) * kDegPerRad;
-    // makeViewState's unrolled axes for that heading and pitch, then the roll between them
-    // (engine/render/camera.cpp: up = sin(roll) level + cos(roll) levelUp).
-    const glm::dvec3 level(sky::directionFromAzEl(heading + 90.0, 0.0));
-    const glm::dvec3 levelUp = glm::normalize(glm::cross(level, fn));
-    const double roll = std::atan2(glm::dot(un, level), glm::dot(un, levelUp)) * kDegPerRad;
-    mImpl->apply({"camera.heading=" + exact(heading), "camera.pitch=" + exact(pitch),
-                  "camera.roll=" + exact(roll)});
+    mImpl->apply(
+        orientationKeys(headingPitchRoll(glm::dvec3(forward[0], forward[1], forward[2]),
+                                         glm::dvec3(up[0], up[1], up[2]), "setCameraAxes")));
+  });
+}
+
+void Sky::setCameraEcef(const std::array<double, 3>& position, const std::array<double, 3>& forward,
+                        const std::array<double, 3>& up) {
+  translated([&] {
+    const glm::dvec3 p(position[0], position[1], position[2]);
+    if (!(glm::length(p) > 1.0e6) || !std::isfinite(glm::length(p)))
+      sky::inputError("setCameraEcef: the position (" + exact(p.x) + ", " + exact(p.y) + ", " +
+                      exact(p.z) + ") m is not near the Earth's surface (ECEF, metres)");
+    const glm::dvec3 g = geodeticFromEcef(p);
+    // The local east-north-up frame there (the ellipsoid's normal up).
+    const double lat = g.x / kDegPerRad, lon = g.y / kDegPerRad;
+    const glm::dvec3 east(-std::sin(lon), std::cos(lon), 0.0);
+    const glm::dvec3 north(-std::sin(lat) * std::cos(lon), -std::sin(lat) * std::sin(lon),
+                           std::cos(lat));
+    const glm::dvec3 upAxis(std::cos(lat) * std::cos(lon), std::cos(lat) * std::sin(lon),
+                            std::sin(lat));
+    const auto enu = [&](const std::array<double, 3>& v) {
+      const glm::dvec3 e(v[0], v[1], v[2]);
+      return glm::dvec3(glm::dot(e, east), glm::dot(e, north), glm::dot(e, upAxis));
+    };
+    std::vector<std::string> keys =
+        orientationKeys(headingPitchRoll(enu(forward), enu(up), "setCameraEcef"));
+    keys.insert(keys.end(), {"camera.latitude=" + exact(g.x), "camera.longitude=" + exact(g.y),
+                             "camera.altitude_m=" + exact(g.z)});
+    mImpl->apply(keys);
   });
 }
 

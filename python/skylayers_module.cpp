@@ -466,6 +466,11 @@ PYBIND11_MODULE(skylayers, m) {
       .def("set_camera_axes", &skylayers::Sky::setCameraAxes, py::arg("forward"), py::arg("up"),
            "Points the camera along `forward` with `up` (east, north, up vectors, e.g. the "
            "columns of a host's camera matrix): sets camera.heading, pitch and roll.")
+      .def("set_camera_ecef", &skylayers::Sky::setCameraEcef, py::arg("position"),
+           py::arg("forward"), py::arg("up"),
+           "Places the camera from an Earth-centred, Earth-fixed pose (WGS84, metres): its "
+           "position and its forward and up vectors in ECEF. Sets camera.latitude, longitude, "
+           "altitude_m (height above the ellipsoid), heading, pitch and roll.")
       .def(
           "set_projection_matrix",
           [](skylayers::Sky& sky, const PointArray& matrix) {

@@ -176,6 +176,21 @@ def test_a_hosts_camera_axes_and_projection_matrix(small_sky):
         small_sky.set_projection_matrix(np.eye(3))
 
 
+def test_an_ecef_pose(small_sky):
+    # 1500 m above the ellipsoid at 0N 90E, looking north and 10 degrees up, level.
+    p = math.radians(10)
+    small_sky.set_camera_ecef((0, 6378137.0 + 1500.0, 0), (0, math.sin(p), math.cos(p)),
+                              (0, math.cos(p), -math.sin(p)))
+    cam = small_sky.camera
+    assert cam["latitude"] == pytest.approx(0, abs=1e-9)
+    assert cam["longitude"] == pytest.approx(90)
+    assert cam["altitude_m"] == pytest.approx(1500, abs=1e-3)
+    assert cam["heading"] == pytest.approx(0, abs=1e-9)
+    assert cam["pitch"] == pytest.approx(10) and cam["roll"] == pytest.approx(0, abs=1e-9)
+    with pytest.raises(skylayers.Error, match="not near the Earth's surface"):
+        small_sky.set_camera_ecef((0, 0, 0), (1, 0, 0), (0, 0, 1))
+
+
 def test_a_rig_of_views_in_one_frame_is_each_views_own_render(small_sky):
     views = [{"heading": 280, "pitch": 5, "width": 32, "height": 18},
              {"heading": 10, "pitch": 20, "roll": 10, "vertical_fov": 40, "width": 16,

@@ -3,6 +3,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -503,6 +504,65 @@ TEST(SkylayersApi, ARolledCameraTurnsTheImage) {
   EXPECT_NEAR(sky.camera().pitchDeg, 10.0, 1e-9);
   EXPECT_NEAR(sky.camera().rollDeg, -30.0, 1e-6);
   EXPECT_THROW(sky.setCameraAxes(f, f), skylayers::Error);
+}
+
+// A host's Earth-centred pose (WGS84 ECEF): its position and camera axes, made here from a
+// GeoPose with the textbook geodetic-to-ECEF formulas, must give that GeoPose back.
+TEST(SkylayersApi, AnEcefPoseIsTheGeoPoseItNames) {
+  skylayers::Sky sky = defaultSky();
+  constexpr double kA = 6378137.0, kE2 = 6.69437999014e-3, kRad = M_PI / 180.0;
+  const skylayers::GeoPose poses[] = {{47.37, 8.54, 500.0, 305.0, 10.0, 5.0},
+                                      {-33.86, 151.21, 12000.0, 45.0, -20.0, -30.0},
+                                      {89.5, -120.0, 3000.0, 180.0, 30.0, 0.0},
+                                      {0.0, 179.9, 0.0, 90.0, 0.0, 60.0}};
+  for (const skylayers::GeoPose& g : poses) {
+    const double lat = g.latitudeDeg * kRad, lon = g.longitudeDeg * kRad;
+    const double n = kA / std::sqrt(1.0 - kE2 * std::sin(lat) * std::sin(lat));
+    const std::array<double, 3> position = {(n + g.altitudeM) * std::cos(lat) * std::cos(lon),
+                                            (n + g.altitudeM) * std::cos(lat) * std::sin(lon),
+                                            (n * (1.0 - kE2) + g.altitudeM) * std::sin(lat)};
+    // The camera's axes in east-north-up (as ARolledCameraTurnsTheImage), then in ECEF.
+    const double h = g.headingDeg * kRad, p = g.pitchDeg * kRad, r = g.rollDeg * kRad;
+    const double f[3] = {std::sin(h) * std::cos(p), std::cos(h) * std::cos(p), std::sin(p)};
+    const double level[3] = {std::cos(h), -std::sin(h), 0.0};
+    const double levelUp[3] = {level[1] * f[2] - level[2] * f[1], level[2] * f[0] - level[0] * f[2],
+                               level[0] * f[1] - level[1] * f[0]};
+    const double east[3] = {-std::sin(lon), std::cos(lon), 0.0};
+    const double north[3] = {-std::sin(lat) * std::cos(lon), -std::sin(lat) * std::sin(lon),
+                             std::cos(lat)};
+    const double up[3] = {std::cos(lat) * std::cos(lon), std::cos(lat) * std::sin(lon),
+                          std::sin(lat)};
+    std::array<double, 3> forward{}, cameraUp{};
+    for (int i = 0; i < 3; ++i) {
+      const double u[3] = {std::sin(r) * level[0] + std::cos(r) * levelUp[0],
+                           std::sin(r) * level[1] + std::cos(r) * levelUp[1],
+                           std::sin(r) * level[2] + std::cos(r) * levelUp[2]};
+      forward[i] = f[0] * east[i] + f[1] * north[i] + f[2] * up[i];
+      cameraUp[i] = u[0] * east[i] + u[1] * north[i] + u[2] * up[i];
+    }
+    sky.setCameraEcef(position, forward, cameraUp);
+    const skylayers::GeoPose got = sky.camera();
+    SCOPED_TRACE(std::to_string(g.latitudeDeg) + ", " + std::to_string(g.longitudeDeg));
+    EXPECT_NEAR(got.latitudeDeg, g.latitudeDeg, 1e-9);
+    EXPECT_NEAR(got.longitudeDeg, g.longitudeDeg, 1e-9);
+    EXPECT_NEAR(got.altitudeM, g.altitudeM, 1e-3);
+    EXPECT_NEAR(std::remainder(got.headingDeg - g.headingDeg, 360.0), 0.0, 1e-6);  // -55 is 305
+    EXPECT_NEAR(got.pitchDeg, g.pitchDeg, 1e-6);
+    EXPECT_NEAR(got.rollDeg, g.rollDeg, 1e-6);
+  }
+  // All or nothing: a position at the Earth's centre, or axes along each other, change nothing.
+  const skylayers::GeoPose before = sky.camera();
+  try {
+    sky.setCameraEcef({0.0, 0.0, 0.0}, {1.0, 0.0, 0.0}, {0.0, 0.0, 1.0});
+    ADD_FAILURE() << "the Earth's centre was taken";
+  } catch (const skylayers::Error& e) {
+    EXPECT_EQ(e.kind(), skylayers::Error::Kind::BadInput);
+    EXPECT_THAT(e.what(), HasSubstr("setCameraEcef: the position (0, 0, 0) m"));
+  }
+  EXPECT_THROW(sky.setCameraEcef({kA, 0.0, 0.0}, {1.0, 0.0, 0.0}, {2.0, 0.0, 0.0}),
+               skylayers::Error);
+  EXPECT_EQ(sky.camera().latitudeDeg, before.latitudeDeg);
+  EXPECT_EQ(sky.camera().headingDeg, before.headingDeg);
 }
 
 TEST(SkylayersApi, AHostsProjectionMatrixSetsTheFieldOfView) {

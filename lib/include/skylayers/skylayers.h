@@ -245,6 +245,15 @@ public:
   // matrix), which need not be unit or exactly orthogonal. Sets heading, pitch and roll;
   // BadInput for a zero vector or an up along forward.
   void setCameraAxes(const std::array<double, 3>& forward, const std::array<double, 3>& up);
+  // The camera from a host's Earth-centred, Earth-fixed pose (WGS84 ECEF, metres: x toward
+  // 0N 0E, y toward 0N 90E, z toward the north pole): its position and its forward and up
+  // vectors in ECEF (the columns of an ECEF camera matrix; not necessarily unit or exactly
+  // orthogonal). The position becomes the latitude, longitude and height above the WGS84
+  // ellipsoid (the altitude); the axes, heading, pitch and roll in the east-north-up frame
+  // there. All or nothing: BadInput for a position not near the Earth's surface (within
+  // 1000 km of its centre, or not finite), or axes as setCameraAxes refuses them.
+  void setCameraEcef(const std::array<double, 3>& position, const std::array<double, 3>& forward,
+                     const std::array<double, 3>& up);
   // The image size in pixels and, for a perspective camera, the vertical field of view.
   void setSize(int width, int height);
   void setVerticalFov(double degrees);
@@ -265,8 +274,7 @@ public:
   // render() gives with the camera turned and sized as its view says (the same bits, tested),
   // its report holding the whole frame's passes. No temporal reuse across such frames, and a
   // histogram exposure meters each view on its own. BadInput for no view or an empty one.
-  std::vector<Frame> renderViews(const std::vector<View>& views,
-                                 const RenderRequest& request = {});
+  std::vector<Frame> renderViews(const std::vector<View>& views, const RenderRequest& request = {});
   // Draws the frame into the host's own images (<skylayers/vulkan.h>, docs/library.md, "Into
   // the host's images"): records into the host's command buffer, submits nothing. The Sky
   // must be on the host's device (DeviceOptions::vulkan). Where the host's depth holds no
