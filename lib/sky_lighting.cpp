@@ -8,6 +8,7 @@
 #include "apps/common/default_scene.h"
 #include "engine/lighting/lighting_state.h"
 #include "engine/render/camera.h"
+#include "engine/render/perception.h"
 #include "engine/scene/scene_io.h"
 
 namespace skylayers {
@@ -34,22 +35,6 @@ Light lightOf(const sky::BodyLight& body, const sky::shared::DirectionalLight& g
 
 namespace {
 
-// The share of a body's light the clouds let through to the field's camera: the cloud
-// optical depth along the line toward it, up past the top of the highest layer.
-double cloudShadow(const sky::CloudField& field, const Light& light) {
-  if (!field.anyCover() || light.elevationDeg < -2.0) return 1.0;
-  const sky::shared::CloudParams& p = field.params();
-  const double camera = field.latLonAltitudeOf(glm::dvec3(0.0)).z;
-  const double top = std::max(p.lowTopM, p.midTopM);
-  if (camera >= top) return 1.0;
-  // Long enough to climb out of the layers (a low sun's line crosses them far away), and
-  // no longer than the weather map's reach.
-  const double rise = std::max(std::sin(light.elevationDeg * 3.14159265358979323846 / 180.0), 0.02);
-  const double length = std::clamp((top - camera + 500.0) / rise, 1000.0, 200000.0);
-  const glm::dvec3 d(light.direction[0], light.direction[1], light.direction[2]);
-  return std::exp(-field.cloudOpticalDepth(glm::dvec3(0.0), d * length, Sky::kQueryStepM));
-}
-
 // The lights of `scene` at its camera and time; with `field` (made for that scene), behind
 // the clouds there.
 Lighting lightingOf(const sky::Scene& scene, const sky::CloudField* field) {
@@ -61,7 +46,8 @@ Lighting lightingOf(const sky::Scene& scene, const sky::CloudField* field) {
   lighting.key = state.key;
   if (field)
     for (Light* light : {&lighting.sun, &lighting.moon}) {
-      light->cloudTransmittance = cloudShadow(*field, *light);
+      light->cloudTransmittance = sky::cloudTransmittanceToward(
+          *field, glm::dvec3(light->direction[0], light->direction[1], light->direction[2]));
       for (double& e : light->illuminanceLux) e *= light->cloudTransmittance;
     }
   return lighting;

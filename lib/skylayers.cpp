@@ -17,9 +17,11 @@
 #include "engine/core/error.h"
 #include "engine/core/paths.h"
 #include "engine/gpu/context.h"
+#include "engine/io/exr.h"
 #include "engine/io/png.h"
 #include "engine/render/camera.h"
 #include "engine/render/exposure.h"
+#include "engine/render/frame_layers.h"
 #include "engine/render/render_files.h"
 #include "engine/render/renderer.h"
 #include "engine/scene/scene_io.h"
@@ -122,6 +124,43 @@ WeatherGrid weatherMap(const std::string& file, const std::vector<std::string>& 
     grid.westDeg = forecast.map.region.lon[0];
     grid.eastDeg = forecast.map.region.lon[1];
     return grid;
+  });
+}
+
+std::vector<Image> readExr(const std::string& path) {
+  return translated([&] {
+    const sky::LayeredImage exr = sky::readExr(path);
+    std::vector<Image> images;
+    for (const sky::ImageLayer& layer : exr.layers) {
+      if (!layer.name.empty()) {
+        images.push_back(imageOf(layer.name, exr, layer));
+        continue;
+      }
+      // The main layer holds the beauty and the labels: an image each, as a frame gives them.
+      const size_t n = layer.channels.size();
+      const size_t count = layer.pixels.size() / n;
+      std::vector<size_t> colour;  // R, G, B, A first (readExr's order)
+      for (size_t c = 0; c < n; ++c) {
+        const std::string& name = layer.channels[c];
+        if (name == "R" || name == "G" || name == "B" || name == "A") {
+          colour.push_back(c);
+          continue;
+        }
+        std::vector<float> pixels(count);
+        for (size_t i = 0; i < count; ++i) pixels[i] = layer.pixels[i * n + c];
+        images.push_back(Image{name, exr.width, exr.height, {name}, std::move(pixels)});
+      }
+      if (!colour.empty()) {
+        Image beauty{"beauty", exr.width, exr.height, {}, {}};
+        for (size_t c : colour) beauty.channels.push_back(layer.channels[c]);
+        beauty.pixels.resize(count * colour.size());
+        for (size_t i = 0; i < count; ++i)
+          for (size_t k = 0; k < colour.size(); ++k)
+            beauty.pixels[i * colour.size() + k] = layer.pixels[i * n + colour[k]];
+        images.insert(images.begin(), std::move(beauty));
+      }
+    }
+    return images;
   });
 }
 
@@ -364,10 +403,21 @@ Frame frameOf(sky::RenderedFrame& rendered, const sky::Scene& scene, const sky::
   frame.time = time.format();
   frame.gpuMs = rendered.frame.gpuMs;
   for (const sky::ImageLayer& layer : rendered.image.layers) {
-    if (layer.name.empty())
-      frame.beauty = imageOf("beauty", rendered.image, layer);
-    else if (request.layers)
-      frame.layers.push_back(imageOf(layer.name, rendered.image, layer));
+    const std::string name = sky::frameLayerName(layer);
+    if (name == "beauty") {
+      frame.beauty = imageOf(name, rendered.image, layer);
+    } else if (layer.integer && request.layers) {
+      // The label and the cloud type: one image each, as the EXR's top-level channels.
+      const size_t n = layer.channels.size();
+      for (size_t c = 0; c < n; ++c) {
+        sky::ImageLayer one{layer.channels[c], {layer.channels[c]}, {}, false, true};
+        one.pixels.resize(layer.pixels.size() / n);
+        for (size_t i = 0; i < one.pixels.size(); ++i) one.pixels[i] = layer.pixels[i * n + c];
+        frame.layers.push_back(imageOf(one.name, rendered.image, one));
+      }
+    } else if (request.layers) {
+      frame.layers.push_back(imageOf(name, rendered.image, layer));
+    }
   }
   const sky::FrameExposure exposure = meter.expose(scene, rendered, time);
   frame.exposureEv = exposure.ev;

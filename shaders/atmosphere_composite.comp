@@ -23,8 +23,13 @@
 // (skylayers::Sky::record): where its depth image (ATMOSPHERE_COMPOSITE_HOST_DEPTH) holds no
 // geometry, the frame; where it does, the host's pixel seen through the air to it, behind the
 // volumetric clouds in front of it (their march stopped at its depth).
+//
+// ATMOSPHERE_COMPOSITE_PERCEPTION writes the perception layers as well (docs/outputs.md,
+// "Perception layers"): a label and a cloud type per pixel by what its centre ray meets
+// first, the air's transmittance to that, and the cloud shadow on the ground there.
 #include "common/params_block.glsl"
 #include "common/atmosphere_composite_shared.h"
+#include "common/cloud_perception_shared.h"
 #include "common/view.glsl"
 #define LIGHTING_BINDING ATMOSPHERE_COMPOSITE_BINDING_LIGHTING
 #include "common/lighting.glsl"
@@ -54,6 +59,9 @@ layout(local_size_x = ATMOSPHERE_COMPOSITE_GROUP_X, local_size_y = ATMOSPHERE_CO
 #ifndef ATMOSPHERE_COMPOSITE_HOST_FORMAT
 #define ATMOSPHERE_COMPOSITE_HOST_FORMAT rgba16f
 #endif
+#ifndef ATMOSPHERE_COMPOSITE_PERCEPTION
+#define ATMOSPHERE_COMPOSITE_PERCEPTION 0
+#endif
 
 layout(push_constant) uniform Push {
   AtmosphereCompositeBand band;
@@ -79,6 +87,14 @@ uniform image2D hostColour;
 #include "common/host_depth.glsl"
 layout(binding = ATMOSPHERE_COMPOSITE_BINDING_HOST_DEPTH) uniform sampler2D hostDepth;
 #endif
+#endif
+#if ATMOSPHERE_COMPOSITE_PERCEPTION
+#if ATMOSPHERE_COMPOSITE_CLOUDS
+layout(binding = ATMOSPHERE_COMPOSITE_BINDING_CLOUD_HIT, rgba32f) uniform readonly image2D
+    cloudHitImage;
+#endif
+layout(binding = ATMOSPHERE_COMPOSITE_BINDING_PERCEPTION, rgba32f) uniform writeonly image2D
+    perceptionImage;
 #endif
 #if ATMOSPHERE_COMPOSITE_PHYSICAL
 layout(std140, binding = ATMOSPHERE_COMPOSITE_BINDING_ATMOSPHERE) uniform AtmosphereBlock {
@@ -194,6 +210,25 @@ Air airTo(vec3 V, float distanceM, vec3 horizon) {
 }
 #endif
 
+// The share of the key light's beam the clouds let through to the ground point `hit` (from
+// the planet's centre, the camera on the z axis): 1 without clouds.
+float groundCloudShadow(vec3 hit) {
+  float shadow = 1.0;
+#if ATMOSPHERE_COMPOSITE_CLOUDS
+  // The map is laid out by ground distance east and north of the point below the camera.
+  float across = length(hit.xy);
+  vec2 toward = across > 0.0 ? hit.xy / across : vec2(0.0);
+  vec2 metres = toward * atan(across, hit.z) * params.planetRadiusM;
+  vec2 u = cloudShadowU(params.shadow,
+                        metres - vec2(params.shadow.shiftEastM, params.shadow.shiftNorthM));
+  shadow = texture(cloudShadow, clamp(u * 0.5 + 0.5, 0.0, 1.0)).r;
+  // Past the map's edge the ground takes the mean share of sunlight the cover lets through.
+  float outside = smoothstep(0.9, 1.0, max(abs(u.x), abs(u.y)));
+  shadow = mix(shadow, 1.0 - params.overcast, outside);
+#endif
+  return shadow;
+}
+
 // The light the ground sends toward the camera from the point at distance t along V:
 // albedo times the irradiance of the sun and the moon (each through its share of the cloud
 // shadow) and of the sky and the clouds (Kasten & Czeplak's overcast share).
@@ -209,19 +244,7 @@ vec3 groundRadiance(LightingState L, vec3 V, float t) {
 #else
   vec3 sun = params.sunAtGround.rgb, moon = params.moonAtGround.rgb;
 #endif
-  float shadow = 1.0;
-#if ATMOSPHERE_COMPOSITE_CLOUDS
-  // The map is laid out by ground distance east and north of the point below the camera.
-  float across = length(hit.xy);
-  vec2 toward = across > 0.0 ? hit.xy / across : vec2(0.0);
-  vec2 metres = toward * atan(across, hit.z) * params.planetRadiusM;
-  vec2 u = cloudShadowU(params.shadow,
-                        metres - vec2(params.shadow.shiftEastM, params.shadow.shiftNorthM));
-  shadow = texture(cloudShadow, clamp(u * 0.5 + 0.5, 0.0, 1.0)).r;
-  // Past the map's edge the ground takes the mean share of sunlight the cover lets through.
-  float outside = smoothstep(0.9, 1.0, max(abs(u.x), abs(u.y)));
-  shadow = mix(shadow, 1.0 - params.overcast, outside);
-#endif
+  float shadow = groundCloudShadow(hit);
   float sunShadow = params.shadow.lightIsSun > 0.5 ? shadow : 1.0;
   float moonShadow = params.shadow.lightIsSun > 0.5 ? 1.0 : shadow;
   vec3 clearDirect = sun * muS + moon * muM;
@@ -233,6 +256,51 @@ vec3 groundRadiance(LightingState L, vec3 V, float t) {
   vec3 diffuse = skyLight * (1.0 - N) + N * CLOUD_DIFFUSE_TRANSMISSION * (clearDirect + skyLight);
   return params.groundAlbedo.rgb * (direct + diffuse);
 }
+
+#if ATMOSPHERE_COMPOSITE_PERCEPTION
+// Distance along unit V from the camera to the sphere of altitude `altitudeM` from inside it,
+// -1 where the ray does not reach it going out (the camera above it: going down, the near
+// root).
+float sphereDistance(vec3 V, float altitudeM) {
+  float cameraR = params.cameraRadiusM, r = params.planetRadiusM + altitudeM;
+  float b = cameraR * V.z, c = (cameraR - r) * (cameraR + r);
+  float disc = b * b - c;
+  if (disc < 0.0) return -1.0;
+  float q = sqrt(disc);
+  return c < 0.0 ? -b + q : (-b - q >= 0.0 ? -b - q : -1.0);
+}
+
+// The air's transmittance from the camera to the point `distanceM` along V (a huge distance:
+// to the top of the atmosphere), as one number: the Rec. 709 luminance weights of its red,
+// green and blue.
+float perceptionAir(vec3 V, float distanceM) {
+#if ATMOSPHERE_COMPOSITE_PHYSICAL
+  vec3 T = transmittanceAlong(atmosphere, transmittanceLut, V, distanceM * 1e-3);
+#else
+  // The kozlov haze, integrated along the bent path (the beauty's airTo takes the altitude
+  // as changing linearly, close for the clouds' and the ground's distances but kilometres off
+  // along a grazing ray to space): 48 steps, denser near the camera, the altitude exact at
+  // each.
+  float top = max(sphereDistance(V, 100000.0), 0.0);
+  float t = min(distanceM, top);
+  vec3 tau = vec3(0.0);
+  const int n = 48;
+  float prev = 0.0;
+  for (int i = 1; i <= n; ++i) {
+    float x = float(i) / float(n);
+    float ti = t * x * x;
+    float tm = 0.5 * (prev + ti);
+    vec3 q = vec3(0.0, 0.0, params.cameraRadiusM) + tm * V;
+    float h = max(length(q) - params.planetRadiusM, 0.0);
+    tau += (params.hazeRayleigh.rgb * exp(-h / params.hazeRayleigh.w) +
+            params.hazeAerosol.rgb * exp(-h / params.hazeAerosol.w)) * (ti - prev);
+    prev = ti;
+  }
+  vec3 T = exp(-tau);
+#endif
+  return dot(T, vec3(0.2126, 0.7152, 0.0722));
+}
+#endif
 
 void main() {
   uvec2 p = gl_GlobalInvocationID.xy + uvec2(0u, band.rows.x);
@@ -349,6 +417,65 @@ void main() {
   beyond = beyond * (1.0 - farther.a) + farther.rgb;
   vec3 frame = beyond * (1.0 - nearer.a) + nearer.rgb;
   imageStore(beautyImage, ivec2(p), vec4(frame, 1.0));
+
+#if ATMOSPHERE_COMPOSITE_PERCEPTION
+  {
+    // What the pixel's centre ray meets first (docs/outputs.md, "Perception layers").
+    vec4 hit = vec4(0.0, 1.0 / 0.0, -1.0, 0.0);  // no volumetric clouds: no hit
+#if ATMOSPHERE_COMPOSITE_CLOUDS
+    hit = imageLoad(cloudHitImage, ivec2(p));
+#endif
+    bool cloudHit = !isinf(hit.g) && hit.b >= 0.0;
+    float groundT = params.observer != 0u ? groundDistance(cameraR, V, planetR) : -1.0;
+    bool groundHit = groundT >= 0.0;
+    // The high clouds hide what lies behind them where they hide as much as a tenth of an
+    // optical depth of cloud does.
+    bool highHit = highClouds.a >= 1.0 - exp(-CLOUD_PERCEPTION_HIT_TAU);
+    float highT = sphereDistance(V, params.highCloudsAltitudeM);
+    // Seen from below, the high clouds lie beyond the volumetric ones and the ground hides
+    // them; seen from above, they come first.
+    if (params.aboveHighClouds == 0u && (cloudHit || groundHit)) highHit = false;
+    if (highT < 0.0) highHit = false;
+    int label = PERCEPTION_LABEL_SKY;
+    int type = PERCEPTION_TYPE_NONE;
+    float distanceM = 1e12;  // to the top of the atmosphere
+    if (highHit && params.aboveHighClouds != 0u) {
+      label = PERCEPTION_LABEL_HIGH_CLOUD;
+      type = PERCEPTION_TYPE_CIRRUS;
+      distanceM = highT;
+    } else if (cloudHit && (!groundHit || hit.g <= groundT)) {
+      bool low = hit.b < 0.5;
+      label = low ? PERCEPTION_LABEL_LOW_CLOUD : PERCEPTION_LABEL_MID_CLOUD;
+      // The nearest of the map's type keys: 0 stratiform, 0.5 cellular, 1 convective.
+      int key = hit.a < 0.25 ? 0 : hit.a < 0.75 ? 1 : 2;
+      type = low ? PERCEPTION_TYPE_STRATUS + key
+                 : (key == 0 ? PERCEPTION_TYPE_ALTOSTRATUS : PERCEPTION_TYPE_ALTOCUMULUS);
+      distanceM = hit.g;
+    } else if (groundHit) {
+      label = PERCEPTION_LABEL_GROUND;
+      distanceM = groundT;
+    } else if (highHit) {
+      label = PERCEPTION_LABEL_HIGH_CLOUD;
+      type = PERCEPTION_TYPE_CIRRUS;
+      distanceM = highT;
+    } else {
+      // A disc a pixel or less across labels the pixel its centre falls in.
+#if ATMOSPHERE_COMPOSITE_MOON_DISC
+      if (moonDist < max(moonR, 0.5 * pixelAngle)) label = PERCEPTION_LABEL_MOON;
+#endif
+#if ATMOSPHERE_COMPOSITE_SUN_DISC
+      // The moon in front of the sun in an eclipse.
+      if (sunDist < max(sunR, 0.5 * pixelAngle) && label != PERCEPTION_LABEL_MOON)
+        label = PERCEPTION_LABEL_SUN;
+#endif
+    }
+    float air = params.observer != 0u ? perceptionAir(V, distanceM) : 1.0;
+    float shadow = label == PERCEPTION_LABEL_GROUND
+                       ? groundCloudShadow(vec3(0.0, 0.0, cameraR) + groundT * V)
+                       : 1.0;
+    imageStore(perceptionImage, ivec2(p), vec4(float(label), float(type), air, shadow));
+  }
+#endif
 
 #if ATMOSPHERE_COMPOSITE_HOST
   vec4 host = vec4(frame, 1.0);

@@ -93,6 +93,8 @@ void writeExr(const fs::path& path, const LayeredImage& image) {
   // stored, so OpenEXR does no conversion of its own.
   std::vector<std::vector<half>> halves;
   halves.reserve(image.layers.size());
+  std::vector<std::vector<uint32_t>> integers;
+  integers.reserve(image.layers.size());
   Imf::Header header(image.width, image.height);
   Imf::FrameBuffer frame;
   try {
@@ -110,6 +112,20 @@ void writeExr(const fs::path& path, const LayeredImage& image) {
               Imf::Slice(Imf::FLOAT,
                          const_cast<char*>(reinterpret_cast<const char*>(layer.pixels.data() + c)),
                          n * sizeof(float), size_t(image.width) * n * sizeof(float)));
+        }
+        continue;
+      }
+      if (layer.integer) {
+        std::vector<uint32_t>& data = integers.emplace_back(layer.pixels.size());
+        std::transform(layer.pixels.begin(), layer.pixels.end(), data.begin(), [](float v) {
+          return v > 0.0f ? static_cast<uint32_t>(std::min(std::round(v), 4294967040.0f)) : 0u;
+        });
+        for (size_t c = 0; c < n; ++c) {
+          const std::string name = fullName(layer.name, layer.channels[c]);
+          header.channels().insert(name, Imf::Channel(Imf::UINT));
+          frame.insert(name,
+                       Imf::Slice(Imf::UINT, reinterpret_cast<char*>(data.data() + c),
+                                  n * sizeof(uint32_t), size_t(image.width) * n * sizeof(uint32_t)));
         }
         continue;
       }

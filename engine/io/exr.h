@@ -20,6 +20,9 @@ struct ImageLayer {
   // Stored as 32-bit FLOAT instead of HALF: for values past half's range (65504), such as
   // distances in metres.
   bool fullFloat = false;
+  // Stored as 32-bit UINT: classes and labels, whole numbers 0 .. 2^32 - 1 (readExr gives
+  // them back as floats, exact up to 2^24).
+  bool integer = false;
 };
 
 struct LayeredImage {

@@ -184,6 +184,18 @@ double CloudField::cloudOpticalDepth(const glm::dvec3& a, const glm::dvec3& b, d
   return tau;
 }
 
+glm::dvec3 CloudField::airExtinction(const glm::dvec3& enu) const {
+  // atmosphereMedium (atmosphere.glsl), altitude in km above the ground, per km.
+  const shared::AtmosphereParams& p = mIn.air;
+  const double h = std::max(latLonAltitude(mIn.camera, enu).z * 1e-3, 0.0);
+  const double rayleigh = std::exp(-h / p.rayleighScattering.w);
+  const double mie = std::exp(-h / p.mieScattering.w);
+  const double ozone = std::max(0.0, 1.0 - std::abs(h - p.ozoneProfile.x) / p.ozoneProfile.y);
+  return (glm::dvec3(p.rayleighScattering) * rayleigh + glm::dvec3(p.mieExtinction) * mie +
+          glm::dvec3(p.ozoneAbsorption) * ozone) *
+         1e-3;
+}
+
 glm::dvec3 CloudField::airOpticalDepth(const glm::dvec3& a, const glm::dvec3& b) const {
   const double length = glm::length(b - a);
   if (length <= 0.0) return glm::dvec3(0.0);
@@ -191,21 +203,10 @@ glm::dvec3 CloudField::airOpticalDepth(const glm::dvec3& a, const glm::dvec3& b)
   // most 4096 of them.
   const int64_t steps =
       std::clamp<int64_t>(static_cast<int64_t>(std::ceil(length / 50.0)), 16, 4096);
-  const double dsKm = length / double(steps) * 1e-3;
+  const double ds = length / double(steps);
   const glm::dvec3 dir = (b - a) / length;
-  const shared::AtmosphereParams& p = mIn.air;
   glm::dvec3 tau(0.0);
-  for (int64_t i = 0; i < steps; ++i) {
-    const glm::dvec3 x = a + dir * ((double(i) + 0.5) * length / double(steps));
-    // atmosphereMedium (atmosphere.glsl), altitude in km above the ground.
-    const double h = std::max(latLonAltitude(mIn.camera, x).z * 1e-3, 0.0);
-    const double rayleigh = std::exp(-h / p.rayleighScattering.w);
-    const double mie = std::exp(-h / p.mieScattering.w);
-    const double ozone = std::max(0.0, 1.0 - std::abs(h - p.ozoneProfile.x) / p.ozoneProfile.y);
-    tau += (glm::dvec3(p.rayleighScattering) * rayleigh + glm::dvec3(p.mieExtinction) * mie +
-            glm::dvec3(p.ozoneAbsorption) * ozone) *
-           dsKm;
-  }
+  for (int64_t i = 0; i < steps; ++i) tau += airExtinction(a + dir * ((double(i) + 0.5) * ds)) * ds;
   return tau;
 }
 

@@ -53,6 +53,8 @@ public:
   // Optical depth through cloud along the segment a -> b (ENU, m), sampled every `stepM` at
   // the middle of each step (the last one shortened to end at b).
   double cloudOpticalDepth(const glm::dvec3& a, const glm::dvec3& b, double stepM) const;
+  // The air's extinction (R, G, B; 1/m) at a point: the physical atmosphere's medium.
+  glm::dvec3 airExtinction(const glm::dvec3& enu) const;
   // The air's optical depth (R, G, B) along the segment, below the atmosphere's top.
   glm::dvec3 airOpticalDepth(const glm::dvec3& a, const glm::dvec3& b) const;
   // The distance along the ray from `origin` (ENU) in direction `dir` (unit) at which its

@@ -50,7 +50,8 @@ CloudReuse::CloudReuse(const Context& ctx, ShaderCompiler& compiler)
     : mCtx(ctx), mTemporal(ctx, compiler), mSampler(ctx, SamplerWrap::Clamp) {}
 
 CloudReuse::Step CloudReuse::step(const Scene& scene, const IsoTime& time,
-                                  const shared::ViewState& view, uint64_t mapRevision) {
+                                  const shared::ViewState& view, uint64_t mapRevision,
+                                  uint64_t cutFrame) {
   ImageDesc desc;
   desc.width = view.size.x;
   desc.height = view.size.y;
@@ -82,7 +83,7 @@ CloudReuse::Step CloudReuse::step(const Scene& scene, const IsoTime& time,
   step.valid = mClouds.valid() && mDepth.valid() && next.settings == last.settings &&
                next.mapRevision == last.mapRevision && std::abs(gap) <= kHistoryMaxGapS &&
                glm::length(here - there) <= kHistoryMaxMoveM;
-  next.frame = step.valid ? last.frame + 1 : 0;
+  next.frame = step.valid ? last.frame + 1 : cutFrame;
   step.frame = next.frame;
   // A cut marches every pixel, so the first frame of a sequence is the still.
   if (step.valid) {

@@ -53,13 +53,16 @@ public:
     uint32_t block = 1;  // this frame marches one pixel of each block x block square
     glm::uvec2 offset{0};
     CloudTemporalMotion motion;
-    uint64_t frame = 0;  // frames since the last cut (0: the cut, marched in full)
+    uint64_t frame = 0;  // the frame's number: a cut's (cutFrame), then one more each frame
   };
   // The step of a frame of `scene` at `time` whose clouds are marched at `view` (its size,
   // or half of it), with the weather map at `mapRevision`. It becomes the history once the
   // frame has run (commit()); a frame built but not run leaves the history as it was.
+  // `cutFrame` numbers a cut (the frame's index in its sequence, RenderOptions::sequenceFrame):
+  // the frames after it take their marched pixels and jitter by their numbers, so a shard
+  // that starts inside a sequence marches as the whole run does from its cut on.
   Step step(const Scene& scene, const IsoTime& time, const shared::ViewState& view,
-            uint64_t mapRevision);
+            uint64_t mapRevision, uint64_t cutFrame = 0);
   // Where the clouds lie for the reprojection.
   struct Shells {
     double planetRadiusM = 0.0, cameraAltitudeM = 0.0, shellBaseM = 0.0, shellTopM = 0.0;

@@ -62,6 +62,7 @@ struct FrameInputs {
   bool clouds;
   // Drawing into a host's images with its depth (RenderOptions::host): where its geometry is.
   std::optional<VolumetricCloudsPass::Inputs::HostDepth> hostDepth;
+  uint64_t sequenceFrame = 0;  // RenderOptions::sequenceFrame
 };
 
 // Milliseconds of wall time since `start`: what a part of a frame reports it spent.

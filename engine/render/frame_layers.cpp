@@ -1,6 +1,11 @@
 #include "engine/render/frame_layers.h"
 
+#include <algorithm>
+#include <limits>
+
 #include <glm/glm.hpp>
+
+#include "engine/core/error.h"
 
 #include "engine/gpu/image.h"
 
@@ -37,6 +42,11 @@ std::vector<std::string> channelNames(const ImageDesc& desc) {
   return names;
 }
 
+std::string frameLayerName(const ImageLayer& layer) {
+  if (!layer.name.empty()) return layer.name;
+  return layer.integer ? "label" : "beauty";
+}
+
 ImageLayer beautyLayer(const ReadbackImage& beauty) {
   return imageLayer(beauty, "", {"R", "G", "B", "A"}, true);
 }
@@ -57,6 +67,43 @@ void appendAovLayers(LayeredImage& image, const ReadbackImage& sky, const Readba
       layer.pixels[i * 5 + 4] = depth->pixels[i * depth->channels];
     }
   image.layers.push_back(std::move(layer));
+}
+
+void appendPerceptionLayers(LayeredImage& image, const ReadbackImage& perception,
+                            const ReadbackImage* cloudHit) {
+  const size_t n = size_t(image.width) * size_t(image.height);
+  ImageLayer* clouds = nullptr;
+  for (ImageLayer& layer : image.layers)
+    if (layer.name == "clouds") clouds = &layer;
+  if (!clouds) internalError("appendPerceptionLayers: no clouds layer to extend");
+  const size_t c0 = clouds->channels.size(), c1 = c0 + 2;
+  std::vector<float> pixels(n * c1);
+  for (size_t i = 0; i < n; ++i) {
+    std::copy_n(clouds->pixels.begin() + i * c0, c0, pixels.begin() + i * c1);
+    pixels[i * c1 + c0] = cloudHit ? cloudHit->pixels[i * cloudHit->channels] : 0.0f;
+    pixels[i * c1 + c0 + 1] = cloudHit ? cloudHit->pixels[i * cloudHit->channels + 1]
+                                       : std::numeric_limits<float>::infinity();
+  }
+  clouds->channels.push_back("optical_depth");
+  clouds->channels.push_back("distance");
+  clouds->pixels = std::move(pixels);
+
+  ImageLayer label{"", {"label", "cloud_type"}, {}, false, true};
+  ImageLayer air{"air", {"transmittance"}, {}, true};
+  ImageLayer ground{"ground", {"cloud_shadow"}, {}, true};
+  label.pixels.resize(n * 2);
+  air.pixels.resize(n);
+  ground.pixels.resize(n);
+  const size_t pc = perception.channels;
+  for (size_t i = 0; i < n; ++i) {
+    label.pixels[i * 2] = perception.pixels[i * pc];
+    label.pixels[i * 2 + 1] = perception.pixels[i * pc + 1];
+    air.pixels[i] = perception.pixels[i * pc + 2];
+    ground.pixels[i] = perception.pixels[i * pc + 3];
+  }
+  image.layers.push_back(std::move(label));
+  image.layers.push_back(std::move(air));
+  image.layers.push_back(std::move(ground));
 }
 
 ImageLayer weatherCoverLayer(const WeatherMap& map, const WeatherRegion& region, uint32_t width,

@@ -48,6 +48,10 @@ void requestOutputs(FrameGraph& graph, FramePlan& plan, const RenderOptions& opt
       o.clouds = graph.requestOutput(plan.clouds, prefix + "clouds");
       o.cloudsDepth = graph.requestOutput(plan.cloudsDepth, prefix + "clouds_depth");
     }
+    if (plan.perception.valid())
+      o.perception = graph.requestOutput(plan.perception, prefix + "perception");
+    if (plan.cloudHit.valid())
+      o.cloudHit = graph.requestOutput(plan.cloudHit, prefix + "cloud_perception");
   }
   if (plan.display.valid() && !options.displayTarget)
     o.display = graph.requestOutput(plan.display, prefix + "display");
@@ -77,6 +81,9 @@ void collectOutputs(RenderedFrame& out, const FrameResult& result, const FrameGr
     appendAovLayers(out.image, result.output(o.sky), result.output(o.highClouds),
                     clouds ? &result.output(o.clouds) : nullptr,
                     clouds ? &result.output(o.cloudsDepth) : nullptr);
+    if (o.perception.valid())
+      appendPerceptionLayers(out.image, result.output(o.perception),
+                             o.cloudHit.valid() ? &result.output(o.cloudHit) : nullptr);
     if (plan.weather)
       out.image.layers.push_back(
           weatherCoverLayer(*plan.weather, plan.weather->region, width, height));

@@ -17,10 +17,13 @@ struct WeatherMap;
 // What a frame's outputs are read from: its images, and their read-backs once requested.
 struct FramePlan {
   ImageId beauty, sky, highClouds, clouds, cloudsDepth, display;
+  // With output.perception: the composite's perception image and the clouds' hits (invalid
+  // without volumetric clouds).
+  ImageId perception, cloudHit;
   // Their read-backs, as requestOutputs asked for them (invalid: not read back), and the
   // debug images'.
   struct Outputs {
-    OutputId beauty, sky, highClouds, clouds, cloudsDepth, display;
+    OutputId beauty, sky, highClouds, clouds, cloudsDepth, display, perception, cloudHit;
     std::vector<std::pair<OutputId, GraphImage>> debug;
   } outputs;
   const WeatherMap* weather = nullptr;  // a top-down view's map, for its "weather" layer

@@ -4,6 +4,7 @@
 // layers, display codes, debug images, timings and costs. Apart from renderer.h so the parts
 // of a frame (engine/render/frame_outputs.h) can name them without the Renderer.
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -12,6 +13,7 @@
 #include "engine/graph/frame_graph.h"
 #include "engine/io/exr.h"
 #include "engine/lighting/lighting_state.h"
+#include "engine/render/perception.h"
 #include "engine/scene/scene.h"
 #include "engine/weather/local_weather.h"
 #include "passes/cloud_noise/cloud_noise.h"
@@ -83,6 +85,10 @@ struct RenderOptions {
   // ReadBack::Display; the caller must not use it while the frame runs.
   PersistentImage* displayTarget = nullptr;
   VkImageLayout displayTargetLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+  // The frame's index in its sequence (a time-lapse's frame number): a cut of the cloud
+  // history numbers its march from here (CloudReuse::step), so `skyrender render --shard`
+  // marches a shard's frames as the whole run does once it has warmed up.
+  uint64_t sequenceFrame = 0;
   // Draw into the host's images instead (readBack, debugOutputs and gpuDisplay are ignored:
   // nothing is read back). The target must outlive the call; its images, until the host's
   // command buffer has run.
@@ -140,6 +146,9 @@ struct RenderedFrame {
   // with a displayTarget, which holds them), and the exposure it was made with (EV).
   std::vector<uint8_t> display;
   double displayEv = 0.0;
+  // With output.perception and the layers read back: the frame's visibility, sun and label
+  // shares (engine/render/perception.h).
+  std::optional<PerceptionSummary> perception;
 };
 
 }  // namespace sky

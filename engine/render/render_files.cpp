@@ -14,6 +14,7 @@
 #include "engine/core/files.h"
 #include "engine/core/paths.h"
 #include "engine/io/png.h"
+#include "engine/render/frame_layers.h"
 #include "engine/scene/scene_io.h"
 
 namespace sky {
@@ -89,9 +90,17 @@ nlohmann::ordered_json renderReport(const Scene& scene, const RenderedFrame& fra
                     {"display", scene.output.display},
                     {"view", scene.output.view}};
   nlohmann::ordered_json layers = nlohmann::ordered_json::array();
-  for (const ImageLayer& l : frame.image.layers)
-    layers.push_back(l.name.empty() ? "beauty" : l.name);
+  for (const ImageLayer& l : frame.image.layers) layers.push_back(frameLayerName(l));
   report["exr_layers"] = layers;
+  if (const std::optional<PerceptionSummary>& p = frame.perception) {
+    nlohmann::ordered_json shares;
+    for (int k = 0; k < PERCEPTION_LABEL_COUNT; ++k)
+      shares[perceptionLabelName(k)] = p->labelShares[size_t(k)];
+    report["perception"] = {{"visibility_m", p->visibilityM},
+                            {"sun_visible", p->sunVisible},
+                            {"sun_cloud_transmittance", p->sunCloud},
+                            {"label_shares", shares}};
+  }
   nlohmann::ordered_json highClouds;
   highClouds["baked"] = frame.highClouds.baked;
   highClouds["loaded_cache"] = frame.highClouds.loadedCache;
@@ -164,6 +173,10 @@ RenderFiles writeRenderFiles(const std::filesystem::path& dir, const std::string
   exr.attributes["skylayers:device"] = deviceName;
   // The stops the PNG was exposed by: the EXR itself is physical (docs/outputs.md).
   exr.attributes["skylayers:exposure_ev"] = std::to_string(exposure.ev);
+  if (frame.perception) {
+    exr.attributes["skylayers:visibility_m"] = std::to_string(frame.perception->visibilityM);
+    exr.attributes["skylayers:sun_visible"] = std::to_string(frame.perception->sunVisible);
+  }
 
   AtomicFileSet set;
   set.stage(files.exr, [&](const std::filesystem::path& tmp) { writeExr(tmp, exr); });

@@ -63,7 +63,8 @@ FramePlan Renderer::buildFrame(FrameGraph& graph, const Scene& scene, const IsoT
                       shared,
                       setup.lighting,
                       out.clouds,
-                      hostDepth};
+                      hostDepth,
+                      options.sequenceFrame};
   FramePlan plan;
   const SkyLayer::Images sky = mSky.addTo(graph, f);
   out.costs.texturesMs += sky.texturesMs;
@@ -87,6 +88,7 @@ FramePlan Renderer::buildFrame(FrameGraph& graph, const Scene& scene, const IsoT
   compositeSettings.aboveHighClouds =
       !f.topDown && scene.camera.altitudeM > sky.highAltitudeM.value_or(scene.highClouds.altitudeM);
   compositeSettings.belowClouds = scene.camera.altitudeM < setup.volumetric.clouds.low.baseM;
+  compositeSettings.highCloudsAltitudeM = sky.highAltitudeM.value_or(scene.highClouds.altitudeM);
   AtmosphereCompositePass::Inputs composite{};
   composite.params = atmosphereCompositeParams(compositeSettings, f.lighting, f.view);
   if (clouds)
@@ -113,7 +115,15 @@ FramePlan Renderer::buildFrame(FrameGraph& graph, const Scene& scene, const IsoT
     h.depthSampler = &mHostDepthSampler;
     composite.host = h;
   }
-  plan.beauty = graph.add(mComposite, composite).beauty;
+  if (scene.output.perception && !options.host && !f.topDown)
+    composite.perception =
+        AtmosphereCompositePass::Perception{clouds ? clouds->perception : std::nullopt};
+  const AtmosphereCompositePass::Outputs composed = graph.add(mComposite, composite);
+  plan.beauty = composed.beauty;
+  if (composite.perception) {
+    plan.perception = composed.perception;
+    if (clouds) plan.cloudHit = *clouds->perception;
+  }
   plan.sky = sky.sky.sky;
   plan.highClouds = sky.sky.highClouds;
   if (clouds) {
@@ -173,6 +183,16 @@ RenderedFrame Renderer::render(const Scene& scene, const IsoTime& time,
   if (!options.host) {
     collectOutputs(out, out.frame, graph, plan, options);
     for (ReadbackImage& o : out.frame.outputs) o.pixels = {};  // the layers hold the data now
+    if (plan.outputs.perception.valid()) {
+      // The frame's numbers from the field the queries read (made only with clouds).
+      const ImageLayer* labels = nullptr;
+      for (const ImageLayer& layer : out.image.layers)
+        if (layer.integer && !layer.channels.empty() && layer.channels[0] == "label")
+          labels = &layer;
+      if (!labels) internalError("render: the perception layers lack the labels");
+      out.perception = perceptionSummary(mClouds.field(scene, time), out.lighting.sun.direction,
+                                         *labels);
+    }
   }
   finishCosts(out, start, pipelinesBefore);
   return out;
@@ -266,6 +286,11 @@ std::vector<DebugImageInfo> Renderer::debugImages(const Scene& scene, const IsoT
 CloudVolume Renderer::exportCloudVolume(const Scene& scene, const IsoTime& time,
                                         const std::optional<CloudVolumeBox>& box, double voxelM) {
   return mClouds.exportVolume(scene, time, box, voxelM);
+}
+
+void Renderer::startAfresh() {
+  mClouds.forgetKept();
+  mClouds.invalidateReuse();
 }
 
 CloudField Renderer::cloudField(const Scene& scene, const IsoTime& time) {

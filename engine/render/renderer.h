@@ -78,6 +78,11 @@ public:
   // BadInput for a top-down camera (its frame has no observer to hold the field around).
   CloudField cloudField(const Scene& scene, const IsoTime& time);
 
+  // Forgets what a frame keeps for the next (the cloud history, the light volume and the
+  // shadow map), so the next frame is drawn as a process's first would be, whatever came
+  // before: a dataset's samples each start so, and any process renders sample k the same.
+  void startAfresh();
+
 private:
   // A frame in four steps: build the graph (sky, clouds, composite, display), request its
   // outputs (the EXR's layers, the display image, debug images by name), execute, collect.

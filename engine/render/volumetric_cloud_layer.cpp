@@ -18,6 +18,7 @@ VolumetricCloudLayer::VolumetricCloudLayer(const Context& ctx, ShaderCompiler& c
       mUpsample(ctx, compiler),
       mLightVolume(ctx, compiler),
       mSlice(ctx, compiler),
+      mPerception(ctx, compiler),
       mVolumeExport(ctx, compiler) {}
 
 void VolumetricCloudLayer::forgetKept() {
@@ -123,7 +124,7 @@ VolumetricCloudLayer::Images VolumetricCloudLayer::addTo(FrameGraph& graph, cons
   }
   std::optional<CloudReuse::Step> step;
   if (temporal) {
-    step = mReuse.step(scene, f.time, cloudView, mWeather.mapRevision());
+    step = mReuse.step(scene, f.time, cloudView, mWeather.mapRevision(), f.sequenceFrame);
     in.params.marchBlock = step->block;
     in.params.marchOffsetX = step->offset.x;
     in.params.marchOffsetY = step->offset.y;
@@ -132,6 +133,12 @@ VolumetricCloudLayer::Images VolumetricCloudLayer::addTo(FrameGraph& graph, cons
         (in.params.frameIndex + static_cast<uint32_t>(step->frame) * 0x9E3779B9u) & 0x7fffffffu;
   }
   const VolumetricCloudsPass::Outputs marched = graph.add(mVolumetric, in);
+  if (scene.output.perception && !f.topDown) {
+    // Every pixel at the output's size, whatever the beauty's march does.
+    CloudPerceptionPass::Inputs p{in.params, in.variant, in.textures};
+    p.params.view = f.view;
+    c.perception = graph.add(mPerception, p).hit;
+  }
   c.clouds = marched.clouds;
   c.depth = marched.depth;
   if (temporal) {

@@ -17,6 +17,7 @@
 #include "passes/cloud_ambient/cloud_ambient.h"
 #include "passes/cloud_density_slice/cloud_density_slice.h"
 #include "passes/cloud_light_volume/cloud_light_volume.h"
+#include "passes/cloud_perception/cloud_perception.h"
 #include "passes/cloud_shadow/cloud_shadow.h"
 #include "passes/cloud_upsample/cloud_upsample.h"
 #include "passes/cloud_volume_export/cloud_volume_export.h"
@@ -42,6 +43,8 @@ public:
   // and what the layer reports of the frame.
   struct Images {
     ImageId clouds, depth;
+    // With output.perception: each pixel's optical depth and first hit (CloudPerceptionPass).
+    std::optional<ImageId> perception;
     CloudShadowPass::Outputs shadow{};
     CloudLayers::Frame frame;
     double texturesMs = 0.0;     // keeping, loading or baking the noise and weather textures
@@ -78,6 +81,7 @@ private:
   CloudLightVolumePass mLightVolume;
   SettingsRevisions mFieldSettings;  // what the light volume and shadow map were made for
   CloudDensitySlicePass mSlice;
+  CloudPerceptionPass mPerception;
   CloudVolumeExportPass mVolumeExport;
 };
 

@@ -44,6 +44,10 @@ struct OutputSettings {
   std::string display = "sRGB";  // OCIO display
   std::string view = "ACES 1.0 - SDR Video";  // OCIO view
   bool dither = true;  // dither the 8-bit PNG (not the EXR) so smooth gradients do not band
+  // The perception layers in the EXR (clouds.optical_depth, clouds.distance, label,
+  // cloud_type, air.transmittance, ground.cloud_shadow; docs/outputs.md): one more march of
+  // the clouds' density per pixel (passes/cloud_perception).
+  bool perception = false;
 
   bool operator==(const OutputSettings&) const = default;
 };

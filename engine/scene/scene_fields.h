@@ -46,6 +46,10 @@ void describe(V& v, OutputSettings& s) {
   v.field("view", s.view, TextRule{1}, "OCIO view");
   v.field("dither", s.dither,
           "dither the 8-bit PNG before rounding, so smooth gradients show no bands (not the EXR)");
+  v.field("perception", s.perception,
+          "also write the perception layers to the EXR: the clouds' optical depth and hit "
+          "distance, a label and cloud type per pixel, the air's transmittance and the ground's "
+          "cloud shadow (docs/outputs.md)");
 }
 
 template <class V>
@@ -433,6 +437,9 @@ void describe(V& v, Scene& s) {
             "volumetric low and mid clouds: model, lighting and raymarch (Lu, Tang)");
   v.section("weather", s.weather, "the weather map: region, cover and cloud type");
   v.section("lighting", s.lighting, "refraction, light through the atmosphere, night and palette");
+  v.check("output", !s.output.perception || s.camera.mode == CameraMode::Observer,
+          "perception needs camera.mode observer: a geographic_topdown map has no observer's "
+          "rays to label");
 }
 
 }  // namespace sky

@@ -46,6 +46,7 @@ shared::AtmosphereCompositeParams atmosphereCompositeParams(const AtmosphereComp
   p.view = view;
   p.aboveHighClouds = s.aboveHighClouds ? 1u : 0u;
   p.observer = s.observer ? 1u : 0u;
+  p.highCloudsAltitudeM = static_cast<float>(s.highCloudsAltitudeM);
   // The camera may not sit below the ground sphere (sky_high_clouds places it the same way).
   p.planetRadiusM = static_cast<float>(s.planetRadiusM);
   p.cameraRadiusM = static_cast<float>(s.planetRadiusM + std::max(s.cameraAltitudeM, 1.0));
@@ -173,7 +174,8 @@ AtmosphereCompositePass::Outputs AtmosphereCompositePass::setup(GraphBuilder& b,
                               flag("ATMOSPHERE_COMPOSITE_CLOUD_AIR", band.cloudAir),
                               flag("ATMOSPHERE_COMPOSITE_HOST", in.host.has_value()),
                               flag("ATMOSPHERE_COMPOSITE_HOST_DEPTH", in.host && in.host->depth),
-                              {"ATMOSPHERE_COMPOSITE_HOST_FORMAT", hostFormat}}));
+                              {"ATMOSPHERE_COMPOSITE_HOST_FORMAT", hostFormat},
+                              flag("ATMOSPHERE_COMPOSITE_PERCEPTION", in.perception.has_value())}));
   if (in.starFlux) b.read(*in.starFlux, Access::StorageReadCompute);
   b.read(in.sky, Access::StorageReadCompute);
   b.read(in.highClouds, Access::StorageReadCompute);
@@ -198,6 +200,21 @@ AtmosphereCompositePass::Outputs AtmosphereCompositePass::setup(GraphBuilder& b,
   desc.about = "the frame: sky, clouds and ground through the atmosphere (scene-linear)";
   d.outputs.beauty = b.write(b.create(desc), Access::StorageWriteCompute);
   d.outputs.host = {};
+  d.outputs.perception = {};
+  if (in.perception) {
+    if (in.clouds.has_value() != in.perception->cloudHit.has_value())
+      internalError("atmosphere_composite: the perception layers need the clouds' hits with clouds");
+    if (in.perception->cloudHit) b.read(*in.perception->cloudHit, Access::StorageReadCompute);
+    ImageDesc p = desc;
+    p.name = "perception";
+    p.about =
+        "the perception layers: R label (0 sky, 1 ground, 2 low, 3 mid, 4 high cloud, 5 sun, 6 "
+        "moon), G cloud type, B the air's transmittance to what the ray meets, A the ground's "
+        "cloud shadow";
+    p.view = DebugView::Heat;  // the label: a small count of classes in false colour
+    p.channels = "label,cloud_type,air_transmittance,cloud_shadow";
+    d.outputs.perception = b.write(b.create(p), Access::StorageWriteCompute);
+  }
   if (in.host) {
     if (in.host->depth) b.read(*in.host->depth, Access::SampledCompute);
     d.outputs.host = b.write(in.host->colour, Access::StorageReadWriteCompute);
@@ -237,6 +254,11 @@ void AtmosphereCompositePass::execute(PassContext& ctx, const Data& d) const {
     if (h->depth)
       bindings.push_back(
           Binding::of(ATMOSPHERE_COMPOSITE_BINDING_HOST_DEPTH, *h->depth, h->depthSampler));
+  }
+  if (const auto& p = d.inputs.perception) {
+    if (p->cloudHit)
+      bindings.push_back(Binding::of(ATMOSPHERE_COMPOSITE_BINDING_CLOUD_HIT, *p->cloudHit));
+    bindings.push_back(Binding::of(ATMOSPHERE_COMPOSITE_BINDING_PERCEPTION, d.outputs.perception));
   }
   for (const auto& [band, pipeline] : d.bands) {
     const shared::AtmosphereCompositeBand rows{glm::uvec4(band.firstRow, band.rows, 0u, 0u)};

@@ -31,6 +31,7 @@ struct AtmosphereCompositeSettings {
   bool observer = true;          // false for a top-down render: no ground, no aerial perspective
   bool aboveHighClouds = false;  // the camera flies above the high-cloud layer
   bool belowClouds = true;       // the camera is below the volumetric clouds' lowest base
+  double highCloudsAltitudeM = 0.0;  // the high-cloud layer (the perception layers' air)
 };
 
 // The pass's uniforms for one frame (the shadow map's part stays invalid until
@@ -92,6 +93,11 @@ public:
     shared::HostDepth depthMapping{};                       // present is set by setup
     const Sampler* depthSampler = nullptr;                  // nearest, clamp to edge
   };
+  // The perception layers (docs/outputs.md): what each pixel's centre ray meets first.
+  struct Perception {
+    // From CloudPerceptionPass, with Inputs::clouds (none: no volumetric clouds).
+    std::optional<ImageId> cloudHit;
+  };
   struct Inputs {
     shared::AtmosphereCompositeParams params;  // atmosphereCompositeParams
     shared::LightingState lighting;            // this frame's lights and palette
@@ -101,10 +107,14 @@ public:
     std::optional<Clouds> clouds;              // none: no volumetric clouds
     std::optional<Atmosphere> atmosphere;      // none: sky.model kozlov
     std::optional<Host> host;                  // none: the frame is the beauty alone
+    std::optional<Perception> perception;      // none: no perception layers
   };
   struct Outputs {
     ImageId beauty;  // RGBA32F scene-linear, alpha 1
     ImageId host;    // with Inputs::host: the host's colour, drawn into
+    // With Inputs::perception, RGBA32F: r label, g cloud type (cloud_perception_shared.h's
+    // numbers), b the air's transmittance to what the ray meets, a the ground's cloud shadow.
+    ImageId perception;
   };
 
   // The shader's variants (physical or kozlov; clouds, stars, each disc or not; ground and

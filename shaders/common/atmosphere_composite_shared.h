@@ -31,6 +31,10 @@
 // Drawing into a host's images (ATMOSPHERE_COMPOSITE_HOST 1, skylayers::Sky::record):
 #define ATMOSPHERE_COMPOSITE_BINDING_HOST_COLOUR 12  // read and written: the host's colour
 #define ATMOSPHERE_COMPOSITE_BINDING_HOST_DEPTH 13   // sampled: the host's depth (optional)
+// The perception layers (ATMOSPHERE_COMPOSITE_PERCEPTION 1, docs/outputs.md):
+#define ATMOSPHERE_COMPOSITE_BINDING_CLOUD_HIT 14   // read: from passes/cloud_perception
+#define ATMOSPHERE_COMPOSITE_BINDING_PERCEPTION 15  // out: r label, g cloud type, b the air's
+                                                    // transmittance, a the ground's cloud shadow
 
 // Kasten & Czeplak (1980): under full overcast the ground receives a quarter of the clear
 // sky's global irradiance (light::overcastGlobalShare(1)), all of it diffuse light the clouds
@@ -48,7 +52,8 @@ struct AtmosphereCompositeParams {
                         // front of the volumetric clouds)
   uint observer;        // 1: the lit ground below the horizon and the aerial perspective;
                         // 0: neither (a top-down render, whose rays the cloud pass places)
-  uint unused0;
+  float highCloudsAltitudeM;  // the high-cloud layer's altitude (m above sea level): where
+                              // the perception layers' air ends for a high-cloud pixel
 
   float planetRadiusM;  // the sphere the ground lies on (the sky model's planet)
   float cameraRadiusM;  // the camera's distance from its centre

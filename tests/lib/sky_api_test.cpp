@@ -325,6 +325,57 @@ TEST(SkylayersApi, AQuerysTransmittanceAlongAPixelsRayIsThatPixelsCloudCoverage)
   EXPECT_LE(off, int(0.02 * pixels));
 }
 
+TEST(SkylayersApi, ThePerceptionLayersAreTheQueriesAnswers) {
+  // The default cumulus from below: per pixel the optical depth and the first hit the frame
+  // gives, against transmittance() and firstCloud() along the pixel's ray; the frame's
+  // sun_visible against the query toward the sun.
+  skylayers::Sky sky = defaultSky({"camera.pitch=35", "camera.vertical_fov=30",
+                                   "camera.heading=0", "output.perception=true",
+                                   "sky.model=physical"});
+  sky.setSize(24, 14);
+  const skylayers::Frame frame = sky.render({.layers = true});
+  const skylayers::Image& clouds = frame.layer("clouds");
+  const skylayers::Image& label = frame.layer("label");
+  const skylayers::Image& air = frame.layer("air");
+  const skylayers::GeoPose pose = sky.camera();
+  const skylayers::GeoPoint camera{pose.latitudeDeg, pose.longitudeDeg, pose.altitudeM};
+  int hits = 0;
+  for (int y = 1; y < 14; y += 3)
+    for (int x = 1; x < 24; x += 3) {
+      const skylayers::GeoPoint far = sky.pixelPoint(x + 0.5, y + 0.5, 15000.0);
+      const skylayers::Transmittance t = sky.transmittance(camera, far);
+      const double tau = clouds.at(x, y, "optical_depth");
+      EXPECT_NEAR(tau, t.cloudOpticalDepth, 0.05 + 0.05 * t.cloudOpticalDepth) << x << "," << y;
+      const double hit = clouds.at(x, y, "distance");
+      const double first = sky.firstCloud(camera, far);
+      if (t.cloudOpticalDepth > 0.12) {
+        EXPECT_NEAR(hit, first, 40.0 + 0.02 * first) << x << "," << y;
+        EXPECT_EQ(label.at(x, y, "label"), 2.0f) << "low cloud";
+        // The air to the hit: the query's air to the point at that distance.
+        const skylayers::Transmittance a =
+            sky.transmittance(camera, sky.pixelPoint(x + 0.5, y + 0.5, hit));
+        EXPECT_NEAR(air.at(x, y, "transmittance"),
+                    0.2126 * a.air[0] + 0.7152 * a.air[1] + 0.0722 * a.air[2], 0.02);
+        ++hits;
+      } else if (t.cloudOpticalDepth < 0.08) {
+        EXPECT_TRUE(std::isinf(hit)) << x << "," << y;
+        EXPECT_EQ(first, -1.0);
+      }
+    }
+  EXPECT_GE(hits, 5) << "the view should hold clouds";
+  // The sun: its line through the clouds and the air, as a query sees it (to 100 km up).
+  const nlohmann::json report = nlohmann::json::parse(frame.report);
+  const skylayers::Lighting light = sky.lighting();
+  const double up = std::sin(light.sun.elevationDeg * M_PI / 180.0);
+  sky.set(std::vector<std::string>{"camera.heading=" + std::to_string(light.sun.azimuthDeg),
+                                   "camera.pitch=" + std::to_string(light.sun.elevationDeg)});
+  const skylayers::Transmittance toSun =
+      sky.transmittance(camera, sky.pixelPoint(12.0, 7.0, (100000.0 - pose.altitudeM) / up));
+  const double expected = toSun.cloud * (0.2126 * toSun.air[0] + 0.7152 * toSun.air[1] +
+                                         0.0722 * toSun.air[2]);
+  EXPECT_NEAR(report["perception"]["sun_visible"].get<double>(), expected, 0.02 + 0.05 * expected);
+}
+
 TEST(SkylayersApi, QueriesSeeTheCloudsAndTheAir) {
   skylayers::Sky sky = defaultSky();
   const skylayers::GeoPose pose = sky.camera();

@@ -103,25 +103,27 @@ class CloudLayerView {
 public:
   explicit CloudLayerView(const RenderedFrame& frame)
       : mLayer(frame.image.find("clouds")), mWidth(frame.image.width), mHeight(frame.image.height) {
-    if (!mLayer || mLayer->channels.size() != 5)
+    if (!mLayer || mLayer->channels.size() < 5)
       ADD_FAILURE() << "the frame has no clouds layer with R, G, B, A, depth";
+    mStride = mLayer ? mLayer->channels.size() : 5;
   }
   int width() const { return mWidth; }
   int height() const { return mHeight; }
   CloudPixel at(int x, int y) const {
-    const float* p = &mLayer->pixels[(static_cast<size_t>(y) * mWidth + x) * 5];
+    const float* p = &mLayer->pixels[(static_cast<size_t>(y) * mWidth + x) * mStride];
     return {{p[0], p[1], p[2]}, p[3], p[4]};
   }
   // The opacity of every pixel, row-major.
   std::vector<float> alpha() const {
     std::vector<float> a(static_cast<size_t>(mWidth) * mHeight);
-    for (size_t i = 0; i < a.size(); ++i) a[i] = mLayer->pixels[i * 5 + 3];
+    for (size_t i = 0; i < a.size(); ++i) a[i] = mLayer->pixels[i * mStride + 3];
     return a;
   }
 
 private:
   const ImageLayer* mLayer;
   int mWidth, mHeight;
+  size_t mStride = 5;  // channels per pixel: with the perception layers, 7
 };
 
 // The unit view direction (ENU) of pixel (x, y) of a perspective camera, as the renderer's

@@ -191,6 +191,12 @@ struct WeatherGrid {
 SKYLAYERS_API WeatherGrid weatherMap(const std::string& file,
                                      const std::vector<std::string>& overrides = {});
 
+// The channels of an EXR that skyrender or a dataset wrote, one image per layer: "beauty" for
+// the main layer's R, G, B, A, "label" and "cloud_type" for the perception labels, each other
+// layer by its name ("clouds": R, G, B, A, depth, optical_depth, distance). CPU only;
+// BadInput naming the file when it cannot be read.
+SKYLAYERS_API std::vector<Image> readExr(const std::string& path);
+
 // Nine real spherical-harmonic coefficients (bands l = 0, 1, 2) per linear Rec.709 channel,
 // over directions in east-north-up (x east, y north, z up), in the order Y00, Y1-1 (y),
 // Y10 (z), Y11 (x), Y2-2 (xy), Y2-1 (yz), Y20 (3z^2 - 1), Y21 (xz), Y22 (x^2 - y^2), with
