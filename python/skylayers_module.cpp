@@ -1,6 +1,7 @@
 // `import skylayers`: the public C++ API (lib/include/skylayers/skylayers.h) for Python, with
 // pybind11 (docs/python.md). A frame's images are numpy arrays over the frame's own memory:
 // each array's base is the Frame object, which keeps the pixels alive with no copy.
+#include <pybind11/eval.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -209,6 +210,69 @@ PYBIND11_MODULE(skylayers, m) {
       "dict of (H, W) float32 arrays (cover_low, cover_mid, cover_high, type, and each "
       "layer's base and top in m; row 0 north) and 'region'. Scene keys as "
       "**{'weather.region.lat': [0, 55]}.");
+  m.def(
+      "read_exr",
+      [](const py::object& file) {
+        const std::string path = py::module_::import("os").attr("fspath")(file).cast<std::string>();
+        std::vector<skylayers::Image> images;
+        {
+          py::gil_scoped_release release;
+          images = skylayers::readExr(path);
+        }
+        py::dict out;
+        for (const skylayers::Image& image : images) {
+          const size_t n = image.channels.size();
+          for (size_t c = 0; c < n; ++c) {
+            const std::string& channel = image.channels[c];
+            const std::string key = image.name == "beauty" || image.name == channel
+                                        ? channel
+                                        : image.name + "." + channel;
+            py::array_t<float> a({py::ssize_t(image.height), py::ssize_t(image.width)});
+            float* o = a.mutable_data();
+            for (size_t i = 0; i < size_t(image.width) * size_t(image.height); ++i)
+              o[i] = image.pixels[i * n + c];
+            out[py::str(key)] = a;
+          }
+        }
+        return out;
+      },
+      py::arg("file"),
+      "The channels of an EXR that skyrender or a dataset wrote, by their names in the file: "
+      "a dict of (H, W) float32 arrays ('R', 'G', 'B', 'A', 'label', 'cloud_type', "
+      "'clouds.optical_depth', 'air.transmittance', ...; docs/outputs.md).");
+  // A dataset's manifest (docs/datasets.md): plain JSON Lines, read in Python.
+  py::exec(R"py(
+def read_manifest(folder):
+    """A dataset's samples, by index: the lines of FOLDER/manifest.jsonl (a merged or an
+    unsharded run's), or, where there is none yet, of its shard manifests
+    (manifest.I-of-N.jsonl) joined. Each is a dict: index, scene, sun_elevation_deg, cover,
+    labels, visibility_m, sun_visible, files (name and sha256 of the exr, png and scene). A
+    last line a killed run left unfinished is not a sample."""
+    import glob, json, os, re
+    folder = os.fspath(folder)
+    merged = os.path.join(folder, "manifest.jsonl")
+    if os.path.exists(merged):
+        paths = [merged]
+    else:
+        paths = sorted(p for p in glob.glob(os.path.join(folder, "manifest.*.jsonl"))
+                       if re.fullmatch(r"manifest\.[0-9]+-of-[0-9]+\.jsonl", os.path.basename(p)))
+    if not paths:
+        raise Error("%s: no dataset manifest (manifest.jsonl or manifest.I-of-N.jsonl)" % folder)
+    samples = {}
+    for path in paths:
+        with open(path, encoding="utf-8") as f:
+            text = f.read()
+        lines = text.split("\n")
+        for number, line in enumerate(lines[:-1], 1):  # the last piece has no newline
+            if line.strip():
+                try:
+                    sample = json.loads(line)
+                except ValueError as e:
+                    raise Error("%s:%d: not a JSON line: %s" % (path, number, e))
+                samples.setdefault(sample["index"], sample)
+    return [samples[k] for k in sorted(samples)]
+)py", m.attr("__dict__"));
+
   m.def("data_directory", &skylayers::dataDirectory,
         "The folder the shaders and configs are read from.");
   m.def(

@@ -20,10 +20,14 @@
 #include "apps/common/default_scene.h"
 #include "apps/common/stop_signals.h"
 #include "cli_args.h"
+#include "command_support.h"
 #include "engine/color/ocio_output.h"
 #include "engine/core/error.h"
 #include "engine/core/files.h"
 #include "engine/core/paths.h"
+#include "engine/core/sha256.h"
+#include "engine/dataset/dataset_manifest.h"
+#include "engine/dataset/dataset_spec.h"
 #include "engine/gpu/context.h"
 #include "engine/io/png.h"
 #include "engine/lighting/lighting_state.h"
@@ -75,15 +79,6 @@ void atSceneKey(const CliArgs& args, const std::function<void()>& check) {
   }
 }
 
-// "\r[#####.....] text" on stderr: one line that redraws itself.
-void drawBar(double fraction, const std::string& text) {
-  constexpr int kWidth = 30;
-  int filled = std::clamp(static_cast<int>(kWidth * fraction), 0, kWidth);
-  std::fprintf(stderr, "\r[%s%s] %s", std::string(filled, '#').c_str(),
-               std::string(kWidth - filled, '.').c_str(), text.c_str());
-  std::fflush(stderr);
-}
-
 // A one-line progress bar on stderr for time-lapses, only when stderr is a terminal (logs and
 // tests get the final summary line alone).
 class Progress {
@@ -124,6 +119,49 @@ double numberOption(const CliArgs& args, const std::string& option, double min, 
   return v;
 }
 
+// The frames a shard of a time-lapse writes, [begin, end), and the first it draws: with
+// temporal reuse a frame is made from the ones before it, so a shard that starts inside the
+// sequence first draws kShardWarmupCycles cycles of the march's blocks unwritten (a cycle,
+// block^2 frames, marches every pixel once), and its first frame then holds the history an
+// unsharded run holds there (docs/datasets.md, "Sharding a time-lapse").
+constexpr int64_t kShardWarmupCycles = 2;
+struct ShardFrames {
+  int64_t warmFrom = 0, begin = 0, end = 0;
+};
+ShardFrames shardFrames(const Scene& scene, const Shard& shard, int64_t count) {
+  ShardFrames f;
+  f.begin = (shard.index - 1) * count / shard.count;
+  f.end = shard.index * count / shard.count;
+  int64_t warm = 0;
+  if (scene.clouds.temporal.mode == CloudTemporalMode::On)
+    warm = kShardWarmupCycles * int64_t(scene.clouds.temporal.block) * scene.clouds.temporal.block;
+  f.warmFrom = std::max<int64_t>(0, f.begin - warm);
+  return f;
+}
+
+// A sharded time-lapse's manifest line for frame `index`: what skyrender merge joins.
+nlohmann::ordered_json frameManifestLine(int64_t index, int64_t count, const std::string& sceneSum,
+                                         const IsoTime& time, const RenderFiles& files) {
+  nlohmann::ordered_json f;
+  for (const auto& [kind, path] :
+       {std::pair<const char*, const fs::path*>{"exr", &files.exr}, {"png", &files.png},
+        {"report", &files.report}})
+    f[kind] = {{"name", path->filename().string()}, {"sha256", sha256File(*path)}};
+  return {{"index", index}, {"count", count}, {"spec", sceneSum}, {"time", time.format()},
+          {"files", f}};
+}
+
+}  // namespace
+
+// "\r[#####.....] text" on stderr: one line that redraws itself.
+void drawBar(double fraction, const std::string& text) {
+  constexpr int kWidth = 30;
+  int filled = std::clamp(static_cast<int>(kWidth * fraction), 0, kWidth);
+  std::fprintf(stderr, "\r[%s%s] %s", std::string(filled, '#').c_str(),
+               std::string(kWidth - filled, '.').c_str(), text.c_str());
+  std::fflush(stderr);
+}
+
 // The Vulkan context options of the environment (SKY_VALIDATION, ...) with the device the
 // command's --gpu picks ("" the default one).
 ContextOptions contextOptions(const CliArgs& args) {
@@ -132,7 +170,20 @@ ContextOptions contextOptions(const CliArgs& args) {
   return options;
 }
 
-}  // namespace
+// Once per process: a cache that cannot be written makes every run bake and compile again.
+// Called before the work (a folder that takes no probe) and after it (a write that failed on
+// the way, such as a full disk).
+void warnIfCacheUnwritable() {
+  static bool warned = false;
+  const CacheStatus cache = cacheStatus();
+  if (cache.writable || warned) return;
+  warned = true;
+  std::fprintf(stderr,
+               "warning: the cache folder %s cannot be written (%s): baked textures and "
+               "compiled shaders are not kept, so the next run makes them again (set "
+               "SKY_CACHE_DIR to a writable folder)\n",
+               cache.folder.string().c_str(), cache.reason.c_str());
+}
 
 int ephemerisCommand(const std::vector<std::string>& argv) {
   CliArgs args("ephemeris", argv,
@@ -176,25 +227,6 @@ std::function<void(double)> bakeProgressBar() {
   };
 }
 
-namespace {
-
-// Once per process: a cache that cannot be written makes every run bake and compile again.
-// Called before the work (a folder that takes no probe) and after it (a write that failed on
-// the way, such as a full disk).
-void warnIfCacheUnwritable() {
-  static bool warned = false;
-  const CacheStatus cache = cacheStatus();
-  if (cache.writable || warned) return;
-  warned = true;
-  std::fprintf(stderr,
-               "warning: the cache folder %s cannot be written (%s): baked textures and "
-               "compiled shaders are not kept, so the next run makes them again (set "
-               "SKY_CACHE_DIR to a writable folder)\n",
-               cache.folder.string().c_str(), cache.reason.c_str());
-}
-
-}  // namespace
-
 int renderCommand(const std::vector<std::string>& argv) {
   // First of all: a SIGINT or SIGTERM from here on stops the run cleanly (whole frames kept,
   // a folder it made and wrote nothing into removed, exit 128 + the signal). Installed after
@@ -203,9 +235,14 @@ int renderCommand(const std::vector<std::string>& argv) {
   const StopSignals stop;
   CliArgs args("render", argv,
                {"--out", "--name", "--width", "--height", "--time", "--set", "--dump-graph",
-                "--gpu", "--ocio", "--debug-output", "--debug-passes"},
+                "--gpu", "--ocio", "--debug-output", "--debug-passes", "--shard"},
                {"--set", "--debug-output"}, {"--debug-passes"});
   Scene scene = loadScene(args, false);
+  const Shard shard = args.value("--shard") ? parseShard(*args.value("--shard"), "--shard") : Shard{};
+  if (!shard.all() && !scene.time.isRange())
+    inputError("--shard " + shard.text() +
+               ": the scene's time is one instant; a shard takes a share of a time-lapse's "
+               "frames (time START/END/STEP)");
   const DebugRequest debug = parseDebugOutputs(args.values("--debug-output"));
   RenderOptions renderOptions;
   renderOptions.debugOutputs = debug.names;
@@ -250,19 +287,31 @@ int renderCommand(const std::vector<std::string>& argv) {
   renderer.setBakeProgress(bakeProgressBar());
 
   const int64_t count = scene.time.frameCount();
-  Progress progress(count);
+  // A shard of a time-lapse: a contiguous run of its frames (each frame of a sequence may
+  // reuse the ones before it), with a manifest of what it wrote for `skyrender merge`.
+  const ShardFrames frames = shardFrames(scene, shard, count);
+  std::optional<ManifestWriter> manifest;
+  if (!shard.all()) manifest.emplace(manifestPath(outDir, shard));
+  const std::string sceneSum = shard.all() ? std::string() : sha256Hex(writeScene(scene, ConfigFormat::Json));
+  Progress progress(frames.end - frames.begin);
   RenderFiles first, last;
   ExposureMeter exposure;  // carries a histogram exposure's adaptation from frame to frame
   double gpuMs = 0.0;
   int64_t written = 0;
-  for (int64_t i = 0; i < count && !stop.signal(); ++i) {
+  for (int64_t i = frames.warmFrom; i < frames.end && !stop.signal(); ++i) {
     const IsoTime time = scene.time.frame(i);
-    progress.show(i, time);
+    if (i >= frames.begin) progress.show(i - frames.begin, time);
     RenderedFrame frame;
+    renderOptions.sequenceFrame = static_cast<uint64_t>(i);
     try {
       frame = renderer.render(scene, time, renderOptions);
     } catch (const UnknownImageName& e) {
       debugOutputError(e, debug, "--debug-output");
+    }
+    if (i < frames.begin) {
+      // A warm-up frame: drawn for the history and the exposure it leaves, not written.
+      exposure.expose(scene, frame, time);
+      continue;
     }
     const std::string stem = frameStem(scene.output.name, i, count, scene.time.isRange());
     std::optional<DisplayTile> sheet;
@@ -274,24 +323,28 @@ int renderCommand(const std::vector<std::string>& argv) {
     // The graph is the same every frame; the first one is written.
     RenderFiles files = writeRenderFiles(outDir, stem, scene, frame,
                                          exposure.expose(scene, frame, time), ocio,
-                                         ctx.deviceName(), i == 0 ? graphPath : std::nullopt);
+                                         ctx.deviceName(),
+                                         i == frames.begin ? graphPath : std::nullopt);
     if (sheet) {
       const fs::path path = outDir / (stem + ".passes.png");
       writePngCodes(path, static_cast<int>(sheet->width), static_cast<int>(sheet->height),
                     sheet->rgba);
-      if (i == 0) std::printf("wrote %s (every image of the frame)\n", path.string().c_str());
+      if (i == frames.begin)
+        std::printf("wrote %s (every image of the frame)\n", path.string().c_str());
     }
+    if (manifest) manifest->append(frameManifestLine(i, count, sceneSum, time, files));
     folder.keep();
-    if (i == 0) first = files;
+    if (i == frames.begin) first = files;
     last = files;
     gpuMs += frame.frame.gpuMs;
     ++written;
   }
   progress.done();
   warnIfCacheUnwritable();  // a cache write that failed during the frames
+  const int64_t mine = frames.end - frames.begin;
   if (const int signal = stop.signal()) {
     std::fprintf(stderr, "interrupted after %lld of %lld frames (%s)\n",
-                 static_cast<long long>(written), static_cast<long long>(count),
+                 static_cast<long long>(written), static_cast<long long>(mine),
                  signal == SIGINT ? "SIGINT" : "SIGTERM");
     return 128 + signal;
   }
@@ -303,10 +356,13 @@ int renderCommand(const std::vector<std::string>& argv) {
   } else {
     std::printf(
         "wrote %lld frames %s ... %s with .exr, .png, .json (%dx%d, %.2f ms GPU per "
-        "frame on %s)\n",
-        static_cast<long long>(count), first.png.stem().string().c_str(),
+        "frame on %s)%s\n",
+        static_cast<long long>(mine), first.png.stem().string().c_str(),
         last.png.stem().string().c_str(), scene.output.width, scene.output.height,
-        gpuMs / static_cast<double>(count), ctx.deviceName().c_str());
+        gpuMs / static_cast<double>(std::max<int64_t>(mine, 1)), ctx.deviceName().c_str(),
+        shard.all() ? ""
+                    : (" (shard " + shard.text() + ", " + std::to_string(frames.begin - frames.warmFrom) +
+                       " warm-up frames)").c_str());
   }
   if (first.graph) std::printf("wrote %s\n", first.graph->string().c_str());
   return 0;
@@ -410,9 +466,9 @@ int validateCommand(const std::vector<std::string>& argv) {
 }
 
 int schemaCommand(const std::vector<std::string>& argv) {
-  CliArgs args("schema", argv, {}, {}, {});
+  CliArgs args("schema", argv, {}, {}, {"--dataset"});
   args.expectPositionals(0, 0, "");
-  std::cout << sceneJsonSchema();
+  std::cout << (args.flag("--dataset") ? datasetJsonSchema() : sceneJsonSchema());
   return 0;
 }
 

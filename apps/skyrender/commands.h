@@ -13,5 +13,7 @@ int devicesCommand(const std::vector<std::string>& args);
 int dscCommand(const std::vector<std::string>& args);
 int weatherCommand(const std::vector<std::string>& args);
 int exportVolumeCommand(const std::vector<std::string>& args);
+int datasetCommand(const std::vector<std::string>& args);
+int mergeCommand(const std::vector<std::string>& args);
 
 }  // namespace sky

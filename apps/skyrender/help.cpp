@@ -39,6 +39,10 @@ options:
                        sheet (one tile per image with its pass and GPU ms), the images of
                        the frame's size as EXR layers debug.<name>, the others as
                        NAME.<name>.exr
+  --shard I/N          a time-lapse's frames in N contiguous shares: write share I
+                       (1 <= I <= N) and its manifest DIR/manifest.I-of-N.jsonl for
+                       `skyrender merge DIR`; with clouds.temporal.mode on the shard first
+                       draws 2 x block^2 frames before its own, unwritten (docs/datasets.md)
   --gpu NAME|INDEX     Vulkan device by index or name substring (default: a GPU if
                        present, else lavapipe)
   --ocio FILE          OpenColorIO config (default: $OCIO, else configs/ocio/config.ocio)
@@ -48,7 +52,9 @@ outputs:
              sky) and high_clouds.R/G/B/A (premultiplied, A = coverage) in half float;
              clouds.R/G/B/A/depth (volumetric clouds, premultiplied, A = opacity, depth
              in m) in 32-bit float; camera.mode geographic_topdown adds
-             weather.cover_low/_mid (half)
+             weather.cover_low/_mid (half); output.perception adds the perception
+             layers clouds.optical_depth/.distance, label and cloud_type (UINT),
+             air.transmittance and ground.cloud_shadow (docs/outputs.md)
   NAME.png   8-bit display image through output.display / output.view, exposure applied
   NAME.json  settings (paths resolved), time, sun, moon and light (as `ephemeris` prints
              them), per-pass GPU milliseconds, total, device name, cache use
@@ -85,10 +91,11 @@ options:
   --temperature-c T    air temperature for refraction (default 10)
 )";
 
-constexpr const char* kSchema = R"(usage: skyrender schema
+constexpr const char* kSchema = R"(usage: skyrender schema [--dataset]
 
 Prints the JSON Schema (draft 2020-12) of scene files; configs/schema/scene.schema.json is
-a copy. Takes no arguments.
+a copy. With --dataset, the schema of dataset specs (skyrender dataset);
+configs/schema/dataset.schema.json is a copy.
 )";
 
 constexpr const char* kDevices = R"(usage: skyrender devices [--gpu NAME|INDEX]
@@ -156,6 +163,41 @@ options:
   --gpu NAME|INDEX     Vulkan device by index or name substring
 )";
 
+constexpr const char* kDataset =
+    R"(usage: skyrender dataset SPEC --out DIR [--shard I/N] [options]
+
+Renders the samples of the dataset spec SPEC (YAML or JSON, docs/datasets.md; its schema:
+skyrender schema --dataset): sample k's scene is the spec's base scene with each range and
+choice drawn from (seed, k) alone, so any process renders it bit for bit the same. Each
+sample writes DIR/sample_NNNNNN.exr (with the perception layers, docs/outputs.md), .png
+and .yaml (its scene: skyrender render renders it again), then one JSON line to the
+manifest, DIR/manifest.jsonl (a shard's: manifest.I-of-N.jsonl): index, scene parameters,
+sun elevation, cover per layer, the share of each label, file names and SHA-256 checksums.
+
+A killed run, run again with the same arguments, goes on: a sample is complete once its
+manifest line exists (its files are in place before), so the finished ones are skipped
+and nothing is duplicated. A terminal shows a progress bar; a summary line ends the run.
+
+options:
+  --out DIR            the dataset's folder, created if missing (default: out); a folder
+                       holding another spec's samples is refused
+  --shard I/N          render only shard I of N (1 <= I <= N): the samples k with
+                       k % N == I - 1; `skyrender merge DIR` joins the shards' manifests
+  --gpu NAME|INDEX     Vulkan device by index or name substring
+  --ocio FILE          OpenColorIO config (default: $OCIO, else configs/ocio/config.ocio)
+
+A run stopped by SIGINT or SIGTERM finishes the sample it is writing and exits 130 / 143.
+)";
+
+constexpr const char* kMerge = R"(usage: skyrender merge DIR [DIR...]
+
+Joins the shard manifests (manifest.I-of-N.jsonl) in the folders into DIR/manifest.jsonl
+(the first folder's; one line per sample, by index; files of the other folders named
+relative to it) and writes DIR/dataset.json (count, samples, missing, present twice, the
+mean share of each label). Reports on stderr any sample missing or present twice and then
+exits 3: run the shard again (it skips what it finished) and merge again.
+)";
+
 }  // namespace
 
 const std::vector<CommandHelp>& commandHelp() {
@@ -174,6 +216,10 @@ const std::vector<CommandHelp>& commandHelp() {
        std::string(kWeather) + kFooter},
       {"export-volume", "the cloud density in a box as an OpenVDB grid, for a path tracer",
        std::string(kExportVolume) + kFooter},
+      {"dataset", "render a dataset spec's samples, reproducible, resumable and shardable",
+       std::string(kDataset) + kFooter},
+      {"merge", "join a sharded dataset's manifests and report what is missing",
+       std::string(kMerge) + kFooter},
   };
   return commands;
 }

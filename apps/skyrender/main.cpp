@@ -70,6 +70,8 @@ int main(int argc, char** argv) {
     if (command == "dsc") return sky::dscCommand(args);
     if (command == "weather") return sky::weatherCommand(args);
     if (command == "export-volume") return sky::exportVolumeCommand(args);
+    if (command == "dataset") return sky::datasetCommand(args);
+    if (command == "merge") return sky::mergeCommand(args);
     sky::internalError("command '" + command + "' has help but no implementation");
   } catch (const sky::Error& e) {
     std::cerr << "error: " << oneLine(e.what()) << "\n";

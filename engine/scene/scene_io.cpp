@@ -112,17 +112,10 @@ std::string writeScene(const Scene& scene, ConfigFormat format) {
 }
 
 std::string sceneJsonSchema() {
-  Scene defaults;
-  detail::SchemaBuilder::Json schema = detail::SchemaBuilder::Json::object();
-  schema["$schema"] = "https://json-schema.org/draft/2020-12/schema";
-  schema["title"] = "skylayers scene";
-  detail::SchemaBuilder::Json body = detail::SchemaBuilder::objectSchema(
-      defaults,
+  return detail::SchemaBuilder::documentText<Scene>(
+      "skylayers scene",
       "A skylayers scene file (YAML or JSON). Every key is optional; absent keys take "
       "the defaults shown.");
-  // Appended after the header keys so "$schema" and "title" come first in the file.
-  for (auto& [key, value] : body.items()) schema[key] = value;
-  return schema.dump(2) + "\n";
 }
 
 nlohmann::json sceneToJson(const Scene& scene) {

@@ -204,3 +204,46 @@ def test_a_rig_of_views_in_one_frame_is_each_views_own_render(small_sky):
     assert np.array_equal(frames[1]["beauty"], alone["beauty"])
     with pytest.raises(skylayers.Error, match="view 0: unknown key 'fov'"):
         small_sky.render_views([{"fov": 30, "width": 8, "height": 8}])
+
+
+def test_the_perception_layers_as_arrays(small_sky):
+    small_sky.set("output.perception", True)
+    frame = small_sky.render()
+    assert {"label", "cloud_type", "air", "ground"} <= set(frame.keys())
+    label = frame["label"][..., 0]
+    assert label.shape == (18, 32)
+    assert set(np.unique(label)) <= set(range(7))
+    assert (label == 1).any(), "the built-in scene shows the ground"
+    assert frame.channels("clouds")[-2:] == ["optical_depth", "distance"]
+    shares = frame.report["perception"]["label_shares"]
+    assert math.isclose(shares["ground"], float((label == 1).mean()), abs_tol=1e-9)
+
+
+def test_a_datasets_manifest_and_samples(tmp_path):
+    import hashlib
+    import subprocess
+    spec = tmp_path / "spec.yaml"
+    spec.write_text("count: 2\nseed: 5\noutput: {width: 16, height: 9}\n"
+                    "camera: {heading: [0, 360]}\n")
+    out = tmp_path / "ds"
+    subprocess.run([os.environ["SKY_SKYRENDER"], "dataset", str(spec), "--out", str(out),
+                    "--shard", "2/2"], check=True, capture_output=True)
+    # One shard of two, not merged yet: its manifest alone.
+    samples = skylayers.read_manifest(out)
+    assert [s["index"] for s in samples] == [1]
+    subprocess.run([os.environ["SKY_SKYRENDER"], "dataset", str(spec), "--out", str(out),
+                    "--shard", "1/2"], check=True, capture_output=True)
+    with open(out / "manifest.1-of-2.jsonl", "a") as f:
+        f.write('{"index": 7, "co')  # a line a killed run left unfinished
+    samples = skylayers.read_manifest(out)
+    assert [s["index"] for s in samples] == [0, 1]
+    s = samples[1]
+    exr = out / s["files"]["exr"]["name"]
+    assert hashlib.sha256(exr.read_bytes()).hexdigest() == s["files"]["exr"]["sha256"]
+    layers = skylayers.read_exr(exr)
+    assert {"R", "G", "B", "A", "label", "cloud_type", "clouds.optical_depth",
+            "air.transmittance", "ground.cloud_shadow"} <= set(layers)
+    assert layers["label"].shape == (9, 16)
+    assert math.isclose(s["labels"]["ground"], float((layers["label"] == 1).mean()), abs_tol=1e-9)
+    with pytest.raises(skylayers.Error):
+        skylayers.read_manifest(tmp_path)

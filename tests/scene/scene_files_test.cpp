@@ -27,9 +27,11 @@ std::vector<fs::path> sceneFiles() {
   std::vector<fs::path> files;
   for (auto it = fs::recursive_directory_iterator(configs());
        it != fs::recursive_directory_iterator(); ++it) {
-    // schema/ holds the schema, ocio/ colour configs: neither are scenes.
+    // schema/ holds the schemas, ocio/ colour configs, datasets/ dataset specs (their own
+    // format, tests/dataset): none are scenes.
     if (it->is_directory() &&
-        (it->path().filename() == "schema" || it->path().filename() == "ocio")) {
+        (it->path().filename() == "schema" || it->path().filename() == "ocio" ||
+         it->path().filename() == "datasets")) {
       it.disable_recursion_pending();
       continue;
     }

@@ -31,14 +31,16 @@ struct Base {
   ConfigFormat format;
 };
 
-// Every scene in configs/ (as SceneFiles finds them: schema/ and ocio/ hold no scenes).
+// Every scene in configs/ (as SceneFiles finds them: schema/, ocio/ and datasets/ hold no
+// scenes).
 std::vector<Base> sceneBases() {
   std::vector<Base> bases;
   const fs::path root = test::sourceDir() / "configs";
   for (auto it = fs::recursive_directory_iterator(root); it != fs::recursive_directory_iterator();
        ++it) {
     if (it->is_directory() &&
-        (it->path().filename() == "schema" || it->path().filename() == "ocio")) {
+        (it->path().filename() == "schema" || it->path().filename() == "ocio" ||
+         it->path().filename() == "datasets")) {
       it.disable_recursion_pending();
       continue;
     }

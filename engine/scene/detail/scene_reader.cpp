@@ -154,33 +154,66 @@ void SceneReader::field(std::string_view key, bool& value, std::string_view) {
   value = node->text == "true";
 }
 
-void SceneReader::field(std::string_view key, std::string& value, const TextRule& rule,
-                        std::string_view) {
-  const ConfigNode* node = mMap.find(key);
-  if (!node) return;
-  std::string path = childPath(key);
-  if (!isTextLike(*node)) fail(*node, path, "expected a string, got " + node->describeKind());
-  const std::string& text = node->text;
+std::string SceneReader::text(const ConfigNode& node, const std::string& path,
+                              const TextRule& rule) {
+  if (!isTextLike(node)) fail(node, path, "expected a string, got " + node.describeKind());
+  const std::string& text = node.text;
   if (text.size() < rule.minLength) {
-    fail(*node, path,
+    fail(node, path,
          rule.minLength == 1
              ? std::string("must not be empty")
              : "must have at least " + std::to_string(rule.minLength) + " characters");
   }
   if (rule.maxLength && text.size() > rule.maxLength)
-    fail(*node, path, "is longer than " + std::to_string(rule.maxLength) + " characters");
+    fail(node, path, "is longer than " + std::to_string(rule.maxLength) + " characters");
   if (const size_t bad = illFormedUtf8At(text); bad != std::string::npos) {
     char hex[8];
     std::snprintf(hex, sizeof hex, "0x%02X", static_cast<unsigned char>(text[bad]));
-    fail(*node, path,
+    fail(node, path,
          std::string("is not valid UTF-8 (byte ") + hex + " at " + std::to_string(bad) +
              "); write the text in UTF-8");
   }
   if (rule.pattern && !std::regex_search(text, std::regex(rule.pattern, std::regex::ECMAScript)))
-    fail(*node, path,
+    fail(node, path,
          "'" + messageText(text) + "' is not allowed: use " +
              (rule.wording ? rule.wording : rule.pattern));
-  value = text;
+  return text;
+}
+
+void SceneReader::field(std::string_view key, std::string& value, const TextRule& rule,
+                        std::string_view) {
+  if (const ConfigNode* node = mMap.find(key)) value = text(*node, childPath(key), rule);
+}
+
+void SceneReader::field(std::string_view key, std::vector<std::string>& values,
+                        const TextRule& rule, std::string_view) {
+  const ConfigNode* node = mMap.find(key);
+  if (!node) return;
+  const std::string path = childPath(key);
+  const std::vector<const ConfigNode*> items = sequenceItems(*node, path, "strings");
+  values.clear();
+  for (size_t i = 0; i < items.size(); ++i)
+    values.push_back(text(*items[i], path + "[" + std::to_string(i) + "]", rule));
+}
+
+std::vector<const ConfigNode*> SceneReader::sequenceItems(const ConfigNode& node,
+                                                          const std::string& path,
+                                                          const std::string& what) {
+  if (node.kind != ConfigNode::Kind::Sequence)
+    fail(node, path, "expected a list of " + what + ", got " + node.describeKind());
+  if (node.children.empty())
+    fail(node, path, "an empty list; give at least one, or leave the key out");
+  std::vector<const ConfigNode*> items;
+  for (const ConfigNode& child : node.children) items.push_back(&child);
+  return items;
+}
+
+void SceneReader::field(std::string_view key, std::optional<glm::dvec2>& value, NumberRange range,
+                        std::string_view description) {
+  if (!mMap.find(key)) return;
+  glm::dvec2 v(0.0);
+  field(key, v, range, description);
+  value = v;
 }
 
 size_t SceneReader::choice(const ConfigNode& node, const std::string& path,

@@ -93,6 +93,11 @@ public:
   void field(std::string_view key, glm::dvec2& value, NumberRange range, std::string_view);
   void field(std::string_view key, bool& value, std::string_view);
   void field(std::string_view key, std::string& value, const TextRule& rule, std::string_view);
+  // A list of strings, each by the rule; a list of numbers' pair [from, to] that may be absent.
+  void field(std::string_view key, std::vector<std::string>& values, const TextRule& rule,
+             std::string_view);
+  void field(std::string_view key, std::optional<glm::dvec2>& value, NumberRange range,
+             std::string_view);
   void field(std::string_view key, TimeSettings& value, std::string_view);
   void field(std::string_view key, std::optional<IsoTime>& value, std::string_view);
   // A choice: one of the names in E's table (field_rules.h).
@@ -103,6 +108,20 @@ public:
     std::vector<std::string_view> names;
     for (const EnumName<E>& n : enumNames(E{})) names.emplace_back(n.name);
     value = *enumValue<E>(names[choice(*node, childPath(key), names)]);
+  }
+  // A list of choices, each one of the names in E's table.
+  template <SceneEnum E>
+  void field(std::string_view key, std::vector<E>& values, std::string_view) {
+    const ConfigNode* node = mMap.find(key);
+    if (!node) return;
+    const std::string path = childPath(key);
+    std::vector<std::string_view> names;
+    for (const EnumName<E>& n : enumNames(E{})) names.emplace_back(n.name);
+    const std::vector<const ConfigNode*> items = sequenceItems(*node, path, "names");
+    values.clear();
+    for (size_t i = 0; i < items.size(); ++i)
+      values.push_back(
+          *enumValue<E>(names[choice(*items[i], path + "[" + std::to_string(i) + "]", names)]));
   }
   void bothOrNeither(std::string_view a, std::string_view b);
   // A rule across fields, checked after they are read: fails at `key` (or at this map when
@@ -145,6 +164,11 @@ private:
   [[noreturn]] static void fail(const ConfigNode& node, const std::string& path,
                                 const std::string& what);
   // The index of the node's text in `names`; fails unless it is one of them.
+  static std::string text(const ConfigNode& node, const std::string& path, const TextRule& rule);
+  // The items of a list that must not be empty ("expected a list of <what>").
+  static std::vector<const ConfigNode*> sequenceItems(const ConfigNode& node,
+                                                      const std::string& path,
+                                                      const std::string& what);
   static size_t choice(const ConfigNode& node, const std::string& path,
                        const std::vector<std::string_view>& names);
   static double number(const ConfigNode& node, const std::string& path, NumberRange range,

@@ -150,6 +150,15 @@ void SceneWriter::field(std::string_view key, const std::string& value, const Te
   mMap.add(std::string(key), {}, ConfigNode::makeScalar(value, ConfigNode::Style::String, {}));
 }
 
+void SceneWriter::field(std::string_view key, const std::vector<std::string>& values,
+                        const TextRule&, std::string_view) {
+  if (values.empty()) return;  // absent: the key's default, no list
+  ConfigNode list = ConfigNode::makeSequence({});
+  for (const std::string& v : values)
+    list.children.push_back(ConfigNode::makeScalar(v, ConfigNode::Style::String, {}));
+  mMap.add(std::string(key), {}, std::move(list));
+}
+
 void SceneWriter::choice(std::string_view key, const char* name) {
   mMap.add(std::string(key), {}, ConfigNode::makeScalar(name, ConfigNode::Style::String, {}));
 }

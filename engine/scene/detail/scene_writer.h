@@ -48,11 +48,23 @@ public:
   void field(std::string_view key, const glm::dvec2& value, NumberRange, std::string_view);
   void field(std::string_view key, const bool& value, std::string_view);
   void field(std::string_view key, const std::string& value, const TextRule&, std::string_view);
+  void field(std::string_view key, const std::vector<std::string>& values, const TextRule&,
+             std::string_view);
+  void field(std::string_view key, const std::optional<glm::dvec2>& value, NumberRange range,
+             std::string_view description) {
+    if (value) field(key, *value, range, description);  // absent stays absent
+  }
   void field(std::string_view key, const TimeSettings& value, std::string_view);
   void field(std::string_view key, const std::optional<IsoTime>& value, std::string_view);
   template <SceneEnum E>
   void field(std::string_view key, const E& value, std::string_view) {
     choice(key, enumName(value));
+  }
+  template <SceneEnum E>
+  void field(std::string_view key, const std::vector<E>& values, std::string_view) {
+    std::vector<std::string> names;
+    for (const E& v : values) names.emplace_back(enumName(v));
+    if (!values.empty()) field(key, names, TextRule{}, "");
   }
   template <class T>
   void list(std::string_view key, const std::vector<T>& items, ListRule, std::string_view) {

@@ -118,6 +118,31 @@ void SchemaBuilder::field(std::string_view key, const std::string& value, const 
   mSchema["properties"][std::string(key)] = std::move(s);
 }
 
+void SchemaBuilder::field(std::string_view key, const std::vector<std::string>& values,
+                          const TextRule& rule, std::string_view description) {
+  field(key, std::string(), rule, description);
+  listOfThat(key, description);
+  if (!values.empty()) mSchema["properties"][std::string(key)]["default"] = values;
+}
+
+void SchemaBuilder::listOfThat(std::string_view key, std::string_view description) {
+  Json item = std::move(mSchema["properties"][std::string(key)]);
+  item.erase("default");
+  item.erase("description");
+  Json s = Json::object();
+  s["description"] = std::string(description);
+  s["type"] = "array";
+  s["items"] = std::move(item);
+  s["minItems"] = 1;
+  mSchema["properties"][std::string(key)] = std::move(s);
+}
+
+void SchemaBuilder::field(std::string_view key, const std::optional<glm::dvec2>& value,
+                          NumberRange range, std::string_view description) {
+  field(key, value.value_or(glm::dvec2(0.0)), range, description);
+  if (!value) mSchema["properties"][std::string(key)].erase("default");  // absent: none
+}
+
 void SchemaBuilder::choice(std::string_view key, const char* value,
                            const std::vector<std::string_view>& names,
                            std::string_view description) {

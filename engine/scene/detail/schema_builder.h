@@ -33,6 +33,19 @@ public:
     describe(builder, settings);
     return schema;
   }
+  // A whole schema file's text (draft 2020-12) for files of T: its title, then its body.
+  template <class T>
+  static std::string documentText(std::string_view title, std::string_view description) {
+    T defaults{};
+    Json schema = Json::object();
+    schema["$schema"] = "https://json-schema.org/draft/2020-12/schema";
+    schema["title"] = std::string(title);
+    // Appended after the header keys so "$schema" and "title" come first in the file (the
+    // body held here: a range-for over a temporary's items() dangles).
+    Json body = objectSchema(defaults, description);
+    for (auto& [key, value] : body.items()) schema[key] = value;
+    return schema.dump(2) + "\n";
+  }
 
   template <class T>
   void section(std::string_view key, T& settings, std::string_view description) {
@@ -66,6 +79,10 @@ public:
   void field(std::string_view key, const bool& value, std::string_view description);
   void field(std::string_view key, const std::string& value, const TextRule& rule,
              std::string_view description);
+  void field(std::string_view key, const std::vector<std::string>& values, const TextRule& rule,
+             std::string_view description);
+  void field(std::string_view key, const std::optional<glm::dvec2>& value, NumberRange range,
+             std::string_view description);
   void field(std::string_view key, const TimeSettings& value, std::string_view description);
   void field(std::string_view key, const std::optional<IsoTime>& value, std::string_view);
   template <SceneEnum E>
@@ -73,6 +90,13 @@ public:
     std::vector<std::string_view> names;
     for (const EnumName<E>& n : enumNames(E{})) names.emplace_back(n.name);
     choice(key, enumName(value), names, description);
+  }
+  template <SceneEnum E>
+  void field(std::string_view key, const std::vector<E>&, std::string_view description) {
+    std::vector<std::string_view> names;
+    for (const EnumName<E>& n : enumNames(E{})) names.emplace_back(n.name);
+    choice(key, enumNames(E{})[0].name, names, description);
+    listOfThat(key, description);
   }
   template <class T>
   void list(std::string_view key, const std::vector<T>& items, ListRule rule,
@@ -98,6 +122,8 @@ public:
 
 private:
   explicit SchemaBuilder(Json& schema) : mSchema(schema) {}
+  // Turns the property `key` just described into a non-empty list of such values.
+  void listOfThat(std::string_view key, std::string_view description);
   // The items as the writer prints them, so the schema default is what `validate` shows.
   template <class T>
   static Json listDefault(const std::vector<T>& items);
