@@ -35,6 +35,12 @@ PACKAGES=(
   # xvfb-run needs xauth, which xvfb only recommends (a fresh machine without it failed the
   # harness's window smoke test: "xvfb-run: error: xauth command not found").
   libimgui-dev xvfb xauth
+  # Datasets on a cluster (docs/datasets.md): the `cluster` ctest case
+  # (tests/cluster/slurm_dataset_test.sh) starts a one-node Slurm cluster on loopback with
+  # scripts/slurm/local-cluster.sh, which needs the daemons, the client commands and munge.
+  slurm-wlm slurm-client munge
+  # GNU parallel runs the shards of a dataset on one machine without a scheduler.
+  parallel
 )
 for arg in "$@"; do
   case "$arg" in
