@@ -209,6 +209,9 @@ bool Viewer::frame(double dt) {
     mDirty = true;
   }
   if (mDirty) renderView();
+  // A device lost in that render: nothing more is drawn, this frame neither (presenting it
+  // logged one more frame after the message saying the drawing had stopped).
+  if (!mStopped.empty()) return true;
 
   if (mDebug.revision() != mTileRevision) {
     mTileRevision = mDebug.revision();
