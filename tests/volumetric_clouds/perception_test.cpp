@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "cloud_test_util.h"
+#include "engine/lighting/light_model.h"
 #include "engine/render/perception.h"
 #include "shaders/common/cloud_perception_shared.h"
 
@@ -201,6 +202,32 @@ TEST_F(Perception, TheGroundUnderAnOvercastIsInShadowAndTheSunHidden) {
   EXPECT_NEAR(a.perception->visibilityM, std::log(20.0) / field.airExtinction({}).y, 1.0);
   EXPECT_GT(a.perception->visibilityM, 10000.0);
   EXPECT_LT(a.perception->visibilityM, 400000.0);
+}
+
+TEST_F(Perception, TheAirOverheadIsTheHazesWholeColumn) {
+  // A hand-made case with a known optical depth: straight up through the kozlov haze, whose
+  // extinction falls off exponentially with height (light::hazeMedium), the column from the
+  // camera to space is beta H e^(-h / H) per component, over the cosine of the pixel's angle
+  // from the zenith.
+  const Scene scene = cloudScene("cumulus_noon", {"output.perception=true", "weather.cover_low=0",
+                                                  "camera.pitch=90", "camera.altitude_m=300",
+                                                  "sky.model=kozlov", "high_clouds.cover=0"});
+  const RenderedFrame f = render(scene);
+  const light::HazeMedium haze = light::hazeMedium(scene.lighting.turbidity);
+  const shared::ViewState view = makeViewState(scene.camera, 64, 36);
+  for (const auto& [x, y] : {std::pair{31, 17}, {32, 18}, {20, 10}, {45, 25}}) {
+    const glm::dvec3 d = viewDirection(view, x + 0.5, y + 0.5);
+    const double h = scene.camera.altitudeM;
+    const glm::dvec3 tau = (haze.rayleighPerM * haze.rayleighHeightM *
+                                std::exp(-h / haze.rayleighHeightM) +
+                            haze.aerosolPerM * haze.aerosolHeightM *
+                                std::exp(-h / haze.aerosolHeightM)) /
+                           d.z;
+    const double expected = glm::dot(glm::exp(-tau), glm::dvec3(0.2126, 0.7152, 0.0722));
+    EXPECT_EQ(label(f, x, y), PERCEPTION_LABEL_SKY);
+    EXPECT_NEAR(channel(f, "air", "transmittance", x, y), expected, 0.003)
+        << "pixel " << x << "," << y << ", " << std::acos(d.z) * 180.0 / M_PI << " deg from the zenith";
+  }
 }
 
 TEST_F(Perception, InsideACloudTheVisibilityIsItsOwn) {
