@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <set>
 #include <string>
 #include <unistd.h>
@@ -141,10 +142,16 @@ int datasetCommand(const std::vector<std::string>& argv) {
   ManifestWriter manifest(manifestPath(out, shard));
   warnIfCacheUnwritable();
 
-  Context ctx(contextOptions(args));
+  // The device only when there is something to draw: a finished dataset run again says so
+  // at once.
+  std::optional<Context> ctx;
   ShaderCompiler compiler;
-  Renderer renderer(ctx, compiler);
-  renderer.setBakeProgress(bakeProgressBar());
+  std::optional<Renderer> renderer;
+  if (!todo.empty()) {
+    ctx.emplace(contextOptions(args));
+    renderer.emplace(*ctx, compiler);
+    renderer->setBakeProgress(bakeProgressBar());
+  }
   const bool bar = isatty(2) && !todo.empty();
   const auto start = std::chrono::steady_clock::now();
   const auto elapsed = [&] {
@@ -162,8 +169,8 @@ int datasetCommand(const std::vector<std::string>& argv) {
                   scene.output.name + (rendered > 0 ? "  eta " + duration(eta) : std::string()));
     }
     // Whatever the process drew before: sample k comes out the same in any run.
-    renderer.startAfresh();
-    RenderedFrame frame = renderer.render(scene, scene.time.start, RenderOptions{});
+    renderer->startAfresh();
+    RenderedFrame frame = renderer->render(scene, scene.time.start, RenderOptions{});
     ExposureMeter meter;
     const FrameExposure exposure = meter.expose(scene, frame, scene.time.start);
 
@@ -231,11 +238,13 @@ int datasetCommand(const std::vector<std::string>& argv) {
                  where.c_str(), signal == SIGINT ? "SIGINT" : "SIGTERM");
     return 128 + signal;
   }
+  const std::string device =
+      ctx ? " on " + ctx->deviceName() : std::string(", nothing left to draw");
   std::printf("dataset %s%s: %lld samples, %lld rendered, %lld already there, %.1f s (%.2f s a "
-              "sample) on %s; manifest %s\n",
+              "sample)%s; manifest %s\n",
               out.string().c_str(), where.c_str(), static_cast<long long>(mine),
               static_cast<long long>(rendered), static_cast<long long>(mine - rendered), seconds,
-              rendered > 0 ? seconds / double(rendered) : 0.0, ctx.deviceName().c_str(),
+              rendered > 0 ? seconds / double(rendered) : 0.0, device.c_str(),
               manifestPath(out, shard).string().c_str());
   return 0;
 }
