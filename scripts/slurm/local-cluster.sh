@@ -54,6 +54,11 @@ live_pid() {
   esac
 }
 
+# Whether a cgroup filesystem (v1 or v2) is mounted at /sys/fs/cgroup or below.
+has_cgroup_fs() {
+  awk '$2 ~ "^/sys/fs/cgroup" && $3 ~ "^cgroup" { found = 1 } END { exit !found }' /proc/mounts
+}
+
 port_in_use() {
   local port=$1
   if command -v ss >/dev/null; then
@@ -121,12 +126,17 @@ start_cluster() {
       die "port $p is already in use (another Slurm?); set LOCAL_SLURM_CTLD_PORT / LOCAL_SLURM_D_PORT"
   done
   [ "$ctld_port" != "$d_port" ] || die "slurmctld and slurmd ports are both $ctld_port"
+  # slurmd 22.05 starts its cgroup plugin whatever slurm.conf says (ProctrackType and
+  # TaskPlugin need none here) and gives up without a cgroup filesystem: a chroot whose /sys
+  # is bound without its submounts, or a container without one.
+  has_cgroup_fs ||
+    die "no cgroup filesystem is mounted on /sys/fs/cgroup (a chroot or a bare container?): slurmd cannot start without one"
 
   # munged insists that the socket's folder and every folder above it be searchable by all,
   # and that the key be readable by its owner only.
   local sock="$DIR/run/munge.socket"
   [ ${#sock} -lt 100 ] || die "munge socket path '$sock' is too long for a Unix socket; use a shorter DIR"
-  mkdir -p "$DIR/munge" "$DIR/run" "$DIR/state" "$DIR/spool" "$DIR/log"
+  mkdir -p "$DIR/munge" "$DIR/run" "$DIR/state" "$DIR/spool/localhost" "$DIR/log"
   chmod 700 "$DIR/munge"
   chmod 755 "$DIR" "$DIR/run"
   [ -s "$DIR/munge/munge.key" ] || mungekey --create --keyfile="$DIR/munge/munge.key" 2>/dev/null ||

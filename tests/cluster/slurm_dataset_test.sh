@@ -35,6 +35,10 @@ for cmd in slurmctld slurmd sbatch scontrol scancel munged mungekey python3 sha2
   command -v "$cmd" >/dev/null || skip "'$cmd' not found (scripts/install-deps.sh installs Slurm and munge)"
 done
 [ "$(id -u)" -eq 0 ] || skip "needs root to run the Slurm daemons"
+# slurmd needs a cgroup filesystem (scripts/slurm/local-cluster.sh): a chroot without one,
+# such as a fresh-root check's, cannot run the cluster.
+awk '$2 ~ "^/sys/fs/cgroup" && $3 ~ "^cgroup" { found = 1 } END { exit !found }' /proc/mounts ||
+  skip "no cgroup filesystem on /sys/fs/cgroup (a chroot?): slurmd cannot start"
 
 [ -x "$1" ] || fail "SKYRENDER '$1' is not an executable file"
 [ -f "$2" ] || fail "SPEC '$2' is not a file"
