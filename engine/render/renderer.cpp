@@ -184,18 +184,22 @@ RenderedFrame Renderer::render(const Scene& scene, const IsoTime& time,
     collectOutputs(out, out.frame, graph, plan, options);
     for (ReadbackImage& o : out.frame.outputs) o.pixels = {};  // the layers hold the data now
     if (plan.outputs.perception.valid()) {
-      // The frame's numbers from the field the queries read (made only with clouds).
-      const ImageLayer* labels = nullptr;
-      for (const ImageLayer& layer : out.image.layers)
-        if (layer.integer && !layer.channels.empty() && layer.channels[0] == "label")
-          labels = &layer;
-      if (!labels) internalError("render: the perception layers lack the labels");
-      out.perception = perceptionSummary(mClouds.field(scene, time), out.lighting.sun.direction,
-                                         *labels);
+      std::optional<CloudField> field;
+      summarisePerception(out, scene, time, field);
     }
   }
   finishCosts(out, start, pipelinesBefore);
   return out;
+}
+
+void Renderer::summarisePerception(RenderedFrame& out, const Scene& scene, const IsoTime& time,
+                                   std::optional<CloudField>& field) {
+  const ImageLayer* labels = nullptr;
+  for (const ImageLayer& layer : out.image.layers)
+    if (layer.integer && !layer.channels.empty() && layer.channels[0] == "label") labels = &layer;
+  if (!labels) internalError("render: the perception layers lack the labels");
+  if (!field) field.emplace(mClouds.field(scene, time));
+  out.perception = perceptionSummary(*field, out.lighting.sun.direction, *labels);
 }
 
 void Renderer::finishCosts(RenderedFrame& out, std::chrono::steady_clock::time_point start,
@@ -259,12 +263,15 @@ std::vector<RenderedFrame> Renderer::render(const Scene& scene, const IsoTime& t
   // The views marched every pixel; a later sequence frame starts afresh.
   mClouds.invalidateReuse();
   const std::string dot = graph.toDot(&result);
+  std::optional<CloudField> field;
   // Each view holds the frame's timings; its images come from the one read-back, not copies.
   FrameResult timings = result;
   timings.outputs.clear();
   for (size_t i = 0; i < views.size(); ++i) {
     outs[i].frame = timings;
     collectOutputs(outs[i], result, graph, plans[i], options);
+    // Every view stands at the same place: one field serves them all.
+    if (plans[i].outputs.perception.valid()) summarisePerception(outs[i], scene, time, field);
     outs[i].graphDot = dot;
     finishCosts(outs[i], start, pipelinesBefore);
   }

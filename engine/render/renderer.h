@@ -92,6 +92,10 @@ private:
                        const RenderOptions& options, RenderedFrame& out,
                        SharedFrame* shared = nullptr);
   // The costs and timings of a frame once it has run.
+  // A frame's perception numbers (RenderedFrame::perception) from the field the queries read,
+  // made into `field` on first use (the views of a frame share their place).
+  void summarisePerception(RenderedFrame& out, const Scene& scene, const IsoTime& time,
+                           std::optional<CloudField>& field);
   void finishCosts(RenderedFrame& out, std::chrono::steady_clock::time_point start,
                    double pipelinesBefore);
 

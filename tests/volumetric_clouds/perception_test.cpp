@@ -230,6 +230,29 @@ TEST_F(Perception, TheAirOverheadIsTheHazesWholeColumn) {
   }
 }
 
+TEST_F(Perception, EachViewOfAFrameHasItsOwnLabels) {
+  // A rig of two views in one frame: each view's layers and numbers are its own render's.
+  const Scene scene = perceptionScene({"weather.cover_low=0.6"});
+  std::vector<FrameView> views(2);
+  views[0] = {200.0, 10.0, 0.0, 60.0, CameraProjection::Perspective, 32, 18};
+  views[1] = {20.0, -20.0, 0.0, 60.0, CameraProjection::Perspective, 32, 18};
+  const std::vector<RenderedFrame> frames = renderer().render(scene, scene.time.start, views, {});
+  ASSERT_EQ(frames.size(), 2u);
+  for (size_t i = 0; i < 2; ++i) {
+    Scene alone = scene;
+    alone.camera.heading = views[i].headingDeg;
+    alone.camera.pitch = views[i].pitchDeg;
+    alone.output.width = 32;
+    alone.output.height = 18;
+    const RenderedFrame single = render(alone);
+    ASSERT_TRUE(frames[i].perception && single.perception) << "view " << i;
+    EXPECT_EQ(frames[i].perception->labelShares, single.perception->labelShares) << "view " << i;
+    EXPECT_EQ(frames[i].perception->sunVisible, single.perception->sunVisible);
+  }
+  EXPECT_NE(frames[0].perception->labelShares, frames[1].perception->labelShares)
+      << "the views look at different things";
+}
+
 TEST_F(Perception, InsideACloudTheVisibilityIsItsOwn) {
   // The densest altitude of the deck above the camera's place, found in the field.
   const Scene ground = cloudScene("overcast_stratus", {"weather.cover_low=1"});
