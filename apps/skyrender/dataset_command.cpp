@@ -139,7 +139,9 @@ int datasetCommand(const std::vector<std::string>& argv) {
       ++mine;
       if (!done.count(k)) todo.push_back(k);
     }
-  ManifestWriter manifest(manifestPath(out, shard));
+  // Opened at the first finished sample: a run that fails before one leaves no empty
+  // manifest behind (and a folder it made is removed again).
+  std::optional<ManifestWriter> manifest;
   warnIfCacheUnwritable();
 
   // The device only when there is something to draw: a finished dataset run again says so
@@ -222,7 +224,8 @@ int datasetCommand(const std::vector<std::string>& argv) {
     files["scene"] = fileEntry(yaml);
     line["files"] = files;
     // The line last: the sample is complete once it is there.
-    manifest.append(line);
+    if (!manifest) manifest.emplace(manifestPath(out, shard));
+    manifest->append(line);
     folder.keep();
     ++rendered;
   }

@@ -144,6 +144,13 @@ TEST_F(DatasetCli, TheErrorsSayWhatAndWhere) {
   r = run("merge " + (mDir / "nowhere").string());
   EXPECT_EQ(r.rc, 2);
   EXPECT_THAT(r.err, HasSubstr("not a folder"));
+  // A device lost at the first sample: one line, exit 1, and the folder the run made is gone
+  // (no empty manifest left in it).
+  r = run("dataset " + spec().string() + " --out " + (mDir / "lost").string(),
+          "SKY_FAULT=device_lost_submit@1");
+  EXPECT_EQ(r.rc, 1) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("was lost"));
+  EXPECT_FALSE(fs::exists(mDir / "lost"));
 }
 
 TEST_F(DatasetCli, RenderWritesThePerceptionLayers) {
