@@ -88,6 +88,24 @@ TEST_F(CloudKeptTest, TheShadowMapIsKeptWhileTheCloudsAndTheSunStay) {
                       "cloud_shadow"));
 }
 
+TEST_F(CloudKeptTest, StartingAfreshMakesTheKeptProductsAndTheHistoryAgain) {
+  // A dataset's sample is drawn as a process's first frame would be, whatever the process
+  // drew before (skyrender dataset): the kept shadow map and the cloud history are forgotten.
+  Renderer& r = fresh();
+  const Scene s = scene({"clouds.temporal.mode=on"});
+  const IsoTime t = s.time.start;
+  r.render(s, t);
+  EXPECT_FALSE(hasPass(r.render(s, t.plusSeconds(1.0)), "cloud_shadow")) << "kept";
+  r.startAfresh();
+  const RenderedFrame again = r.render(s, t.plusSeconds(2.0));
+  EXPECT_TRUE(hasPass(again, "cloud_shadow")) << "made again";
+  // The same frame as a new renderer's first: the history was cut too (a cut marches every
+  // pixel; a frame after one marches a block's share and reprojects the rest).
+  Renderer other(ctx(), ownCompiler());
+  const RenderedFrame first = other.render(s, t.plusSeconds(2.0));
+  EXPECT_EQ(beauty(again), beauty(first));
+}
+
 // clouds.light volume: made once and kept, and within the stated dB of the reference march.
 // Measured 25 dB at 96 x 54 where the per-sample march reaches 37 dB: the volume's texels
 // blur the light (and far from the camera hold the clouds' mean), which is why the march
