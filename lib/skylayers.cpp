@@ -51,6 +51,16 @@ Image imageOf(const std::string& name, const sky::LayeredImage& frame,
   return image;
 }
 
+// Channel `c` of `layer` as an image of its own, named after the channel: the main layer's
+// label and cloud type, which the EXR holds as top-level channels beside the beauty.
+Image channelImage(const sky::LayeredImage& frame, const sky::ImageLayer& layer, size_t c) {
+  const size_t n = layer.channels.size();
+  Image image{layer.channels[c], frame.width, frame.height, {layer.channels[c]}, {}};
+  image.pixels.resize(layer.pixels.size() / n);
+  for (size_t i = 0; i < image.pixels.size(); ++i) image.pixels[i] = layer.pixels[i * n + c];
+  return image;
+}
+
 }  // namespace
 
 namespace detail {
@@ -146,9 +156,7 @@ std::vector<Image> readExr(const std::string& path) {
           colour.push_back(c);
           continue;
         }
-        std::vector<float> pixels(count);
-        for (size_t i = 0; i < count; ++i) pixels[i] = layer.pixels[i * n + c];
-        images.push_back(Image{name, exr.width, exr.height, {name}, std::move(pixels)});
+        images.push_back(channelImage(exr, layer, c));
       }
       if (!colour.empty()) {
         Image beauty{"beauty", exr.width, exr.height, {}, {}};
@@ -408,13 +416,8 @@ Frame frameOf(sky::RenderedFrame& rendered, const sky::Scene& scene, const sky::
       frame.beauty = imageOf(name, rendered.image, layer);
     } else if (layer.integer && request.layers) {
       // The label and the cloud type: one image each, as the EXR's top-level channels.
-      const size_t n = layer.channels.size();
-      for (size_t c = 0; c < n; ++c) {
-        sky::ImageLayer one{layer.channels[c], {layer.channels[c]}, {}, false, true};
-        one.pixels.resize(layer.pixels.size() / n);
-        for (size_t i = 0; i < one.pixels.size(); ++i) one.pixels[i] = layer.pixels[i * n + c];
-        frame.layers.push_back(imageOf(one.name, rendered.image, one));
-      }
+      for (size_t c = 0; c < layer.channels.size(); ++c)
+        frame.layers.push_back(channelImage(rendered.image, layer, c));
     } else if (request.layers) {
       frame.layers.push_back(imageOf(name, rendered.image, layer));
     }
