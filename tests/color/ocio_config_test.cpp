@@ -2,6 +2,7 @@
 #include <OpenColorIO/OpenColorIO.h>
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <string>
 
 #include "engine/core/files.h"
@@ -47,10 +48,16 @@ TEST(OcioConfig, RolesAndColorSpaces) {
   EXPECT_EQ(display->getReferenceSpaceType(), OCIO::REFERENCE_SPACE_DISPLAY);
 }
 
-TEST(OcioConfig, BuiltFromBuiltinsOnly) {
-  // No LUT files: the config must work wherever it is copied.
+TEST(OcioConfig, BuiltFromBuiltinsAndTheGeneratedAgxCurveOnly) {
+  // One LUT file, AgX's contrast curve, which scripts/ocio/make_agx.py writes next to the
+  // config (luts/, on the config's search path): the folder works wherever it is copied.
   const std::string text = readTextFile(configDir() / "ocio" / "config.ocio");
-  EXPECT_EQ(text.find("FileTransform"), std::string::npos);
+  const size_t file = text.find("FileTransform");
+  ASSERT_NE(file, std::string::npos);
+  EXPECT_EQ(text.find("FileTransform", file + 1), std::string::npos);
+  EXPECT_NE(text.find("src: agx_base_contrast.spi1d"), std::string::npos);
+  EXPECT_TRUE(std::filesystem::is_regular_file(configDir() / "ocio" / "luts" /
+                                               "agx_base_contrast.spi1d"));
   EXPECT_NE(text.find("ACES-OUTPUT - ACES2065-1_to_CIE-XYZ-D65 - SDR-VIDEO_1.0"),
             std::string::npos);
   EXPECT_NE(text.find("DISPLAY - CIE-XYZ-D65_to_sRGB"), std::string::npos);

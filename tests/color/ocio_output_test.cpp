@@ -16,6 +16,7 @@ namespace {
 namespace fs = std::filesystem;
 using test::catchError;
 
+const char* kAgx = "AgX";
 const char* kAces = "ACES 1.0 - SDR Video";
 const char* kUntoned = "Un-tone-mapped";
 
@@ -57,7 +58,7 @@ TEST_F(OcioOutputTest, DefaultLoadsShippedConfig) {
 TEST_F(OcioOutputTest, DisplaysAndViewsAreExactlyAsSpecified) {
   OcioOutput out = OcioOutput::load();
   EXPECT_EQ(out.displays(), std::vector<std::string>{"sRGB"});
-  EXPECT_EQ(out.views("sRGB"), (std::vector<std::string>{kAces, kUntoned, "Raw"}));
+  EXPECT_EQ(out.views("sRGB"), (std::vector<std::string>{kAgx, kAces, kUntoned, "Raw"}));
   EXPECT_TRUE(out.views("sRBG").empty());
   EXPECT_NO_THROW(out.checkDisplayView("sRGB", kAces));
   EXPECT_NO_THROW(out.checkDisplayView("sRGB", "Raw"));
@@ -75,7 +76,7 @@ TEST_F(OcioOutputTest, UnknownViewListsViewsOfThatDisplay) {
   Error e = catchError([&] { out.checkDisplayView("sRGB", "Filmic"); });
   EXPECT_EQ(e.kind(), ErrorKind::BadInput);
   EXPECT_STREQ(e.what(),
-               "output.view: unknown OCIO view 'Filmic' for display 'sRGB' (available: "
+               "output.view: unknown OCIO view 'Filmic' for display 'sRGB' (available: AgX, "
                "ACES 1.0 - SDR Video, Un-tone-mapped, Raw)");
 }
 
@@ -188,6 +189,47 @@ TEST_F(OcioOutputTest, AcesViewStaysInDisplayRangeAndIsMonotonic) {
   EXPECT_GT(bright[0], 0.99f);
 }
 
+TEST_F(OcioOutputTest, AgxViewIsThePublishedFormula) {
+  // Display-linear values of scripts/ocio/make_agx.py --print R,G,B (AgX's formula in double,
+  // the polynomial curve exact), encoded as the sRGB display encodes them. The tolerance covers
+  // the curve's 4096-entry LUT and OCIO's fast log and pow.
+  struct Case {
+    float in[3];
+    float displayLinear[3];
+  };
+  const Case cases[] = {
+      {{0.18f, 0.18f, 0.18f}, {0.214519f, 0.214519f, 0.214519f}},  // middle grey
+      {{0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 0.0f}},
+      {{1.0f, 1.0f, 1.0f}, {0.590159f, 0.590159f, 0.590159f}},
+      {{16.0f, 16.0f, 16.0f}, {0.995108f, 0.995108f, 0.995108f}},
+      {{1.0f, 0.0f, 0.0f}, {0.723267f, 0.105864f, 0.066756f}},
+      {{0.5f, 0.1f, 0.02f}, {0.464477f, 0.146879f, 0.057093f}},
+      {{0.02f, 0.05f, 0.6f}, {0.040821f, 0.136458f, 0.548421f}},
+      {{1.0f, 0.66f, 0.31f}, {0.598848f, 0.483664f, 0.346991f}},  // a sunset-lit cloud
+      {{0.001f, 0.001f, 0.001f}, {0.000106f, 0.000106f, 0.000106f}},
+  };
+  OcioOutput out = OcioOutput::load();
+  for (const Case& c : cases) {
+    const std::vector<float> got = convert(out, {c.in[0], c.in[1], c.in[2], 1.0f}, kAgx);
+    for (int i = 0; i < 3; ++i)
+      EXPECT_NEAR(got[size_t(i)], srgbEncode(c.displayLinear[i]), 2e-3f)
+          << "input " << c.in[0] << "," << c.in[1] << "," << c.in[2] << " channel " << i;
+  }
+}
+
+TEST_F(OcioOutputTest, AgxViewStaysInDisplayRangeAndIsMonotonic) {
+  OcioOutput out = OcioOutput::load();
+  std::vector<float> ramp;
+  for (float v = 1.0f / 4096.0f; v <= 16.0f; v *= 1.25f) ramp.insert(ramp.end(), {v, v, v, 1.0f});
+  const std::vector<float> got = convert(out, ramp, kAgx);
+  // Strictly rising over AgX's log range (2^-12.5 .. 2^4 times the middle grey's 0.18 / 0.18).
+  for (size_t i = 0; i + 4 < got.size(); i += 4) EXPECT_LT(got[i], got[i + 4]) << "input " << ramp[i];
+  for (float v : got) {
+    EXPECT_GE(v, 0.0f);
+    EXPECT_LE(v, 1.0f);
+  }
+}
+
 TEST_F(OcioOutputTest, RawViewIsIdentity) {
   OcioOutput out = OcioOutput::load();
   const std::vector<float> in{0.18f, -0.5f, 100.0f, 1.0f, 0.0f, 1.0f, 1e-6f, 0.5f};
@@ -198,7 +240,7 @@ TEST_F(OcioOutputTest, AlphaIsUntouched) {
   OcioOutput out = OcioOutput::load();
   const std::vector<float> in{0.5f, 0.2f, 0.1f, 0.25f, 3.0f, 2.0f,
                               1.0f, 2.0f, 0.1f, 0.1f,  0.1f, -1.0f};
-  for (const char* view : {kAces, kUntoned, "Raw"}) {
+  for (const char* view : {kAgx, kAces, kUntoned, "Raw"}) {
     const std::vector<float> got = convert(out, in, view, 2.5);
     for (size_t i = 3; i < in.size(); i += 4) EXPECT_EQ(got[i], in[i]) << view;
   }
@@ -214,7 +256,7 @@ TEST_F(OcioOutputTest, PlusOneEvEqualsDoublingTheInput) {
     doubled[i] *= 2.0f;
     quartered[i] *= 0.25f;
   }
-  for (const char* view : {kAces, kUntoned, "Raw"}) {
+  for (const char* view : {kAgx, kAces, kUntoned, "Raw"}) {
     const std::vector<float> plusOne = convert(out, in, view, 1.0);
     const std::vector<float> reference = convert(out, doubled, view, 0.0);
     const std::vector<float> minusTwo = convert(out, in, view, -2.0);
