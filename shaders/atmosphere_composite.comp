@@ -302,82 +302,108 @@ float perceptionAir(vec3 V, float distanceM) {
 }
 #endif
 
-void main() {
-  uvec2 p = gl_GlobalInvocationID.xy + uvec2(0u, band.rows.x);
-  if (any(greaterThanEqual(p, params.view.size.xy))) return;
-  vec2 pixelCentre = vec2(p) + 0.5;
-  vec3 V = viewDirection(params.view, pixelCentre);
-  LightingState L = lighting;
+// One pixel of the frame and where it looks: the view direction, the pixel's angular size and
+// the horizon, which the steps below share.
+struct Pixel {
+  ivec2 p;
+  vec2 centre;  // pixel coordinates of its centre
+  vec2 uv;      // the centre in 0..1 of the view
+  vec3 V;       // the view direction (unit)
+  float angle;  // the pixel's angular size
+  float horizonZ;      // the cosine of zenith where rays graze the ground sphere (0 without one)
+  float aboveHorizon;  // the share of the pixel above the horizon
+  vec3 level;          // the horizontal direction below V
+};
 
-  vec3 sky = imageLoad(skyImage, ivec2(p)).rgb;
-  vec4 highClouds = imageLoad(highCloudImage, ivec2(p));  // premultiplied, a = coverage
-
-  float pixelAngle = viewPixelAngle(params.view, V);
+Pixel pixelAt(uvec2 p) {
+  Pixel px;
+  px.p = ivec2(p);
+  px.centre = vec2(p) + 0.5;
+  px.uv = px.centre / vec2(params.view.size.xy);
+  px.V = viewDirection(params.view, px.centre);
+  px.angle = viewPixelAngle(params.view, px.V);
   // The ground hides what lies below the horizon, pixel by pixel. Seen from above the ground
   // the horizon dips below the horizontal, to where rays graze the ground sphere.
-  float planetR = params.planetRadiusM, cameraR = params.cameraRadiusM;
-  float h = cameraR - planetR;
-  float horizonZ = params.observer != 0u ? -sqrt(max(h * (2.0 * planetR + h), 0.0)) / cameraR : 0.0;
-  float aboveHorizon = clamp((V.z - horizonZ) / pixelAngle + 0.5, 0.0, 1.0);
+  float h = params.cameraRadiusM - params.planetRadiusM;
+  px.horizonZ = params.observer != 0u
+                    ? -sqrt(max(h * (2.0 * params.planetRadiusM + h), 0.0)) / params.cameraRadiusM
+                    : 0.0;
+  px.aboveHorizon = clamp((px.V.z - px.horizonZ) / px.angle + 0.5, 0.0, 1.0);
+  px.level = vec3(length(px.V.xy) > 1e-6 ? normalize(px.V.xy) : vec2(0.0, 1.0), 0.0);
+  return px;
+}
 
+// The sun's and the moon's discs in the pixel, and how much of it the moon covers (the stars
+// do not shine through it), with the distances the perception labels use.
+struct Discs {
+  vec3 sun, moon;
+  float moonCover;
+  float sunDistance, moonDistance;  // angles from the pixel's centre to the discs' centres
+};
+
+Discs discsIn(Pixel px, LightingState L) {
+  Discs d;
+  d.sun = vec3(0.0);
+  d.moon = vec3(0.0);
+  d.moonCover = 0.0;
+  d.sunDistance = d.moonDistance = 1e9;
   // A disc spread over a pixel wider than itself (see discCoverage) would leak past the
   // horizon; there the share of the disc above the horizon (illuminance.w) hides it instead.
   // Resolved discs are cut pixel by pixel. The two blend as the disc grows past a pixel.
-  vec3 sunDisc = vec3(0.0);
 #if ATMOSPHERE_COMPOSITE_SUN_DISC
-  vec3 S = L.sun.direction.xyz;
   float sunR = L.sun.direction.w;
-  float sunDist = acos(clamp(dot(V, S), -1.0, 1.0));
-  float sunCover = discCoverage(sunDist, sunR, pixelAngle);
-  float sunResolved = smoothstep(1.0, 2.0, sunR / pixelAngle);
+  d.sunDistance = acos(clamp(dot(px.V, L.sun.direction.xyz), -1.0, 1.0));
+  float sunCover = discCoverage(d.sunDistance, sunR, px.angle);
+  float sunResolved = smoothstep(1.0, 2.0, sunR / px.angle);
   // A resolved disc shows its limb darkening; one a pixel or less across, its mean.
-  vec3 limb = mix(vec3(1.0), sunLimbDarkening(min(sunDist / sunR, 1.0)), sunResolved);
-  sunDisc = L.sunDisc.rgb * limb * sunCover * aboveHorizon *
-            mix(L.sun.illuminance.w, 1.0, sunResolved);
+  vec3 limb = mix(vec3(1.0), sunLimbDarkening(min(d.sunDistance / sunR, 1.0)), sunResolved);
+  d.sun = L.sunDisc.rgb * limb * sunCover * px.aboveHorizon *
+          mix(L.sun.illuminance.w, 1.0, sunResolved);
 #endif
-
   // The moon: resolved discs are shaded per pixel with an anti-aliased edge; discs near or
   // below a pixel in size carry their mean radiance with the sun's coverage rule, so the
   // drawn flux stays right at every resolution. The two blend, so zooming does not pop.
-  vec3 moonDisc = vec3(0.0);
-  float moonCover = 0.0;
 #if ATMOSPHERE_COMPOSITE_MOON_DISC
-  vec3 M = L.moon.direction.xyz;
   float moonR = L.moon.direction.w;
-  float moonDist = acos(clamp(dot(V, M), -1.0, 1.0));
-  moonCover = discCoverage(moonDist, moonR, pixelAngle);
+  d.moonDistance = acos(clamp(dot(px.V, L.moon.direction.xyz), -1.0, 1.0));
+  d.moonCover = discCoverage(d.moonDistance, moonR, px.angle);
   vec3 moonMean = L.moonDisc.rgb * L.moonEarthshine.w + L.moonEarthshine.rgb;
-  vec3 moonResolved = moonDist < moonR + pixelAngle ? moonSurface(L, V) : vec3(0.0);
-  float resolved = smoothstep(1.0, 2.0, moonR / pixelAngle);
-  moonDisc = mix(moonMean, moonResolved, resolved) * moonCover * aboveHorizon *
-             mix(L.moon.illuminance.w, 1.0, resolved);
+  vec3 moonResolved = d.moonDistance < moonR + px.angle ? moonSurface(L, px.V) : vec3(0.0);
+  float resolved = smoothstep(1.0, 2.0, moonR / px.angle);
+  d.moon = mix(moonMean, moonResolved, resolved) * d.moonCover * px.aboveHorizon *
+           mix(L.moon.illuminance.w, 1.0, resolved);
 #endif
+  return d;
+}
 
-  // Stars shine through the sky light but not through the moon.
+// The stars: they shine through the sky light but not through the moon.
+vec3 starLight(Pixel px, LightingState L, Discs discs) {
   vec3 stars = vec3(0.0);
 #if ATMOSPHERE_COMPOSITE_STARS
-  float flux = starFlux(ivec2(p));
+  float flux = starFlux(px.p);
   if (flux > 0.0)
-    stars = vec3(flux * L.night.z / pixelSolidAngle(params.view, pixelCentre) *
-                 (1.0 - moonCover) * aboveHorizon);
+    stars = vec3(flux * L.night.z / pixelSolidAngle(params.view, px.centre) *
+                 (1.0 - discs.moonCover) * px.aboveHorizon);
 #endif
+  return stars;
+}
 
+// What lies beyond every cloud: the sky, the stars and the discs above the horizon, the ground
+// through the air in front of it below.
+vec3 beyondTheClouds(Pixel px, LightingState L, vec3 sky, vec3 horizon, Discs discs) {
   // Seen from below the clouds the sky within a few degrees of the horizon is the air under
   // them, lit like it (airLight): under an overcast the distant horizon is no bright band of
   // clear sky. Higher up the sky shows through the gaps as it is.
-  float underClouds = params.observer != 0u ? smoothstep(0.0, 0.05, V.z - horizonZ) : 1.0;
-  vec3 beyond = sky * mix(params.airLight, 1.0, underClouds) + stars + sunDisc + moonDisc;
-  vec2 uv = pixelCentre / vec2(params.view.size.xy);
-  // The air toward the horizon below this direction: Kozlov's sky there is the airlight.
-  vec3 level = vec3(length(V.xy) > 1e-6 ? normalize(V.xy) : vec2(0.0, 1.0), 0.0);
-  vec3 horizon = clearSky(L, level);
+  float underClouds = params.observer != 0u ? smoothstep(0.0, 0.05, px.V.z - px.horizonZ) : 1.0;
+  vec3 beyond = sky * mix(params.airLight, 1.0, underClouds) + starLight(px, L, discs) +
+                discs.sun + discs.moon;
 #if ATMOSPHERE_COMPOSITE_GROUND
-  if (params.observer != 0u && aboveHorizon < 1.0) {
+  if (params.observer != 0u && px.aboveHorizon < 1.0) {
     // The part of the pixel below the horizon sees the ground: along V, or where V passes
     // above it, just under the horizon.
-    float z = horizonZ - 1e-5;
-    vec3 Vg = V.z < z ? V : vec3(level.xy * sqrt(max(1.0 - z * z, 0.0)), z);
-    float t = max(groundDistance(cameraR, Vg, planetR), 0.0);
+    float z = px.horizonZ - 1e-5;
+    vec3 Vg = px.V.z < z ? px.V : vec3(px.level.xy * sqrt(max(1.0 - z * z, 0.0)), z);
+    float t = max(groundDistance(params.cameraRadiusM, Vg, params.planetRadiusM), 0.0);
 #if ATMOSPHERE_COMPOSITE_PHYSICAL
     // The sky-view LUT below the horizon is just the air in front of the ground.
     Air air;
@@ -387,109 +413,123 @@ void main() {
     Air air = airTo(Vg, t, horizon);
 #endif
     vec3 ground = groundRadiance(L, Vg, t) * air.transmittance + air.inScattered;
-    beyond = mix(ground, beyond, aboveHorizon);
+    beyond = mix(ground, beyond, px.aboveHorizon);
   }
 #endif
+  return beyond;
+}
 
-  // Premultiplied "over": what lies beyond each cloud layer shows through its clear share.
+// The air between the camera and a point `distanceM` along the pixel's ray, for either sky.
+Air airAlong(Pixel px, float distanceM, vec3 sky, vec3 horizon) {
+#if ATMOSPHERE_COMPOSITE_PHYSICAL
+  return airTo(px.V, distanceM, px.uv, sky);
+#else
+  return airTo(px.V, distanceM, horizon);
+#endif
+}
+
+// The volumetric clouds (premultiplied) as the camera sees them, through the air in front of
+// them at their transmittance-weighted depth; nothing without them.
+vec4 cloudsThroughTheAir(Pixel px, vec3 sky, vec3 horizon) {
   vec4 clouds = vec4(0.0);
-  float cloudDepth = 0.0;
 #if ATMOSPHERE_COMPOSITE_CLOUDS
-  clouds = imageLoad(cloudImage, ivec2(p));
+  clouds = imageLoad(cloudImage, px.p);
 #if ATMOSPHERE_COMPOSITE_CLOUD_AIR
   if (params.observer != 0u && clouds.a > 0.0) {
-    // At the clouds' transmittance-weighted depth.
-    cloudDepth = imageLoad(cloudDepthImage, ivec2(p)).r;
-#if ATMOSPHERE_COMPOSITE_PHYSICAL
-    Air air = airTo(V, cloudDepth, uv, sky);
-#else
-    Air air = airTo(V, cloudDepth, horizon);
-#endif
+    Air air = airAlong(px, imageLoad(cloudDepthImage, px.p).r, sky, horizon);
     clouds.rgb = clouds.rgb * air.transmittance + clouds.a * air.inScattered;
   }
 #endif
 #endif
+  return clouds;
+}
+
+// Premultiplied "over": what lies beyond each cloud layer shows through its clear share. Below
+// the high clouds the volumetric clouds are nearer; above them, the high clouds.
+vec3 layered(vec3 beyond, vec4 clouds, vec4 highClouds) {
   vec4 nearer = highClouds, farther = clouds;
-  if (params.aboveHighClouds == 0u) {  // below the high clouds: the volumetric clouds are nearer
+  if (params.aboveHighClouds == 0u) {
     nearer = clouds;
     farther = highClouds;
   }
   beyond = beyond * (1.0 - farther.a) + farther.rgb;
-  vec3 frame = beyond * (1.0 - nearer.a) + nearer.rgb;
-  imageStore(beautyImage, ivec2(p), vec4(frame, 1.0));
+  return beyond * (1.0 - nearer.a) + nearer.rgb;
+}
 
 #if ATMOSPHERE_COMPOSITE_PERCEPTION
-  {
-    // What the pixel's centre ray meets first (docs/outputs.md, "Perception layers").
-    vec4 hit = vec4(0.0, 1.0 / 0.0, -1.0, 0.0);  // no volumetric clouds: no hit
+// What the pixel's centre ray meets first (docs/outputs.md, "Perception layers"): its label,
+// its cloud type, the air's transmittance to it and, on the ground, the cloud shadow there.
+vec4 perceptionOf(Pixel px, vec4 highClouds, Discs discs) {
+  vec4 hit = vec4(0.0, 1.0 / 0.0, -1.0, 0.0);  // no volumetric clouds: no hit
 #if ATMOSPHERE_COMPOSITE_CLOUDS
-    hit = imageLoad(cloudHitImage, ivec2(p));
+  hit = imageLoad(cloudHitImage, px.p);
 #endif
-    bool cloudHit = !isinf(hit.g) && hit.b >= 0.0;
-    float groundT = params.observer != 0u ? groundDistance(cameraR, V, planetR) : -1.0;
-    bool groundHit = groundT >= 0.0;
-    // The high clouds hide what lies behind them where they hide as much as a tenth of an
-    // optical depth of cloud does.
-    bool highHit = highClouds.a >= 1.0 - exp(-CLOUD_PERCEPTION_HIT_TAU);
-    float highT = sphereDistance(V, params.highCloudsAltitudeM);
-    // Seen from below, the high clouds lie beyond the volumetric ones and the ground hides
-    // them; seen from above, they come first.
-    if (params.aboveHighClouds == 0u && (cloudHit || groundHit)) highHit = false;
-    if (highT < 0.0) highHit = false;
-    int label = PERCEPTION_LABEL_SKY;
-    int type = PERCEPTION_TYPE_NONE;
-    float distanceM = 1e12;  // to the top of the atmosphere
-    if (highHit && params.aboveHighClouds != 0u) {
-      label = PERCEPTION_LABEL_HIGH_CLOUD;
-      type = PERCEPTION_TYPE_CIRRUS;
-      distanceM = highT;
-    } else if (cloudHit && (!groundHit || hit.g <= groundT)) {
-      bool low = hit.b < 0.5;
-      label = low ? PERCEPTION_LABEL_LOW_CLOUD : PERCEPTION_LABEL_MID_CLOUD;
-      // The nearest of the map's type keys: 0 stratiform, 0.5 cellular, 1 convective.
-      int key = hit.a < 0.25 ? 0 : hit.a < 0.75 ? 1 : 2;
-      type = low ? PERCEPTION_TYPE_STRATUS + key
-                 : (key == 0 ? PERCEPTION_TYPE_ALTOSTRATUS : PERCEPTION_TYPE_ALTOCUMULUS);
-      distanceM = hit.g;
-    } else if (groundHit) {
-      label = PERCEPTION_LABEL_GROUND;
-      distanceM = groundT;
-    } else if (highHit) {
-      label = PERCEPTION_LABEL_HIGH_CLOUD;
-      type = PERCEPTION_TYPE_CIRRUS;
-      distanceM = highT;
-    } else {
-      // A disc a pixel or less across labels the pixel its centre falls in.
+  float cameraR = params.cameraRadiusM;
+  bool cloudHit = !isinf(hit.g) && hit.b >= 0.0;
+  float groundT = params.observer != 0u ? groundDistance(cameraR, px.V, params.planetRadiusM) : -1.0;
+  bool groundHit = groundT >= 0.0;
+  // The high clouds hide what lies behind them where they hide as much as a tenth of an
+  // optical depth of cloud does.
+  bool highHit = highClouds.a >= 1.0 - exp(-CLOUD_PERCEPTION_HIT_TAU);
+  float highT = sphereDistance(px.V, params.highCloudsAltitudeM);
+  // Seen from below, the high clouds lie beyond the volumetric ones and the ground hides
+  // them; seen from above, they come first.
+  if (params.aboveHighClouds == 0u && (cloudHit || groundHit)) highHit = false;
+  if (highT < 0.0) highHit = false;
+  int label = PERCEPTION_LABEL_SKY;
+  int type = PERCEPTION_TYPE_NONE;
+  float distanceM = 1e12;  // to the top of the atmosphere
+  if (highHit && params.aboveHighClouds != 0u) {
+    label = PERCEPTION_LABEL_HIGH_CLOUD;
+    type = PERCEPTION_TYPE_CIRRUS;
+    distanceM = highT;
+  } else if (cloudHit && (!groundHit || hit.g <= groundT)) {
+    bool low = hit.b < 0.5;
+    label = low ? PERCEPTION_LABEL_LOW_CLOUD : PERCEPTION_LABEL_MID_CLOUD;
+    // The nearest of the map's type keys: 0 stratiform, 0.5 cellular, 1 convective.
+    int key = hit.a < 0.25 ? 0 : hit.a < 0.75 ? 1 : 2;
+    type = low ? PERCEPTION_TYPE_STRATUS + key
+               : (key == 0 ? PERCEPTION_TYPE_ALTOSTRATUS : PERCEPTION_TYPE_ALTOCUMULUS);
+    distanceM = hit.g;
+  } else if (groundHit) {
+    label = PERCEPTION_LABEL_GROUND;
+    distanceM = groundT;
+  } else if (highHit) {
+    label = PERCEPTION_LABEL_HIGH_CLOUD;
+    type = PERCEPTION_TYPE_CIRRUS;
+    distanceM = highT;
+  } else {
+    // A disc a pixel or less across labels the pixel its centre falls in.
 #if ATMOSPHERE_COMPOSITE_MOON_DISC
-      if (moonDist < max(moonR, 0.5 * pixelAngle)) label = PERCEPTION_LABEL_MOON;
+    if (discs.moonDistance < max(lighting.moon.direction.w, 0.5 * px.angle))
+      label = PERCEPTION_LABEL_MOON;
 #endif
 #if ATMOSPHERE_COMPOSITE_SUN_DISC
-      // The moon in front of the sun in an eclipse.
-      if (sunDist < max(sunR, 0.5 * pixelAngle) && label != PERCEPTION_LABEL_MOON)
-        label = PERCEPTION_LABEL_SUN;
+    // The moon in front of the sun in an eclipse.
+    if (discs.sunDistance < max(lighting.sun.direction.w, 0.5 * px.angle) &&
+        label != PERCEPTION_LABEL_MOON)
+      label = PERCEPTION_LABEL_SUN;
 #endif
-    }
-    float air = params.observer != 0u ? perceptionAir(V, distanceM) : 1.0;
-    float shadow = label == PERCEPTION_LABEL_GROUND
-                       ? groundCloudShadow(vec3(0.0, 0.0, cameraR) + groundT * V)
-                       : 1.0;
-    imageStore(perceptionImage, ivec2(p), vec4(float(label), float(type), air, shadow));
   }
+  float air = params.observer != 0u ? perceptionAir(px.V, distanceM) : 1.0;
+  float shadow = label == PERCEPTION_LABEL_GROUND
+                     ? groundCloudShadow(vec3(0.0, 0.0, cameraR) + groundT * px.V)
+                     : 1.0;
+  return vec4(float(label), float(type), air, shadow);
+}
 #endif
 
 #if ATMOSPHERE_COMPOSITE_HOST
+// The host's own pixel: where its depth holds no geometry, the frame; where it does, its
+// pixel seen through the air to it, behind the clouds in front of it.
+vec4 hostPixel(Pixel px, vec3 frame, vec4 clouds, vec4 highClouds, vec3 sky, vec3 horizon) {
   vec4 host = vec4(frame, 1.0);
 #if ATMOSPHERE_COMPOSITE_HOST_DEPTH
-  float t = hostDistance(params.host, texelFetch(hostDepth, ivec2(p), 0).r, V,
+  float t = hostDistance(params.host, texelFetch(hostDepth, px.p, 0).r, px.V,
                          params.view.forward.xyz);
   if (t > 0.0) {
-    host = imageLoad(hostColour, ivec2(p));
-    // The host's pixel through the air in front of it.
-#if ATMOSPHERE_COMPOSITE_PHYSICAL
-    Air air = airTo(V, t, uv, sky);
-#else
-    Air air = airTo(V, t, horizon);
-#endif
+    host = imageLoad(hostColour, px.p);
+    Air air = airAlong(px, t, sky, horizon);
     vec3 object = host.rgb * air.transmittance + air.inScattered;
     // The volumetric clouds in front of it: their march stopped at the host's depth
     // (volumetric_clouds.comp, VOLUMETRIC_CLOUDS_HOST_DEPTH), so all of what they hold lies
@@ -503,6 +543,29 @@ void main() {
     host.rgb = object * (1.0 - front.a) + front.rgb;
   }
 #endif
-  imageStore(hostColour, ivec2(p), host);
+  return host;
+}
+#endif
+
+void main() {
+  uvec2 p = gl_GlobalInvocationID.xy + uvec2(0u, band.rows.x);
+  if (any(greaterThanEqual(p, params.view.size.xy))) return;
+  Pixel px = pixelAt(p);
+  LightingState L = lighting;
+  vec3 sky = imageLoad(skyImage, px.p).rgb;
+  vec4 highClouds = imageLoad(highCloudImage, px.p);  // premultiplied, a = coverage
+  // The air toward the horizon below this direction: Kozlov's sky there is the airlight.
+  vec3 horizon = clearSky(L, px.level);
+
+  Discs discs = discsIn(px, L);
+  vec3 beyond = beyondTheClouds(px, L, sky, horizon, discs);
+  vec4 clouds = cloudsThroughTheAir(px, sky, horizon);
+  vec3 frame = layered(beyond, clouds, highClouds);
+  imageStore(beautyImage, px.p, vec4(frame, 1.0));
+#if ATMOSPHERE_COMPOSITE_PERCEPTION
+  imageStore(perceptionImage, px.p, perceptionOf(px, highClouds, discs));
+#endif
+#if ATMOSPHERE_COMPOSITE_HOST
+  imageStore(hostColour, px.p, hostPixel(px, frame, clouds, highClouds, sky, horizon));
 #endif
 }

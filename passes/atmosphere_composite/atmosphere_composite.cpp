@@ -12,10 +12,6 @@
 namespace sky {
 namespace {
 
-ShaderDefine flag(const char* name, bool on) {
-  return {name, on ? "1" : "0"};
-}
-
 glm::vec4 v4(const glm::dvec3& v, double w = 0.0) {
   return glm::vec4(glm::vec3(v), static_cast<float>(w));
 }
@@ -38,6 +34,22 @@ glm::dvec3 viewDirection(const shared::ViewState& view, glm::dvec2 pixel) {
 }
 
 }  // namespace
+
+std::vector<ShaderDefine> compositeVariantDefines(const CompositeVariant& v) {
+  auto flag = [](const char* name, bool on) { return ShaderDefine{name, on ? "1" : "0"}; };
+  return {flag("ATMOSPHERE_COMPOSITE_PHYSICAL", v.sky == CompositeSky::Physical),
+          flag("ATMOSPHERE_COMPOSITE_CLOUDS", v.clouds),
+          flag("ATMOSPHERE_COMPOSITE_STARS", v.stars),
+          flag("ATMOSPHERE_COMPOSITE_SUN_DISC", v.sunDisc),
+          flag("ATMOSPHERE_COMPOSITE_MOON_DISC", v.moonDisc),
+          flag("ATMOSPHERE_COMPOSITE_GROUND", v.ground),
+          flag("ATMOSPHERE_COMPOSITE_CLOUD_AIR", v.cloudAir),
+          flag("ATMOSPHERE_COMPOSITE_HOST", v.host),
+          flag("ATMOSPHERE_COMPOSITE_HOST_DEPTH", v.hostDepth),
+          {"ATMOSPHERE_COMPOSITE_HOST_FORMAT",
+           v.hostFormat == HostColourFormat::Rgba32f ? "rgba32f" : "rgba16f"},
+          flag("ATMOSPHERE_COMPOSITE_PERCEPTION", v.perception)};
+}
 
 shared::AtmosphereCompositeParams atmosphereCompositeParams(const AtmosphereCompositeSettings& s,
                                                             const LightingState& lighting,
@@ -145,14 +157,19 @@ AtmosphereCompositePass::Outputs AtmosphereCompositePass::setup(GraphBuilder& b,
   d.inputs = in;
   d.inputs.params.clouds = in.clouds ? 1u : 0u;
   const shared::LightingState& L = in.lighting;
-  const bool sunDisc =
-      discReachesView(in.params.view, glm::vec3(L.sun.direction), L.sun.direction.w);
-  const bool moonDisc =
+  CompositeVariant frame;
+  frame.sky = in.atmosphere ? CompositeSky::Physical : CompositeSky::Kozlov;
+  frame.clouds = in.clouds.has_value();
+  frame.stars = in.starFlux.has_value();
+  frame.sunDisc = discReachesView(in.params.view, glm::vec3(L.sun.direction), L.sun.direction.w);
+  frame.moonDisc =
       discReachesView(in.params.view, glm::vec3(L.moon.direction), L.moon.direction.w);
-  const char* hostFormat = "rgba16f";
+  frame.perception = in.perception.has_value();
   if (in.host) {
+    frame.host = true;
+    frame.hostDepth = in.host->depth.has_value();
     if (in.host->colourFormat == VK_FORMAT_R32G32B32A32_SFLOAT)
-      hostFormat = "rgba32f";
+      frame.hostFormat = HostColourFormat::Rgba32f;
     else if (in.host->colourFormat != VK_FORMAT_R16G16B16A16_SFLOAT)
       internalError("atmosphere_composite: a host colour format other than rgba16f or rgba32f");
     if (in.host->depth && !in.host->depthSampler)
@@ -163,19 +180,12 @@ AtmosphereCompositePass::Outputs AtmosphereCompositePass::setup(GraphBuilder& b,
   d.bands.clear();
   for (const CompositeBand& band :
        compositeBands(d.inputs.params, in.clouds.has_value(), in.clouds && in.clouds->belowBase,
-                      ATMOSPHERE_COMPOSITE_GROUP_Y))
-    d.bands.emplace_back(
-        band, &mVariants.get({flag("ATMOSPHERE_COMPOSITE_PHYSICAL", in.atmosphere.has_value()),
-                              flag("ATMOSPHERE_COMPOSITE_CLOUDS", in.clouds.has_value()),
-                              flag("ATMOSPHERE_COMPOSITE_STARS", in.starFlux.has_value()),
-                              flag("ATMOSPHERE_COMPOSITE_SUN_DISC", sunDisc),
-                              flag("ATMOSPHERE_COMPOSITE_MOON_DISC", moonDisc),
-                              flag("ATMOSPHERE_COMPOSITE_GROUND", band.ground),
-                              flag("ATMOSPHERE_COMPOSITE_CLOUD_AIR", band.cloudAir),
-                              flag("ATMOSPHERE_COMPOSITE_HOST", in.host.has_value()),
-                              flag("ATMOSPHERE_COMPOSITE_HOST_DEPTH", in.host && in.host->depth),
-                              {"ATMOSPHERE_COMPOSITE_HOST_FORMAT", hostFormat},
-                              flag("ATMOSPHERE_COMPOSITE_PERCEPTION", in.perception.has_value())}));
+                      ATMOSPHERE_COMPOSITE_GROUP_Y)) {
+    CompositeVariant v = frame;
+    v.ground = band.ground;
+    v.cloudAir = band.cloudAir;
+    d.bands.emplace_back(band, &mVariants.get(compositeVariantDefines(v)));
+  }
   if (in.starFlux) b.read(*in.starFlux, Access::StorageReadCompute);
   b.read(in.sky, Access::StorageReadCompute);
   b.read(in.highClouds, Access::StorageReadCompute);

@@ -12,6 +12,7 @@
 #include "engine/graph/pass_context.h"
 #include "engine/lighting/lighting_state.h"
 #include "engine/scene/scene.h"
+#include "engine/shader/shader_compiler.h"
 #include "shaders/common/atmosphere_composite_shared.h"
 #include "shaders/common/atmosphere_shared.h"
 #include "shaders/common/lighting_shared.h"
@@ -62,6 +63,29 @@ struct CompositeBand {
 // `bandRows` is the workgroup's height.
 std::vector<CompositeBand> compositeBands(const shared::AtmosphereCompositeParams& params,
                                           bool clouds, bool cloudsAboveHorizon, uint32_t bandRows);
+
+// The variant of atmosphere_composite.comp one band draws with: what the frame and the band
+// show, each compiled in or out (a software rasteriser runs both sides of a branch, so what a
+// frame cannot see is left out, not branched around). The image is the same either way.
+enum class CompositeSky { Kozlov, Physical };           // sky.model: whose air and ground
+enum class HostColourFormat { Rgba16f, Rgba32f };        // the host's colour image, if any
+struct CompositeVariant {
+  CompositeSky sky = CompositeSky::Kozlov;
+  bool clouds = false;      // the volumetric clouds
+  bool stars = false;       // the star passes ran this frame
+  bool sunDisc = false;     // the sun's disc can reach a pixel of the view (discReachesView)
+  bool moonDisc = false;    // the moon's likewise
+  bool ground = true;       // the band sees the ground (CompositeBand::ground)
+  bool cloudAir = true;     // the band sees the clouds' aerial perspective (CompositeBand)
+  bool host = false;        // drawing into a host's colour image
+  bool hostDepth = false;   // ... with its depth
+  HostColourFormat hostFormat = HostColourFormat::Rgba16f;
+  bool perception = false;  // the perception layers
+
+  bool operator==(const CompositeVariant&) const = default;
+};
+// The GLSL defines that compile `v`.
+std::vector<ShaderDefine> compositeVariantDefines(const CompositeVariant& v);
 
 class AtmosphereCompositePass {
 public:
@@ -117,8 +141,8 @@ public:
     ImageId perception;
   };
 
-  // The shader's variants (physical or kozlov; clouds, stars, each disc or not; ground and
-  // clouds' air or not) are compiled on first use: setup picks those this frame's bands need.
+  // The shader's variants (CompositeVariant) are compiled on first use: setup picks those this
+  // frame's bands need.
   AtmosphereCompositePass(const Context& ctx, ShaderCompiler& compiler);
   // One use's data, in the frame graph (FrameGraph::add): once per view.
   struct Data {

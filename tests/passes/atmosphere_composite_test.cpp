@@ -492,3 +492,40 @@ TEST(AtmosphereCompositeBands, AnEquirectangularImageAndATopDownOne) {
 
 }  // namespace
 }  // namespace sky
+
+namespace sky {
+namespace {
+
+// Every choice of the composite's variant reaches the shader as its own define, once: a
+// field left out of compositeVariantDefines would compile every variant the same.
+TEST(CompositeVariant, EachFieldIsOneDefineOfTheShader) {
+  const CompositeVariant base;
+  const std::vector<ShaderDefine> defines = compositeVariantDefines(base);
+  std::vector<std::string> names;
+  for (const ShaderDefine& d : defines) names.push_back(d.name);
+  std::sort(names.begin(), names.end());
+  EXPECT_EQ(std::adjacent_find(names.begin(), names.end()), names.end()) << "a define twice";
+  auto changed = [&](CompositeVariant v) {
+    const std::vector<ShaderDefine> other = compositeVariantDefines(v);
+    int n = 0;
+    for (size_t i = 0; i < defines.size(); ++i) n += defines[i].value != other[i].value;
+    return n;
+  };
+  CompositeVariant v = base;
+  v.sky = CompositeSky::Physical;
+  EXPECT_EQ(changed(v), 1);
+  for (bool CompositeVariant::*field :
+       {&CompositeVariant::clouds, &CompositeVariant::stars, &CompositeVariant::sunDisc,
+        &CompositeVariant::moonDisc, &CompositeVariant::ground, &CompositeVariant::cloudAir,
+        &CompositeVariant::host, &CompositeVariant::hostDepth, &CompositeVariant::perception}) {
+    v = base;
+    v.*field = !(v.*field);
+    EXPECT_EQ(changed(v), 1);
+  }
+  v = base;
+  v.hostFormat = HostColourFormat::Rgba32f;
+  EXPECT_EQ(changed(v), 1);
+}
+
+}  // namespace
+}  // namespace sky
