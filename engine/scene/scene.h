@@ -42,7 +42,7 @@ struct OutputSettings {
   double exposureAdaptationS = 0.0;  // histogram: time constant of the adaptation, s, 0..3600
   bool nightLook = true;         // the display's mesopic/scotopic look for dim scenes
   std::string display = "sRGB";  // OCIO display
-  std::string view = "ACES 1.0 - SDR Video";  // OCIO view
+  std::string view = "AgX";  // OCIO view (docs/outputs.md, "Views": why AgX)
   bool dither = true;  // dither the 8-bit PNG (not the EXR) so smooth gradients do not band
   // The perception layers in the EXR (clouds.optical_depth, clouds.distance, label,
   // cloud_type, air.transmittance, ground.cloud_shadow; docs/outputs.md): one more march of
@@ -496,7 +496,7 @@ struct LightingSettings {
   double turbidity = 0.1;       // aerosol optical depth at 550 nm, 0..5 (sun/moon colour)
   // How much of the physical darkening after sunset the exposure makes up, 0..1: night
   // lights (moon, stars, earthshine) are lifted by this fraction of the stops the sky loses.
-  double nightAdaptation = 0.8;
+  double nightAdaptation = 0.75;
   double starBrightness = 1.0;  // multiplies catalogue star fluxes, 0..1e6
   double starExtinction = 0.2;  // magnitudes per air mass, 0..2
   std::vector<PaletteKey> palette = defaultPalette();

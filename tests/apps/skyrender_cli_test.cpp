@@ -171,7 +171,7 @@ TEST_F(SkyrenderCli, BadArgumentsExitTwo) {
   expectBadInput("--time 2024-01-01T00:00:00", {"time", "zone"});
   expectBadInput("--gpu no-such-device", {"--gpu no-such-device", "available"});
   expectBadInput("--set output.display=Nope", {"output.display", "Nope", "available: sRGB"});
-  expectBadInput("--set output.view=Nope", {"output.view", "Nope", "ACES 1.0 - SDR Video"});
+  expectBadInput("--set output.view=Nope", {"output.view", "Nope", "AgX", "ACES 1.0 - SDR Video"});
   expectBadInput("--ocio " + (mDir / "none.ocio").string(), {"none.ocio"});
   CliRun r = run("frobnicate");
   EXPECT_EQ(r.rc, 2);

@@ -228,10 +228,11 @@ TEST(LightingState, FullMoonMidnightIsLitByTheMoon) {
 // the sky's light stops falling near -12 (docs/lighting.md, "Night lift"). At 23:00, sun
 // -11.8 and moon 7 degrees up, the lift was 13.0 stops against 16.2 at 01:30: the moonlit
 // scene showed 9 times darker than at midnight. Now the lift follows the sky's light, moon
-// included: within 1 stop of midnight's there (16.27 against 16.67), and in one minute it
+// included: within 1 stop of midnight's there (15.27 against 15.63), and in one minute it
 // never moves by more than 0.3 stop, the rate at which the twilight itself falls (1.7 stops a
 // degree between -8 and -6, the sun 0.18 degree a minute; measured 0.24). A
-// moonless night, 2024-07-05/06, is lifted 0.8 of the stops it is darker than moonlight more.
+// moonless night, 2024-07-05/06, is lifted `night_adaptation` of the stops it is darker than
+// moonlight more.
 TEST(LightingState, TheNightLiftFollowsTheMoonlitSkyThroughTwilight) {
   const Scene scene = zurich();
   auto liftAt = [&](const char* t) {
@@ -241,7 +242,7 @@ TEST(LightingState, TheNightLiftFollowsTheMoonlitSkyThroughTwilight) {
   const double midnight = liftAt("2024-06-22T01:30:00+02:00");
   std::cout << "night lift at 23:00 " << dip << ", at 01:30 " << midnight << "\n";
   EXPECT_GT(dip, midnight - 1.0);
-  EXPECT_GT(midnight, light::nightLiftEv(-19.0, 0.8) - 1e-9);
+  EXPECT_GT(midnight, light::nightLiftEv(-19.0, scene.lighting.nightAdaptation) - 1e-9);
   const double moonless = liftAt("2024-07-06T01:30:00+02:00");
   std::cout << "moonless night lift " << moonless << "\n";
   EXPECT_GT(moonless, midnight + 2.0) << "a moonless night is lifted further";
