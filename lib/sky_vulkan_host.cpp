@@ -126,7 +126,7 @@ Frame Sky::record(const HostFrame& host) {
     sky::FrameExposure exposure;
     exposure.mode = m.scene.output.exposure == sky::ExposureMode::Fixed ? sky::ExposureMode::Fixed
                                                                         : sky::ExposureMode::Auto;
-    exposure.ev = (exposure.mode == sky::ExposureMode::Auto ? rendered.lighting.nightLiftEv : 0.0) +
+    exposure.ev = (exposure.mode == sky::ExposureMode::Auto ? rendered.lighting.autoExposureEv : 0.0) +
                   m.scene.output.exposureEv;
     frame.exposureEv = exposure.ev;
     frame.report =

@@ -13,6 +13,7 @@
 #include "common/cloud_lighting.glsl"
 #include "common/cloud_light_volume.glsl"
 #include "common/noise.glsl"
+#include "common/cloud_shells.glsl"
 
 layout(local_size_x = CLOUD_LIGHT_VOLUME_GROUP_X, local_size_y = CLOUD_LIGHT_VOLUME_GROUP_Y,
        local_size_z = CLOUD_LIGHT_VOLUME_GROUP_Z) in;
@@ -20,11 +21,13 @@ layout(binding = CLOUD_LIGHT_VOLUME_BINDING_IMAGE, rg16f) uniform writeonly imag
 
 #include "common/cloud_light_march.glsl"
 
-// Every sample reads all the noise, filtered to the texel's size or a quarter of its step.
+// Every sample reads all the noise, filtered to the texel's size or a quarter of its step;
+// the far step's, the clouds' mean (as the raymarch's).
 float cloudDensityForLight(CloudLightPath path, vec3 p, float lengthM, int part) {
   CloudSample s;
   cloudSampleAtLla(p, latLonAltitudeOn(params.geo, path.line, p),
-                   max(path.footprintM, 0.25 * lengthM), false, CLOUD_NOISE_ALL, s);
+                   max(path.footprintM, 0.25 * lengthM), false,
+                   part == CLOUD_LIGHT_PART_MEAN ? CLOUD_NOISE_NONE : CLOUD_NOISE_ALL, s);
   return s.density;
 }
 
@@ -55,11 +58,15 @@ void main() {
     if ((i == 0 ? params.sunMarched : params.moonMarched) == 0.0) continue;
     vec3 L = i == 0 ? params.sunDirection.xyz : params.moonDirection.xyz;
     // The whole reach, every short step split CLOUD_LIGHT_VOLUME_SPLIT ways and the long step
-    // in twice as many parts.
+    // in twice as many parts, then the far step to where the path leaves the shells.
+    float reach = lightMarchReach(distance);
+    float exitM = cloudShellExit(params.geo.origin.w, h, dot(L, geoUp(params.geo, p)),
+                                 params.shellBaseM, params.shellTopM);
+    float farEnd = clamp(exitM, reach, max(CLOUD_LIGHT_FAR_REACH_M, reach));
     CloudLightPath path = CloudLightPath(
         p, L, latLonLine(params.geo, p, latLon, L, lightLongStepDistance(distance)), footprintM,
-        offset, distance, steps, CLOUD_LIGHT_VOLUME_SPLIT, steps, lightMarchReach(distance),
-        2 * CLOUD_LIGHT_VOLUME_SPLIT);
+        offset, distance, steps, CLOUD_LIGHT_VOLUME_SPLIT, steps, reach,
+        2 * CLOUD_LIGHT_VOLUME_SPLIT, farEnd, cloudLightFarParts(reach, farEnd));
     tau[i] = params.extinction * lightMarchDensity(path);
   }
   imageStore(lightVolume, id, vec4(tau, 0.0, 0.0));

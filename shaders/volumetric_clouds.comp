@@ -66,8 +66,9 @@ float lightFootprint(CloudLightPath path, float lengthM) {
 // (the reference reads everything everywhere).
 float cloudDensityForLight(CloudLightPath path, vec3 p, float lengthM, int part) {
   CloudSample s;
-  int noise = CLOUD_REFERENCE != 0 || part == CLOUD_LIGHT_PART_NEAR ? CLOUD_NOISE_ALL
-                                                                     : CLOUD_NOISE_SHAPE;
+  int noise = part == CLOUD_LIGHT_PART_MEAN ? CLOUD_NOISE_NONE
+              : CLOUD_REFERENCE != 0 || part == CLOUD_LIGHT_PART_NEAR ? CLOUD_NOISE_ALL
+                                                                      : CLOUD_NOISE_SHAPE;
   cloudSampleAtLla(p, latLonAltitudeOn(params.geo, path.line, p), lightFootprint(path, lengthM),
                    false, noise, s);
   return s.density;
@@ -92,14 +93,41 @@ layout(std140, binding = VOLUMETRIC_CLOUDS_BINDING_HOST_DEPTH_PARAMS) uniform Ho
 layout(binding = CLOUD_LIGHT_VOLUME_BINDING_IMAGE) uniform sampler3D lightVolume;
 #endif
 
-// The sun's (i = 0) or the moon's (1) illuminance at a layer, and whether the march lights
-// with it at all (not when too dim to matter next to the other, or below the horizon).
-vec3 keyLightAt(int i, int layer) {
-  return i == 0 ? (layer == 0 ? params.sunAtLow.rgb : params.sunAtMid.rgb)
-                : (layer == 0 ? params.moonAtLow.rgb : params.moonAtMid.rgb);
+// The sun's (i = 0) or the moon's (1) light through the air in a layer, at its base (k = 0),
+// middle (1) or top (2). Read member by member: a struct copied out of the uniform block
+// into a local is a store between two struct types in SPIR-V, which validation rejects.
+vec3 keyLightLevel(int i, int layer, int k) {
+  if (i == 0) {
+    if (layer == 0)
+      return k == 0 ? params.sunAtLow.base.rgb
+                    : (k == 1 ? params.sunAtLow.middle.rgb : params.sunAtLow.top.rgb);
+    return k == 0 ? params.sunAtMid.base.rgb
+                  : (k == 1 ? params.sunAtMid.middle.rgb : params.sunAtMid.top.rgb);
+  }
+  if (layer == 0)
+    return k == 0 ? params.moonAtLow.base.rgb
+                  : (k == 1 ? params.moonAtLow.middle.rgb : params.moonAtLow.top.rgb);
+  return k == 0 ? params.moonAtMid.base.rgb
+                : (k == 1 ? params.moonAtMid.middle.rgb : params.moonAtMid.top.rgb);
 }
+// Its illuminance at altitude `altitudeM` of the layer: log E quadratic through the base, the
+// middle and the top (the air's optical depth above a point falls off exponentially with its
+// altitude, so log E is smooth in it), 0 where the light is gone at the middle.
+vec3 keyLightAt(int i, int layer, float altitudeM) {
+  float base = layer == 0 ? params.lowBaseM : params.midBaseM;
+  float top = layer == 0 ? params.lowTopM : params.midTopM;
+  float f = clamp((altitudeM - base) / max(top - base, 1.0), 0.0, 1.0);
+  vec3 middle = keyLightLevel(i, layer, 1);
+  vec3 b = log(max(keyLightLevel(i, layer, 0), vec3(1e-30))), m = log(max(middle, vec3(1e-30)));
+  vec3 t = log(max(keyLightLevel(i, layer, 2), vec3(1e-30)));
+  vec3 E = exp(b * (2.0 * (f - 0.5) * (f - 1.0)) - m * (4.0 * f * (f - 1.0)) +
+               t * (2.0 * f * (f - 0.5)));
+  return mix(vec3(0.0), E, greaterThan(middle, vec3(0.0)));
+}
+// Whether the march lights with it at all (not when too dim to matter next to the other, or
+// below the horizon).
 bool keyLightMarched(int i, int layer) {
-  vec3 E = keyLightAt(i, layer);
+  vec3 E = keyLightLevel(i, layer, 1);
   return (i == 0 ? params.sunMarched : params.moonMarched) != 0.0 && max(E.r, max(E.g, E.b)) > 0.0;
 }
 vec3 keyLightDirection(int i) {
@@ -132,11 +160,13 @@ CloudLightPath cloudLightPath(vec3 p, vec2 latLon, float h, vec3 L, float footpr
   float exitM = cloudShellExit(params.geo.origin.w, h, dot(L, geoUp(params.geo, p)),
                                params.shellBaseM, params.shellTopM);
   float longEnd = clamp(exitM, distance, lightMarchReach(distance));
+  float farEnd = clamp(exitM, longEnd, max(CLOUD_LIGHT_FAR_REACH_M, longEnd));
   return CloudLightPath(p, L, latLonLine(params.geo, p, latLon, L, lightLongStepDistance(distance)),
                         footprintM, offset, distance, cloudLightStepsFor(footprintM, distance),
                         int(params.lightSplit), int(params.lightNearSteps), longEnd,
                         cloudLightLongParts(distance, longEnd,
-                                            float(longShare) * params.lightLongPartM));
+                                            float(longShare) * params.lightLongPartM),
+                        farEnd, cloudLightFarParts(longEnd, farEnd));
 }
 
 // What the light marches of one view sample found: the optical depth toward the sun (x) and
@@ -182,14 +212,15 @@ float meanCosine() {
 // with the clamp (22), the phase (23) and the multiple-scattering octaves, plus the diffusion
 // term, of which the point keeps `diffuseShare` (diffuseBoundaryShare). Scattering equals
 // extinction: cloud droplets barely absorb.
-vec3 cloudKeyLightScattering(vec3 d, int layer, float type, vec2 tau, float diffuseShare) {
+vec3 cloudKeyLightScattering(vec3 d, int layer, float altitudeM, float type, vec2 tau,
+                             float diffuseShare) {
   vec3 S = vec3(0.0);
   // Lu (22): the attenuation is at most that of ac times the densest path toward the light.
   float tauClamp =
       params.extinction * params.attenuationClamp * lightMarchReach(params.lightDistanceM);
   for (int i = 0; i < 2; ++i) {
     if (!keyLightMarched(i, layer)) continue;
-    vec3 E = keyLightAt(i, layer);
+    vec3 E = keyLightAt(i, layer, altitudeM);
     // The phase function is per steradian; in the renderer's units (illuminance 1 = pi x
     // radiance 1, lighting_shared.h) radiance = pi * E * phase.
     S += VIEW_PI * E *
@@ -519,7 +550,8 @@ vec3 cloudLightSample(CloudRay ray, CloudStep st, float tauView, inout CloudMarc
   // The depths to the base and the top at this point's density, as the ambient takes them.
   float share = diffuseBoundaryShare(sigmaT * st.s.hBottom, sigmaT * st.s.hTop, meanCosine(),
                                      dot(ray.direction, geoUp(params.geo, st.p)));
-  return scattering + cloudKeyLightScattering(ray.direction, st.s.layer, st.s.type, m.tau, share);
+  return scattering + cloudKeyLightScattering(ray.direction, st.s.layer, st.altitudeM,
+                                              st.s.type, m.tau, share);
 }
 
 // A cloud sample's share of the pixel: Lu (19)(20) over its step. The step's integral of the

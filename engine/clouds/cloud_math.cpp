@@ -150,4 +150,11 @@ int lightLongParts(float distanceM, float longEndM, float partM) {
   return std::clamp(static_cast<int>(std::ceil(len / partM)), 1, CLOUD_LIGHT_MAX_LONG_PARTS);
 }
 
+int lightFarParts(float longEndM, float farEndM) {
+  const float len = farEndM - longEndM;
+  if (len <= 0.0f) return 0;
+  return std::clamp(static_cast<int>(std::ceil(len / float(CLOUD_LIGHT_FAR_PART_M))), 1,
+                    CLOUD_LIGHT_MAX_FAR_PARTS);
+}
+
 }  // namespace sky::clouds

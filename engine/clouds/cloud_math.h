@@ -187,13 +187,18 @@ struct LightPath {
   int nearSteps = 5;                      // the first nearSteps are CLOUD_LIGHT_PART_NEAR (0)
   float longEnd = 6000.0f;                // the long step runs over [distance, longEnd]
   int longParts = 3;                      // in this many equal parts
+  float farEnd = 6000.0f;                 // the far step runs over [longEnd, farEnd]
+  int farParts = 0;                       // in this many equal parts (part 2: the mean)
 };
 
 // The long step's parts for parts at most partM long (cloudLightLongParts).
 int lightLongParts(float distanceM, float longEndM, float partM);
 
+// The far step's parts for parts at most CLOUD_LIGHT_FAR_PART_M long (cloudLightFarParts).
+int lightFarParts(float longEndM, float farEndM);
+
 // Lu (24)'s ds toward the light: `density(glm::vec3 p, float lengthM, int part)` plays
-// cloudDensityForLight (part 0 near, 1 far).
+// cloudDensityForLight (part 0 near, 1 far, 2 the far step's mean).
 template <class DensityFn>
 float lightMarchDensity(const LightPath& path, DensityFn&& density) {
   const auto shortSteps = [&](int first, int last, int part) {
@@ -219,6 +224,13 @@ float lightMarchDensity(const LightPath& path, DensityFn&& density) {
                                     (path.distance + (static_cast<float>(j) + path.offset) * len),
                   len, 1) *
           len;
+  const float farLen =
+      (path.farEnd - path.longEnd) / static_cast<float>(std::max(path.farParts, 1));
+  for (int j = 0; j < path.farParts; ++j)
+    ds += density(path.origin + path.direction *
+                                    (path.longEnd + (static_cast<float>(j) + path.offset) * farLen),
+                  farLen, 2) *
+          farLen;
   return ds;
 }
 

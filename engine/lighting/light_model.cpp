@@ -160,6 +160,17 @@ double sceneNightLiftEv(double sunElevationDeg, double skyLuminance, double moon
   return std::max(nightLiftEv(sunElevationDeg, adaptation), std::min(night, twilightStops));
 }
 
+double lowSunLiftEv(double sunElevationDeg) {
+  constexpr double kDaylightDeg = 10.0;
+  const double h = std::clamp(sunElevationDeg, 0.0, kDaylightDeg);
+  return kLowSunAdaptation *
+         std::log2(twilightIlluminanceLux(kDaylightDeg) / twilightIlluminanceLux(h));
+}
+
+double autoExposureEv(double sunElevationDeg, double nightLift) {
+  return std::max(lowSunLiftEv(sunElevationDeg), nightLift);
+}
+
 double paletteExposureEv(double sunElevationDeg) {
   return nightLiftEv(sunElevationDeg, kPaletteNightAdaptation);
 }
@@ -174,6 +185,16 @@ glm::dvec3 moonColor() {
   // light loses less): about -0.12, 0, +0.15 mag in R, G, B.
   glm::dvec3 c{std::pow(10.0, 0.4 * 0.12), 1.0, std::pow(10.0, -0.4 * 0.15)};
   return c / luminance(c);
+}
+
+glm::dvec3 solarColor() {
+  static const glm::dvec3 kColor = [] {
+    glm::dvec3 c(0.0);
+    for (int i = 0; i < spectral::kCount; ++i)
+      c += spectral::rgbMatching(i) * spectral::kSolarIrradiance[i] * spectral::tableWeight(i);
+    return c / luminance(c);
+  }();
+  return kColor;
 }
 
 double overcastGlobalShare(double n) {

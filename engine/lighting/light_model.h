@@ -103,6 +103,18 @@ double nightLiftEv(double sunElevationDeg, double adaptation);
 double sceneNightLiftEv(double sunElevationDeg, double skyLuminance, double moonlitSkyLuminance,
                         double adaptation);
 
+// The lift of a low sun, in stops: a camera's or an eye's exposure follows the light a
+// setting sun loses only in part, kLowSunAdaptation of the stops the clear-sky illuminance
+// (twilightIlluminanceLux) has fallen from 10 degrees (full daylight) down to `sunElevationDeg`,
+// held at its sunset value below the horizon: 0.16 EV at 6 degrees, 0.40 at 3, 0.71 at 0,
+// which the night lift passes about 1 degree below the horizon.
+double lowSunLiftEv(double sunElevationDeg);
+constexpr double kLowSunAdaptation = 0.1;
+
+// output.exposure auto: the larger of the low sun's lift and the night lift, so the exposure
+// rises gently through sunset and then follows the twilight and the night without a step.
+double autoExposureEv(double sunElevationDeg, double nightLiftEv);
+
 // The night adaptation the palette is authored for: lighting.palette holds the sky as it
 // should look after paletteExposureEv stops of night lift, the standard night_adaptation's.
 constexpr double kPaletteNightAdaptation = 0.8;
@@ -119,6 +131,15 @@ double dayFactor(double sunElevationDeg);
 // The moon's colour relative to the sun's: its reflectance reddens sunlight (B-V 0.92
 // against the sun's 0.65), normalised to unit Rec.709 luminance.
 glm::dvec3 moonColor();
+
+// The sun's colour above the atmosphere in linear Rec.709 with its D65 white, normalised to
+// unit luminance: the solar spectrum (ASTM E-490, spectral_tables.h) through the CIE 1931
+// colour-matching functions, about (1.09, 0.97, 0.93): a 5900 K sun is a little warmer than
+// D65's average daylight. Through the air it is what atmosphereTransmittance leaves of each
+// channel's share (both integrate over the same spectrum), so the noon sun at the ground is
+// about the 5500 K of a photographer's daylight, as Cycles' Nishita sky and Bruneton's
+// precomputed atmosphere have it.
+glm::dvec3 solarColor();
 
 // Kasten & Czeplak (1980): the share of the clear sky's global irradiance that reaches the
 // ground under an overcast share n of the sky, 1 - 0.75 n^3.4 (n clamped to 0..1).

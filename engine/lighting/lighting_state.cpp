@@ -127,8 +127,10 @@ LightingState computeLighting(const Scene& scene, const IsoTime& time) {
   const glm::dvec3 sunT =
       light::atmosphereTransmittance(st.sun.elevationDeg, cam.altitudeM, ls.turbidity);
   const double sunAbove = light::discAboveHorizon(st.sun.elevationDeg, st.sun.angularRadiusDeg);
-  const glm::dvec3 sunUnhidden = sunToaLux / light::kLuxPerUnit * sunT;
-  st.sun.illuminanceLux = sunToaLux * light::luminance(sunT) * sunAbove;
+  // The sun's own colour (light::solarColor): the renderer's white is D65, not the sun.
+  const glm::dvec3 sunColor = light::solarColor();
+  const glm::dvec3 sunUnhidden = sunToaLux / light::kLuxPerUnit * sunT * sunColor;
+  st.sun.illuminanceLux = sunToaLux * light::luminance(sunT * sunColor) * sunAbove;
 
   // Moon: Krisciunas & Schaefer by phase and distance, reddened, through the air mass.
   const MoonEphemeris& m = eph.moon;
@@ -136,7 +138,10 @@ LightingState computeLighting(const Scene& scene, const IsoTime& time) {
   const glm::dvec3 moonT =
       light::atmosphereTransmittance(st.moon.elevationDeg, cam.altitudeM, ls.turbidity);
   const double moonAbove = light::discAboveHorizon(st.moon.elevationDeg, st.moon.angularRadiusDeg);
-  const glm::dvec3 moonTint = light::moonColor();
+  // Moonlight is sunlight the moon reddens a little more (unit luminance: moonToaLux is the
+  // moon's illuminance).
+  const glm::dvec3 moonReflected = light::moonColor() * light::solarColor();
+  const glm::dvec3 moonTint = moonReflected / light::luminance(moonReflected);
   const glm::dvec3 moonUnhidden = moonToaLux / light::kLuxPerUnit * moonT * moonTint;
   st.moon.illuminanceLux = moonToaLux * light::luminance(moonT * moonTint) * moonAbove;
 
@@ -168,6 +173,7 @@ LightingState computeLighting(const Scene& scene, const IsoTime& time) {
                             light::luminance(glm::dvec3(physical(90.0).fogColor));
   st.nightLiftEv =
       light::sceneNightLiftEv(st.sun.elevationDeg, sky, moonlitSky, ls.nightAdaptation);
+  st.autoExposureEv = light::autoExposureEv(st.sun.elevationDeg, st.nightLiftEv);
 
   shared::LightingState& g = st.gpu;
   g.sun.direction = v4(st.sun.direction, st.sun.angularRadiusDeg * kDeg);
@@ -215,9 +221,9 @@ LightingState computeLighting(const Scene& scene, const IsoTime& time) {
                                          ls.starBrightness),
                       0.0f);
   for (int c = 0; c < 3; ++c) g.equatorialToEnu[c] = v4(eph.equatorialJ2000ToEnu[c]);
-  // Above the atmosphere: the sun is white in our Rec.709 units (its colour at the ground is
-  // all transmittance); the moon keeps its reddened albedo.
-  g.sunSpace = v4(glm::dvec3(sunToaLux / light::kLuxPerUnit));
+  // Above the atmosphere: the sun has its spectrum's colour in our Rec.709 units (D65 white),
+  // which the air then reddens; the moon adds its reddened albedo.
+  g.sunSpace = v4(sunToaLux / light::kLuxPerUnit * sunColor);
   g.moonSpace = v4(moonToaLux / light::kLuxPerUnit * moonTint);
   return st;
 }
@@ -255,6 +261,7 @@ nlohmann::ordered_json lightingJson(const LightingState& st) {
        {{"key", st.key},
         {"day_factor", st.dayFactor},
         {"night_lift_ev", st.nightLiftEv},
+        {"auto_exposure_ev", st.autoExposureEv},
         {"overcast", st.overcast}}},
   };
 }

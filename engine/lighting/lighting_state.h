@@ -30,6 +30,9 @@ struct LightingState {
   BodyLight moon;
   double dayFactor = 1.0;    // light::dayFactor of the sun's elevation
   double nightLiftEv = 0.0;  // stops the night lights are lifted by
+  // output.exposure auto's stops: the night lift, or a low sun's gentler lift before it
+  // (light::autoExposureEv).
+  double autoExposureEv = 0.0;
   std::string key;           // "sun" (day factor >= 0.5) or "moon"
   PaletteKey palette;        // at the sun's elevation
   PaletteKey moonPalette;    // at the moon's elevation, scaled to moonlight

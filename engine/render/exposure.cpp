@@ -52,7 +52,7 @@ FrameExposure ExposureMeter::expose(const Scene& scene, const RenderedFrame& fra
   double ev = 0.0;
   switch (o.exposure) {
     case ExposureMode::Auto:
-      ev = frame.lighting.nightLiftEv;
+      ev = frame.lighting.autoExposureEv;
       break;
     case ExposureMode::Fixed:
       break;

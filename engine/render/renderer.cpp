@@ -135,7 +135,7 @@ FramePlan Renderer::buildFrame(FrameGraph& graph, const Scene& scene, const IsoT
       internalError("the GPU display path has no histogram exposure (it meters the frame)");
     DisplayTransformPass::Inputs d;
     d.settings = {options.gpuDisplay, scene.output.display, scene.output.view,
-                  (scene.output.exposure == ExposureMode::Auto ? f.lighting.nightLiftEv : 0.0) +
+                  (scene.output.exposure == ExposureMode::Auto ? f.lighting.autoExposureEv : 0.0) +
                       scene.output.exposureEv,
                   scene.output.nightLook};
     d.beauty = plan.beauty;

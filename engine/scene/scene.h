@@ -23,8 +23,8 @@
 namespace sky {
 
 // output.exposure: how the display path exposes the physical scene-linear image (never the
-// EXR). auto: the lighting model's night lift (LightingState::nightLiftEv, following the
-// sky's light, twilight and moon); histogram: metered from the frame's own luminance, adapting
+// EXR). auto: the lighting model's lift (LightingState::autoExposureEv: a low sun's gentle
+// lift, then the night lift following the sky's light, twilight and moon); histogram: metered from the frame's own luminance, adapting
 // over a sequence's frames (exposure_adaptation_s); fixed: exposure_ev alone.
 enum class ExposureMode { Auto, Histogram, Fixed };
 constexpr auto enumNames(ExposureMode) {
@@ -493,7 +493,11 @@ std::vector<PaletteKey> defaultPalette();
 struct LightingSettings {
   double pressureHpa = 1010.0;  // refraction; 0 turns it off. 0..1200
   double temperatureC = 10.0;   // refraction, -100..100
-  double turbidity = 0.1;       // aerosol optical depth at 550 nm, 0..5 (sun/moon colour)
+  // Aerosol optical depth at 550 nm, 0..5 (sun/moon colour, the haze): 0.15, about the mean
+  // over land (Remer et al. 2008, MODIS: 0.19 over land, 0.13 over the oceans); 0.1, the
+  // default until issue 46, is a clean day, under which a 3 degree sun lit clouds yellower
+  // than a typical sunset.
+  double turbidity = 0.15;
   // How much of the physical darkening after sunset the exposure makes up, 0..1: night
   // lights (moon, stars, earthshine) are lifted by this fraction of the stops the sky loses.
   double nightAdaptation = 0.75;

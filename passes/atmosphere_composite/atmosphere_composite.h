@@ -28,7 +28,7 @@ struct AtmosphereCompositeSettings {
   GroundSettings ground;
   double planetRadiusM = 0.0;    // the sky model's planet (kozlov: the geographic Earth)
   double cameraAltitudeM = 0.0;  // above sea level
-  double turbidity = 0.1;        // lighting.turbidity: the kozlov haze (light::hazeMedium)
+  double turbidity = 0.15;       // lighting.turbidity: the kozlov haze (light::hazeMedium)
   bool observer = true;          // false for a top-down render: no ground, no aerial perspective
   bool aboveHighClouds = false;  // the camera flies above the high-cloud layer
   bool belowClouds = true;       // the camera is below the volumetric clouds' lowest base

@@ -24,7 +24,7 @@ class ShaderCompiler;
 // the ground, the cover around the camera and the clouds' phase function.
 struct CloudAmbientSettings {
   glm::vec3 groundAlbedo{0.1f};  // ground.albedo
-  double turbidity = 0.1;        // lighting.turbidity: the haze below the clouds
+  double turbidity = 0.15;       // lighting.turbidity: the haze below the clouds
   double cloudBaseM = 1500.0;    // the lowest marched cloud base (m above sea level)
   double overcast = 0.0;         // LightingState::overcast, the cover around the camera
   // The clouds' phase function (clouds.g and clouds.phase): dualLobeHG(g, gBack, backWeight),

@@ -234,24 +234,28 @@ shared::CloudParams cloudParams(const VolumetricCloudsSettings& settings,
 
   // Both lights are marched toward where each gives a visible share of the light at the
   // clouds (the moon by day does not), so the change from sun to moon at dusk is a blend, not
-  // a switch. Each layer gets the light that reaches its middle altitude, so clouds stay lit
-  // a while after sunset at the ground.
+  // a switch. Each layer gets the light that reaches its base, middle and top altitudes, so
+  // clouds stay lit a while after sunset at the ground, their tops longest, and a low sun
+  // lights their bases with less and redder light than their tops.
   const double turbidity = settings.turbidity;
-  auto at = [&](const BodyLight& body, const glm::vec4& space, double altitudeM) {
-    return light::illuminanceAtAltitude(glm::vec3(space), body.elevationDeg, body.angularRadiusDeg,
-                                        altitudeM, turbidity);
+  auto through = [&](const BodyLight& body, const glm::vec4& space, const CloudLayerSettings& l) {
+    auto at = [&](double altitudeM) {
+      return glm::vec4(light::illuminanceAtAltitude(glm::vec3(space), body.elevationDeg,
+                                                    body.angularRadiusDeg, altitudeM, turbidity),
+                       0.0f);
+    };
+    return shared::CloudLayerLight{at(l.baseM), at(0.5 * (l.baseM + l.topM)), at(l.topM)};
   };
-  const double lowMid = 0.5 * (c.low.baseM + c.low.topM);
-  const double midMid = 0.5 * (c.mid.baseM + c.mid.topM);
   const BodyLight* bodies[2] = {&lighting.sun, &lighting.moon};
   const glm::vec4* space[2] = {&lighting.gpu.sunSpace, &lighting.gpu.moonSpace};
-  glm::vec4* atLow[2] = {&p.sunAtLow, &p.moonAtLow};
-  glm::vec4* atMid[2] = {&p.sunAtMid, &p.moonAtMid};
+  shared::CloudLayerLight* atLow[2] = {&p.sunAtLow, &p.moonAtLow};
+  shared::CloudLayerLight* atMid[2] = {&p.sunAtMid, &p.moonAtMid};
   float share[2];
   for (int i = 0; i < 2; ++i) {
-    *atLow[i] = glm::vec4(at(*bodies[i], *space[i], lowMid), 0.0f);
-    *atMid[i] = glm::vec4(at(*bodies[i], *space[i], midMid), 0.0f);
-    share[i] = std::max(luminance(glm::vec3(*atLow[i])), luminance(glm::vec3(*atMid[i])));
+    *atLow[i] = through(*bodies[i], *space[i], c.low);
+    *atMid[i] = through(*bodies[i], *space[i], c.mid);
+    share[i] = std::max(luminance(glm::vec3(atLow[i]->middle)),
+                        luminance(glm::vec3(atMid[i]->middle)));
   }
   const float total = share[0] + share[1];
   float* marched[2] = {&p.sunMarched, &p.moonMarched};
@@ -273,8 +277,8 @@ shared::CloudParams cloudParams(const VolumetricCloudsSettings& settings,
 }
 
 CloudKeyLight cloudKeyLight(const shared::CloudParams& p) {
-  const auto share = [](const glm::vec4& low, const glm::vec4& mid) {
-    return std::max(luminance(glm::vec3(low)), luminance(glm::vec3(mid)));
+  const auto share = [](const shared::CloudLayerLight& low, const shared::CloudLayerLight& mid) {
+    return std::max(luminance(glm::vec3(low.middle)), luminance(glm::vec3(mid.middle)));
   };
   const bool sun = share(p.sunAtLow, p.sunAtMid) >= share(p.moonAtLow, p.moonAtMid);
   return {glm::vec3(sun ? p.sunDirection : p.moonDirection), sun};

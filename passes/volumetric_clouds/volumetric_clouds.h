@@ -147,7 +147,7 @@ struct VolumetricCloudsSettings {
   double cameraLatDeg = 0.0, cameraLonDeg = 0.0, cameraAltitudeM = 0.0;
   bool topDown = false;
   IsoTime timeStart;       // time's start: the wind drifts the noise from this instant
-  double turbidity = 0.1;  // lighting.turbidity: the air the light crosses to each layer
+  double turbidity = 0.15;  // lighting.turbidity: the air the light crosses to each layer
 };
 
 // Where the frame's rays start: the observer, or for a top-down camera the region's centre

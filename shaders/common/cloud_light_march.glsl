@@ -5,7 +5,8 @@
 // `lengthM` of the path: it may filter away detail finer than that; `part` is
 // CLOUD_LIGHT_PART_NEAR for the short steps that may resolve the detail noise and
 // CLOUD_LIGHT_PART_FAR for the others, a constant in each loop below so the includer can
-// leave out the reads a far sample never needs) before including this file.
+// leave out the reads a far sample never needs, and CLOUD_LIGHT_PART_MEAN for the far step,
+// which reads the clouds' statistical mean alone) before including this file.
 // Its C++ twin, lightMarchDensity in engine/clouds/cloud_math.h, takes the density as a callable.
 #ifndef SKY_CLOUD_LIGHT_MARCH_GLSL
 #define SKY_CLOUD_LIGHT_MARCH_GLSL
@@ -27,10 +28,13 @@ struct CloudLightPath {
   int nearSteps;     // the first nearSteps short steps are CLOUD_LIGHT_PART_NEAR
   float longEndM;    // the long step runs over [distanceM, longEndM]
   int longParts;     // in this many equal parts, each sampled once
+  float farEndM;     // the far step runs over [longEndM, farEndM]
+  int farParts;      // in this many equal parts, each reading the clouds' mean
 };
 
 #define CLOUD_LIGHT_PART_NEAR 0
 #define CLOUD_LIGHT_PART_FAR 1
+#define CLOUD_LIGHT_PART_MEAN 2
 
 // Defined by the includer, after this file.
 float cloudDensityForLight(CloudLightPath path, vec3 p, float lengthM, int part);
@@ -45,6 +49,13 @@ int cloudLightLongParts(float distanceM, float longEndM, float partM) {
   float len = longEndM - distanceM;
   if (len <= 0.0) return 0;
   return clamp(int(ceil(len / partM)), 1, CLOUD_LIGHT_MAX_LONG_PARTS);
+}
+
+// The far step's parts (at most CLOUD_LIGHT_FAR_PART_M each), none when it is empty.
+int cloudLightFarParts(float longEndM, float farEndM) {
+  float len = farEndM - longEndM;
+  if (len <= 0.0) return 0;
+  return clamp(int(ceil(len / CLOUD_LIGHT_FAR_PART_M)), 1, CLOUD_LIGHT_MAX_FAR_PARTS);
 }
 
 // Short steps first .. last - 1, each split path.split ways, every sample standing for its
@@ -75,16 +86,34 @@ float lightMarchLongStep(CloudLightPath path) {
   return ds;
 }
 
+// The far step over [longEndM, farEndM] in farParts equal parts: where a low light's path
+// still runs through the layer after the long step. It reads the clouds' effective mean (the
+// far field's clumped density, cloudSampleAtLla with CLOUD_NOISE_NONE): the chance that a
+// path of tens of kilometres misses every cloud of a broken field, not which clouds it hits.
+// Without it a 3 degree sun, whose path crosses a 1.5 km layer over some 25 km, lit a
+// stratocumulus deck's underside as if the sky toward it were clear past 6 km: 58 % brighter
+// than Cycles' (docs/cloud-model.md, "A path-traced field").
+float lightMarchFarStep(CloudLightPath path) {
+  float ds = 0.0;
+  float len = (path.farEndM - path.longEndM) / float(max(path.farParts, 1));
+  for (int j = 0; j < path.farParts; ++j)
+    ds += cloudDensityForLight(path,
+                               path.origin + path.direction * (path.longEndM + (float(j) + path.offset) * len),
+                               len, CLOUD_LIGHT_PART_MEAN) *
+          len;
+  return ds;
+}
+
 // Lu (24)'s ds: the density accumulated from path.origin toward the light in density x
 // metres, by the midpoint rule (each sample at path.offset of its step) over the short steps
-// covering [0, distanceM] (lightStepLength) and the long step over [distanceM, longEndM].
-// Exact for densities linear along the path; a density edge costs at most the length of the
-// (sub-)step it falls in.
+// covering [0, distanceM] (lightStepLength), the long step over [distanceM, longEndM] and
+// the far step over [longEndM, farEndM]. Exact for densities linear along the path; a
+// density edge costs at most the length of the (sub-)step it falls in.
 float lightMarchDensity(CloudLightPath path) {
   int near = clamp(path.nearSteps, 0, path.steps);
   return lightMarchShortSteps(path, 0, near, CLOUD_LIGHT_PART_NEAR) +
          lightMarchShortSteps(path, near, path.steps, CLOUD_LIGHT_PART_FAR) +
-         lightMarchLongStep(path);
+         lightMarchLongStep(path) + lightMarchFarStep(path);
 }
 
 // The first `k` short steps alone, [0, lightStepStart(k)]: the part near the point, where the
@@ -98,7 +127,7 @@ float lightMarchDensityNear(CloudLightPath path, int k) {
 
 // How many density samples lightMarchDensity takes (the cost heat map counts them).
 int lightMarchSamples(CloudLightPath path) {
-  return path.steps * path.split + path.longParts;
+  return path.steps * path.split + path.longParts + path.farParts;
 }
 
 #endif

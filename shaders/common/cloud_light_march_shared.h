@@ -18,4 +18,14 @@
 // The most parts a long step takes (a 4.8 km step in 300 m parts).
 #define CLOUD_LIGHT_MAX_LONG_PARTS 16
 
+// The far step (past the long step, to where the path leaves the cloud shells) reaches at
+// most this far from the point (m): a path at 1 degree rises through a 1.5 km layer in
+// 86 km, and at 60 km from a cloud the light has crossed so much of a broken field that
+// what lies beyond changes little. Its parts read only the weather map (the clouds' mean),
+// at most CLOUD_LIGHT_MAX_FAR_PARTS of them, each at most CLOUD_LIGHT_FAR_PART_M long: the
+// mean's cover and height profile change over kilometres.
+#define CLOUD_LIGHT_FAR_REACH_M 60000.0
+#define CLOUD_LIGHT_FAR_PART_M 3000.0
+#define CLOUD_LIGHT_MAX_FAR_PARTS 12
+
 #endif

@@ -37,6 +37,16 @@
 
 SKY_SHARED_BEGIN
 
+// A light's illuminance (rgb, renderer units; w unused) through the air at a layer's base,
+// middle and top altitude. A low sun's path to the base crosses more air than to the top: at
+// 3 degrees the low layer's base (750 m) gets 30 % less sunlight than its middle, and redder
+// light. The raymarch interpolates log E quadratically between the three (cloudLayerLight).
+struct CloudLayerLight {
+  vec4 base;
+  vec4 middle;
+  vec4 top;
+};
+
 // std140: scalars pack four to a 16-byte row, so they come in groups of four; a vec4 starts a
 // row. Directions and colours are vec4s whose w is unused (a bare vec3 differs in C++).
 struct CloudParams {
@@ -111,10 +121,10 @@ struct CloudParams {
   vec4 rollAxis;      // xyz: unit ECEF direction the stratocumulus rolls run along (the wind's)
   vec4 sunDirection;  // xyz: unit direction to the sun (ENU)
   vec4 moonDirection; // xyz: to the moon
-  vec4 sunAtLow;      // rgb: the sun's illuminance at the low layer's middle altitude
-  vec4 sunAtMid;      // rgb: at the mid layer's
-  vec4 moonAtLow;     // rgb: the moon's, likewise
-  vec4 moonAtMid;
+  CloudLayerLight sunAtLow;   // the sun's illuminance through the air in the low layer
+  CloudLayerLight sunAtMid;   // in the mid layer
+  CloudLayerLight moonAtLow;  // the moon's, likewise
+  CloudLayerLight moonAtMid;
   // The mean of each noise channel over its texture: what octaves finer than a pixel's
   // footprint average to, so distant clouds fade to it instead of aliasing (cloudSampleAt).
   vec4 shapeMean;     // rgba: of the shape texture
@@ -128,7 +138,7 @@ SKY_SHARED_END
 
 #ifdef __cplusplus
 static_assert(sizeof(sky::shared::CloudParams) ==
-                  64 + 64 + 16 + 10 * 16 + 13 * 16 + 32 + CLOUD_COVERAGE_LUT_VEC4S * 16,
+                  64 + 64 + 16 + 10 * 16 + 21 * 16 + 32 + CLOUD_COVERAGE_LUT_VEC4S * 16,
               "std140 layout of CloudParams");
 #endif
 #endif

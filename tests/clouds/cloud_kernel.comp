@@ -106,10 +106,12 @@ void main() {
   for (int k = 0; k < 3; ++k) {
     gDensityKind = k;
     // The schedule of the light volume and the tests before the long step was cut at the
-    // shells: split 1, the long step over [distance, 5 distance] in three parts.
+    // shells: split 1, the long step over [distance, 5 distance] in three parts; then a far
+    // step over [5 distance, 7 distance] in two.
     LatLonLine line = LatLonLine(p, L, vec2(0.0), vec2(0.0));
-    march[k] = lightMarchDensity(CloudLightPath(p, L, line, 0.0, 0.5, distance, n, 1, n,
-                                                lightMarchReach(distance), 3));
+    float reach = lightMarchReach(distance);
+    march[k] = lightMarchDensity(CloudLightPath(p, L, line, 0.0, 0.5, distance, n, 1, n, reach,
+                                                3, reach + 2.0 * distance, 2));
   }
   put(17, vec4(march[0], march[1], march[2], gSlabTop));
   put(18, vec4(L, distance));

@@ -339,8 +339,9 @@ TEST_F(CloudKernelTest, LightMarchMatchesAnalyticIntegrals) {
     const glm::vec3 L(light), p(point);
     const float distance = light.w, slabTop = at(kMarch, i, 3);
     const int n = int(point.w);
-    const double reach = lightMarchReach(distance);  // the short steps plus the long step
-    ASSERT_NEAR(reach, 5.0 * double(distance), 1e-6 * reach);
+    // The short steps, the long step and the far step (2 distance in two parts).
+    const double reach = lightMarchReach(distance) + 2.0 * double(distance);
+    ASSERT_NEAR(reach, 7.0 * double(distance), 1e-6 * reach);
     // Constant 0.7 and the linear ramp 0.3 + 0.0005 z: the midpoint rule is exact for both.
     const double constant = 0.7 * reach;
     const double ramp = (0.3 + 0.0005 * p.z) * reach + 0.0005 * L.z * reach * reach / 2;
@@ -349,7 +350,8 @@ TEST_F(CloudKernelTest, LightMarchMatchesAnalyticIntegrals) {
     // The slab: 1 up to where the ray leaves it. The midpoint rule errs by at most the length
     // of the step the edge falls in.
     const double edge = std::min(reach, (double(slabTop) - p.z) / L.z);
-    double bound = lightLongStepLength(distance);
+    double bound = edge > lightMarchReach(distance) ? double(distance)  // a far part
+                                                    : lightLongStepLength(distance);
     for (int k = 0; k < n; ++k)
       if (edge >= lightStepStart(k, n, distance) && edge <= lightStepStart(k + 1, n, distance))
         bound = lightStepLength(k, n, distance);
@@ -365,6 +367,8 @@ TEST_F(CloudKernelTest, LightMarchMatchesAnalyticIntegrals) {
       path.steps = path.nearSteps = n;
       path.longEnd = lightMarchReach(distance);
       path.longParts = 3;
+      path.farEnd = path.longEnd + 2.0f * distance;
+      path.farParts = 2;
       return lightMarchDensity(path, [&](glm::vec3 q, float, int) { return density(q); });
     };
     EXPECT_NEAR(at(kMarch, i, 0), twin([](glm::vec3) { return 0.7f; }), 1e-5 * constant);

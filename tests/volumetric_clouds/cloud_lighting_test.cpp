@@ -105,7 +105,7 @@ TEST_F(CloudLightingTest, AtNightTheMoonIsTheKeyLight) {
               1e-6f);
   EXPECT_EQ(night.sunMarched, 0.0f) << "the sun, 64 degrees down, is not marched";
   EXPECT_EQ(night.moonMarched, 1.0f) << "the moon is";
-  EXPECT_GT(night.moonAtMid.g, 0.0f);
+  EXPECT_GT(night.moonAtMid.middle.g, 0.0f);
 
   const Scene noon = cloudScene("cumulus_noon");
   const LightingState day = computeLighting(noon, noon.time.start);

@@ -1,0 +1,150 @@
+// A sky at low sun as a viewer sees it on the display (issue 46): the colour of sunset-lit
+// clouds and the brightness of sunset and twilight frames, at takram's view (35 N 139 E, 10 m
+// up, heading 0, 60 degrees, cover 0.4 in 750-2200 m, the physical sky) and at the default
+// scene's Zurich dusk. Each check reads the display image (the PNG's values before dither,
+// through the default view and exposure) over the pixels above the horizon (the perception
+// layers' labels), at 160 x 90.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "cloud_test_util.h"
+#include "engine/color/hue.h"
+#include "engine/color/ocio_output.h"
+#include "engine/render/exposure.h"
+#include "engine/render/render_files.h"
+#include "shaders/common/cloud_perception_shared.h"
+
+namespace sky {
+namespace {
+
+class SunsetLookTest : public test::CloudRenderTest {};
+
+// takram's view with the sun placed by hand, as issue 46 measured it.
+Scene peerAtLowSun(double sunElevation, double sunAzimuth, double pitch,
+                   std::vector<std::string> more = {}) {
+  std::vector<std::string> o = {"output.width=160", "output.height=90", "output.perception=true",
+                                "weather.spread=0", "high_clouds.cover=0.2",
+                                "sun.elevation=" + std::to_string(sunElevation),
+                                "sun.azimuth=" + std::to_string(sunAzimuth),
+                                "camera.pitch=" + std::to_string(pitch)};
+  o.insert(o.end(), more.begin(), more.end());
+  return loadSceneFile(configDir() / "examples" / "peer_view.yaml", o);
+}
+
+// What the display shows of a frame, and where the clouds and the sky are.
+struct Shown {
+  std::vector<glm::dvec3> display;  // the PNG's RGB in 0..1 before dither
+  std::vector<bool> above;          // the pixel is above the horizon (not labelled ground)
+  std::vector<float> cloudAlpha;    // the volumetric clouds' opacity
+  std::vector<double> luminance;    // scene-linear luminance of the beauty
+};
+
+Shown show(const Scene& scene, const RenderedFrame& frame) {
+  static const OcioOutput ocio = OcioOutput::load();
+  ExposureMeter meter;
+  const std::vector<float> rgba =
+      displayPixels(frame, scene, meter.expose(scene, frame, scene.time.start), ocio);
+  const ImageLayer& beauty = frame.image.layers.at(0);
+  const ImageLayer* clouds = frame.image.find("clouds");
+  const ImageLayer* label = frame.image.find("label");
+  EXPECT_TRUE(clouds && label);
+  Shown s;
+  const size_t n = size_t(frame.image.width) * size_t(frame.image.height);
+  for (size_t i = 0; i < n; ++i) {
+    s.display.emplace_back(rgba[i * 4], rgba[i * 4 + 1], rgba[i * 4 + 2]);
+    s.above.push_back(label->pixels[i * label->channels.size()] != PERCEPTION_LABEL_GROUND);
+    s.cloudAlpha.push_back(clouds->pixels[i * clouds->channels.size() + 3]);
+    const float* p = &beauty.pixels[i * beauty.channels.size()];
+    s.luminance.push_back(0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2]);
+  }
+  return s;
+}
+
+// The mean display value over the pixels above the horizon.
+double meanAbove(const Shown& s) {
+  double sum = 0.0;
+  int n = 0;
+  for (size_t i = 0; i < s.display.size(); ++i)
+    if (s.above[i]) {
+      sum += (s.display[i].r + s.display[i].g + s.display[i].b) / 3.0;
+      ++n;
+    }
+  return n ? sum / n : 0.0;
+}
+
+// The HSV hue of the mean display colour of the lit clouds: the brightest quarter (by
+// scene luminance) of the opaque cloud pixels above the horizon.
+double litCloudHue(const Shown& s) {
+  std::vector<size_t> opaque;
+  for (size_t i = 0; i < s.display.size(); ++i)
+    if (s.above[i] && s.cloudAlpha[i] > 0.95f) opaque.push_back(i);
+  EXPECT_GT(opaque.size(), 200u) << "the view shows clouds";
+  std::sort(opaque.begin(), opaque.end(),
+            [&](size_t a, size_t b) { return s.luminance[a] > s.luminance[b]; });
+  glm::dvec3 mean(0.0);
+  const size_t lit = std::max<size_t>(1, opaque.size() / 4);
+  for (size_t k = 0; k < lit; ++k) mean += s.display[opaque[k]];
+  return hsvHueDeg(mean / double(lit));
+}
+
+TEST_F(SunsetLookTest, CloudsLitByASettingSunAreOrangeNotOchre) {
+  // The sun 3 degrees up behind the camera. Issue 46 measured the lit clouds' display hue at
+  // 38 degrees (yellow-ochre; takram's 13-20, photographs salmon to orange). The light's
+  // colour (the sun's own spectrum, and the redder light that reaches the lower parts of the
+  // layer) and a view that keeps hue (AgX) bring it to about 30 (29.9 at 160 x 90). Through
+  // the ACES 1.0 view the same frame shows 35.5: the view is half of it. Tolerance: the goal,
+  // 30 degrees, plus 1 for this size's sampling of the lit quarter.
+  const Scene scene = peerAtLowSun(3.0, 180.0, 10.0);
+  const RenderedFrame frame = render(scene);
+  const double agx = litCloudHue(show(scene, frame));
+  Scene aces = scene;
+  aces.output.view = "ACES 1.0 - SDR Video";
+  const double acesHue = litCloudHue(show(aces, frame));
+  std::printf("sun 3 deg behind: lit clouds' display hue %.1f (AgX), %.1f (ACES 1.0)\n", agx,
+              acesHue);
+  EXPECT_LE(agx, 31.0);
+  EXPECT_GT(agx, 10.0) << "orange, not red or magenta";
+  EXPECT_GT(acesHue, agx + 2.0) << "the view keeps the hue that ACES skews toward yellow";
+}
+
+TEST_F(SunsetLookTest, SunsetAndTwilightFramesShowAtMidGrey) {
+  // A camera or an adapted eye shows a sunset at mid-grey, not as a murky brown frame
+  // (issue 46: 0.14 at the Zurich dusk before; takram's sunsets 0.42). The mean display value
+  // above the horizon of takram's view with the sun 3 degrees ahead and behind, and of the
+  // default scene (the Kozlov sky) looking away from the sun 0.5 degrees up and in civil
+  // twilight, the sun 3.5 degrees down. Tolerance: issue 46's 0.3-0.5 for takram's physical
+  // sky; 0.3-0.6 for the Kozlov sky, whose authored sunset is brighter than the physical one
+  // and which the predicted exposure does not meter (docs/outputs.md, "Exposure").
+  struct Case {
+    const char* name;
+    Scene scene;
+    double lo, hi;
+  };
+  const std::vector<std::string> zurich = {"output.width=160", "output.height=90",
+                                           "output.perception=true", "camera.heading=112"};
+  auto at = [&](const char* time) {
+    std::vector<std::string> o = zurich;
+    o.push_back(std::string("time=") + time);
+    return loadSceneFile(configDir() / "default.yaml", o);
+  };
+  const Case cases[] = {
+      {"takram's view, sun 3 deg ahead", peerAtLowSun(3.0, 0.0, 10.0), 0.3, 0.5},
+      {"takram's view, sun 3 deg behind", peerAtLowSun(3.0, 180.0, 10.0), 0.3, 0.5},
+      {"Zurich, sun 0.5 deg up behind", at("2024-06-21T21:20:00+02:00"), 0.3, 0.6},
+      {"Zurich, civil twilight", at("2024-06-21T21:50:00+02:00"), 0.3, 0.6},
+  };
+  for (const Case& c : cases) {
+    const double m = meanAbove(show(c.scene, render(c.scene)));
+    std::printf("%s: mean display above the horizon %.3f\n", c.name, m);
+    EXPECT_GE(m, c.lo) << c.name;
+    EXPECT_LE(m, c.hi) << c.name;
+  }
+}
+
+}  // namespace
+}  // namespace sky
