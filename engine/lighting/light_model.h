@@ -106,8 +106,8 @@ double sceneNightLiftEv(double sunElevationDeg, double skyLuminance, double moon
 // The lift of a low sun, in stops: a camera's or an eye's exposure follows the light a
 // setting sun loses only in part, kLowSunAdaptation of the stops the clear-sky illuminance
 // (twilightIlluminanceLux) has fallen from 10 degrees (full daylight) down to `sunElevationDeg`,
-// held at its sunset value below the horizon: 0.16 EV at 6 degrees, 0.40 at 3, 0.71 at 0,
-// which the night lift passes about 1 degree below the horizon.
+// held at its sunset value below the horizon: 0.11 EV at 6 degrees, 0.27 at 3, 0.47 at 0,
+// which the night lift passes within a degree below the horizon.
 double lowSunLiftEv(double sunElevationDeg);
 constexpr double kLowSunAdaptation = 0.1;
 
