@@ -106,9 +106,9 @@ TEST(HighCloudWind, ProceduralTextureLiesAlongTheWind) {
 // ---- GPU: the shading against a reference ------------------------------------------------
 
 // The high_clouds layer of a scene with a constant coefficient texture and flat normals,
-// computed independently of the shader (kozlov model): Kozlov 3.2-3.4 for sun and moon,
-// faded into the sky by Kozlov 3.1's haze. With a constant texture the level of detail does
-// not matter, so every pixel can be compared.
+// computed independently of the shader (kozlov model): Kozlov 3.2-3.4 and the ice's forward
+// scattering for sun and moon, faded into the sky by Kozlov 3.1's haze. With a constant
+// texture the level of detail does not matter, so every pixel can be compared.
 TEST_F(SkyHighCloudsTest, CloudTermsMatchTheReference) {
   const fs::path dir = fs::temp_directory_path() / ("sky-hc-ref-" + std::to_string(::getpid()));
   fs::create_directories(dir);
@@ -171,8 +171,13 @@ TEST_F(SkyHighCloudsTest, CloudTermsMatchTheReference) {
         const float wAngle = std::acos(std::clamp(cosW, -1.0f, 1.0f));  // 3.4
         const glm::vec3 edge =
             l.E * std::exp(-wAngle * wAngle / (edgeL * edgeL)) / (3.14159265f * edgeL * edgeL);
+        // The ice's forward scattering: the opacity 1 - B times the light times the
+        // Henyey-Greenstein phase of g = 0.75, normalised per steradian.
+        const float g = 0.75f, denom = 1.0f + g * g - 2.0f * g * cosW;
+        const float phase = (1.0f - g * g) / (4.0f * 3.14159265f * denom * std::sqrt(denom));
+        const glm::vec3 ice = l.E * phase * (1.0f - coefficients.b);
         // 3.4 with the edge channel read as 0.3 optical depth
-        rgb += coefficients.r * lit + coefficients.g * dense + coefficients.a * 0.3f * edge;
+        rgb += coefficients.r * lit + coefficients.g * dense + coefficients.a * 0.3f * edge + ice;
       }
       rgb *= 1.5f;
       const float through = test::referenceHaze(V.z, scene.sky);
