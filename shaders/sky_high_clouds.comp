@@ -164,14 +164,21 @@ void main() {
   if (onLayer) {
     vec3 hit = vec3(0.0, 0.0, cameraR) + t * V;  // from the planet's centre
     vec3 up = normalize(hit);
-    // The layer's tangent frame: east and north at the hit point (u east, v north).
+    // The layer's tangent frame: east and north at the hit point, turned to the texture's axes:
+    // tileU is +u on the ground (east for images, downwind for procedural textures), the
+    // normal map's y axis (image up, -v) 90 degrees counter-clockwise from it.
     vec3 east = normalize(vec3(1.0, 0.0, 0.0) - up * up.x);
     vec3 north = cross(up, east);
+    vec2 tileU = vec2(params.tileUEast, params.tileUNorth);
+    vec2 tileV = vec2(tileU.y, -tileU.x);  // +v on the ground: +u turned clockwise
+    vec3 uAxis = tileU.x * east + tileU.y * north;
+    vec3 yAxis = cross(up, uAxis);
 
     // Texture coordinates: ground distance east/north of the camera plus the wind's drift,
-    // in tiles. Row 0 of the texture is its north edge, so v runs south.
+    // along the texture's axes, in tiles. A straight line of the texture is a straight line on
+    // the ground, so streaks parallel on the tile converge toward one point of the horizon.
     vec2 metres = hit.xy * (layerR / length(hit)) + params.texture.xy;
-    vec2 uv = vec2(metres.x, -metres.y) / params.texture.z;
+    vec2 uv = vec2(dot(metres, tileU), dot(metres, tileV)) / params.texture.z;
 
     // Texture footprint of this pixel: a pixel angle at distance t, stretched by the grazing
     // angle (the footprint's long axis, so nothing aliases along it). Past one texel the
@@ -195,9 +202,9 @@ void main() {
     vec4 coarse = texture(coverCoarseTexture, vec3(uv, layerW));
     vec4 c = mix(mix(fine, coarse, toCoarse), farFieldAt(cover), toMean);
 #else
-    // The long axis: the view direction along the layer, in uv (east, south).
+    // The long axis: the view direction along the layer, in uv.
     vec3 level = V - up * dot(V, up);
-    vec2 axis = vec2(dot(level, east), -dot(level, north));
+    vec2 axis = vec2(dot(level, uAxis), -dot(level, yAxis));
     axis = dot(axis, axis) > 1e-12 ? normalize(axis) : vec2(1.0, 0.0);
     vec4 c = mix(filteredCoefficients(uv, axis, texels, acrossTexels), params.meanCoefficients,
                  toMean);
@@ -209,14 +216,14 @@ void main() {
     float edgeWidth = params.shading.y;
     {
       vec3 S = L.sun.direction.xyz;
-      vec3 St = vec3(dot(S, east), dot(S, north), dot(S, up));
+      vec3 St = vec3(dot(S, uAxis), dot(S, yAxis), dot(S, up));
       vec3 E = lightAtLayer(up, S, params.sunAtLayer.rgb, L.sunSpace.rgb);
       rgb += kozlovCloudTerms(c, n, St, dot(V, S), E, L.palette, edgeWidth);
     }
 #if LIGHTING_MOON
     {
       vec3 M = L.moon.direction.xyz;
-      vec3 Mt = vec3(dot(M, east), dot(M, north), dot(M, up));
+      vec3 Mt = vec3(dot(M, uAxis), dot(M, yAxis), dot(M, up));
       vec3 E = lightAtLayer(up, M, params.moonAtLayer.rgb, L.moonSpace.rgb);
       rgb += kozlovCloudTerms(c, n, Mt, dot(V, M), E, L.moonPalette, edgeWidth);
     }

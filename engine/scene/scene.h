@@ -232,7 +232,8 @@ struct HighCloudSettings {
   double altitudeM = 9000.0;  // layer altitude above sea level, 1000..20000
   double tileSizeKm = 30.0;   // ground size of one texture repeat, 0.1..10000
   double windSpeedMs = 15.0;  // 0..200
-  double windFrom = 270.0;    // direction the wind blows from, degrees from north
+  double windFrom = 270.0;    // direction the wind blows from, degrees from north; a
+                              // procedural texture's +u (its streaks) is laid downwind
   double edgeGlowDeg = 10.0;  // l: angular width of the edge glow (Kozlov 3.4), 0.5..90
   double brightness = 1.0;    // multiplies the cloud terms, 0..100
   // Where the procedural layer's cover comes from: Scene (`cover`, uniform), Weather (the

@@ -186,7 +186,8 @@ void describe(V& v, HighCloudSettings& s) {
   v.field("wind_speed_ms", s.windSpeedMs, NumberRange{0, 200},
           "wind speed at the layer, m/s (moves the texture with time)");
   v.field("wind_from", s.windFrom, NumberRange{-360, 360},
-          "direction the wind blows from, degrees clockwise from north");
+          "direction the wind blows from, degrees clockwise from north (the texture drifts "
+          "with it; a procedural texture's streaks lie along it)");
   v.field("edge_glow_deg", s.edgeGlowDeg, NumberRange{0.5, 90},
           "angular width l of the glow of sparse edges around the light (Kozlov 3.4), degrees");
   v.field("brightness", s.brightness, NumberRange{0, 100}, "multiplies the cloud colour terms");

@@ -4,6 +4,9 @@
 #include <cmath>
 #include <vector>
 
+#include <glm/geometric.hpp>
+#include <glm/vec2.hpp>
+
 #include "engine/core/error.h"
 #include "engine/gpu/sampler.h"
 #include "engine/lighting/light_model.h"
@@ -48,14 +51,26 @@ shared::SkyHighCloudsParams skyHighCloudsParams(const Scene& scene, const Lighti
   // moves against it (a cloud at ground point x now was at x - drift at the start).
   const double elapsed = time.secondsSince(scene.time.start);
   const double toward = (hc.windFrom + 180.0) * kDeg;
+  const glm::dvec2 downwind(std::sin(toward), std::cos(toward));  // east, north
+  // A procedural texture's +u axis is laid downwind: its cirrus streaks run along +u, and real
+  // ones are drawn out along the upper-level wind, so in perspective they converge toward the
+  // horizon where the wind blows to and comes from. An image keeps north up, as it was drawn.
+  // Rotating the draw, not the bake, keeps the baked texture (and its cache entry) the same
+  // whatever the wind.
+  const glm::dvec2 tileU =
+      hc.source == HighCloudSource::Procedural ? downwind : glm::dvec2(1.0, 0.0);
+  const glm::dvec2 tileV(tileU.y, -tileU.x);  // +u turned 90 degrees clockwise
   const double tileM = hc.tileSizeKm * 1000.0;
-  double driftEast = hc.windSpeedMs * elapsed * std::sin(toward);
-  double driftNorth = hc.windSpeedMs * elapsed * std::cos(toward);
-  // Wrapped to one tile: the texture repeats, and floats keep their precision.
-  driftEast = std::fmod(driftEast, tileM);
-  driftNorth = std::fmod(driftNorth, tileM);
-  p.texture = glm::vec4(static_cast<float>(-driftEast), static_cast<float>(-driftNorth),
+  const glm::dvec2 drift = hc.windSpeedMs * elapsed * downwind;
+  // Wrapped to one tile along the texture's own axes, its periods (the texture repeats, and
+  // floats keep their precision), then back to east and north.
+  const double driftU = std::fmod(glm::dot(drift, tileU), tileM);
+  const double driftV = std::fmod(glm::dot(drift, tileV), tileM);
+  const glm::dvec2 wrapped = driftU * tileU + driftV * tileV;
+  p.texture = glm::vec4(static_cast<float>(-wrapped.x), static_cast<float>(-wrapped.y),
                         static_cast<float>(tileM), static_cast<float>(textureSize));
+  p.tileUEast = static_cast<float>(tileU.x);
+  p.tileUNorth = static_cast<float>(tileU.y);
   p.shading =
       glm::vec4(static_cast<float>(hc.brightness), static_cast<float>(hc.edgeGlowDeg * kDeg),
                 static_cast<float>(coarseSize), 0.0f);

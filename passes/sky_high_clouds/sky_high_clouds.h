@@ -86,7 +86,8 @@ private:
 double skyPlanetRadiusM(const Scene& scene);
 
 // The layer's uniforms for one frame: geometry from the scene and camera, the wind's drift
-// since the start of the scene's time, and each light's illuminance at the layer's altitude.
+// since the start of the scene's time, the texture's orientation (a procedural one's +u
+// downwind) and each light's illuminance at the layer's altitude.
 // `textureSize`/`coarseSize` are the texel counts across the fine and coarse textures.
 // `layerAltitudeM`, when given, places the layer (m above sea level) instead of
 // high_clouds.altitude_m: the forecast's high-layer altitude when the cover comes from it.

@@ -42,15 +42,49 @@ vec3 kozlovSparseEdges(float cosW, float widthL, vec3 lightIlluminance) {
 // The A channel (1 where edges are most typical) read as optical depth: sparse edges are at
 // most about 0.3 deep, so their glow is a thin single-scattering lobe, not a second sun.
 #define KOZLOV_EDGE_OPTICAL_DEPTH 0.3
+// The asymmetry g of the ice crystals' phase function. Cirrus ice (columns, plates, bullet
+// rosettes and their aggregates, tens to hundreds of micrometres) scatters visible light with
+// g = 0.74 to 0.84 by shape (Macke, Mueller and Raschke 1996, "Single scattering properties of
+// atmospheric ice crystals", J. Atmos. Sci. 53, 2813-2825); roughened crystals, the model of
+// the operational MODIS ice retrievals, give about 0.75 (Yang et al. 2013, "Spectrally
+// consistent scattering, absorption, and polarization properties of atmospheric ice crystals
+// at wavelengths from 0.2 to 100 um", J. Atmos. Sci. 70, 330-347).
+#define KOZLOV_ICE_PHASE_G 0.75
 
-// All three terms for one light, weighted by the coefficients (R thin, G dense, A edges).
+// The ice's phase function: Henyey-Greenstein, normalised to 1 over the sphere (per
+// steradian), Lu (23). cosW = V . S, 1 looking into the light.
+float kozlovIcePhase(float cosW) {
+  const float g = KOZLOV_ICE_PHASE_G;
+  float denom = 1.0 + g * g - 2.0 * g * cosW;
+  return (1.0 - g * g) / (4.0 * 3.14159265 * denom * sqrt(denom));
+}
+
+// Forward scattering by the layer's ice, the term Kozlov's model lacks: 3.2 lights the thin
+// parts by the slope of a surface, 3.3 blends two artist colours by a Rayleigh-shaped p(w)
+// and 3.4 gives only the sparse edges a narrow glow, so near a low sun (N . S' near 0) the
+// layer turned darker than the bright sky around the sun, where real cirrus glow. In the
+// small-angle limit of a strongly forward-scattering layer the light it takes out of the
+// beam, a share 1 - B (the B channel is the layer's transmittance), leaves spread over the
+// phase function around the beam's direction, so it adds Clight p_ice(w) (1 - B) per unit of
+// illuminance, Clight the full illuminance at the layer (the light is scattered, not passed on
+// diffusely as in 3.2). Read like 3.4: a coefficient (the opacity) times the light times a
+// normalised lobe. The lobe is 2.2 E per steradian looking into the light, 0.58 at 20 degrees and
+// 0.018 at 90 (against up to a quarter in 3.2), so away from the light the layer's look stays
+// Kozlov's.
+vec3 kozlovIceScattering(float cosW, float opacity, vec3 lightIlluminance) {
+  return lightIlluminance * kozlovIcePhase(cosW) * opacity;
+}
+
+// All four terms for one light, weighted by the coefficients (R thin, G dense, A edges, and
+// the opacity 1 - B for the ice's forward scattering).
 vec3 kozlovCloudTerms(vec4 coefficients, vec3 normalTs, vec3 lightTs, float cosW,
                       vec3 lightIlluminance, Palette p, float edgeWidth) {
   vec3 cLight = KOZLOV_THIN_TRANSMITTANCE * lightIlluminance;
   return coefficients.r * kozlovLitParts(normalTs, lightTs, cLight, p) +
          coefficients.g * kozlovDenseParts(cosW, p) +
          coefficients.a * KOZLOV_EDGE_OPTICAL_DEPTH *
-             kozlovSparseEdges(cosW, edgeWidth, lightIlluminance);
+             kozlovSparseEdges(cosW, edgeWidth, lightIlluminance) +
+         kozlovIceScattering(cosW, 1.0 - coefficients.b, lightIlluminance);
 }
 
 #endif

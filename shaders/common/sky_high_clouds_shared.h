@@ -53,13 +53,21 @@ struct SkyHighCloudsParams {
   vec4 regional;     // x: 1 = cover per pixel from the regional cover texture, 0 = the
                      // baked coefficient texture; y: the style's ramp width w; zw: unused
   vec4 farField[HIGH_CLOUD_COVER_STEPS];  // mean coefficients at cover k / (STEPS - 1)
+  // The texture's +u axis on the ground, a unit vector (east, north): east for image sources
+  // (north up, as drawn), downwind for procedural ones, whose cirrus streaks run along +u, so
+  // they lie along the wind (docs/high-clouds.md, "Orientation and tiling"). +v is +u turned
+  // 90 degrees clockwise (east to south).
+  float tileUEast;
+  float tileUNorth;
+  float padding0;  // std140: the rest of the row
+  float padding1;
 };
 
 SKY_SHARED_END
 
 #ifdef __cplusplus
 static_assert(sizeof(sky::shared::SkyHighCloudsParams) ==
-                  64 + 6 * 16 + 64 + 16 + 16 + HIGH_CLOUD_COVER_STEPS * 16,
+                  64 + 6 * 16 + 64 + 16 + 16 + HIGH_CLOUD_COVER_STEPS * 16 + 16,
               "std140 layout of SkyHighCloudsParams");
 #endif
 #endif

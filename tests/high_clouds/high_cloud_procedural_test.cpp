@@ -1,6 +1,6 @@
 // HighCloudTextures with source "procedural": cover 0 is a clear texture without a bake; the
 // mean opacity grows with cover; the textures tile; the styles differ in the ways they are
-// meant to (cirrus fibres running different ways across the sky, cirrocumulus ripples,
+// meant to (cirrus fibres running along the tile, cirrocumulus ripples,
 // cirrostratus veil); bakes are
 // deterministic per seed; channels stay in range; the cover map masks the cover; progress is
 // reported; and an unchanged scene adds nothing.
@@ -167,37 +167,33 @@ TEST_F(HighCloudTest, SeamCheckCatchesANonTilingTexture) {
   EXPECT_GT(seamJump(cirrus, cirrus.coefficients, 2, true), 2.0);
 }
 
-TEST_F(HighCloudTest, CirrusFibresRunDifferentWaysAcrossTheSky) {
+TEST_F(HighCloudTest, CirrusFibresRunAlongTheTile) {
   // In 8 x 8 blocks of the tile, the opacity's autocorrelation at a 4-texel shift along u, v
   // and the diagonals: cirrus is fibrous in each block (its best direction correlates well
-  // above its worst), but the best direction changes from block to block, so no direction
-  // leads in more than 60 % of them. The old texture ran every streak along u, which in
-  // perspective combed the whole sky toward one vanishing point. The check can fail:
-  // cirrostratus, whose faint fibres all run along u, fails it.
+  // above its worst), and the fibres run along u, the axis the draw lays downwind, wandering
+  // a little: u leads in most blocks and v, across the wind, in almost none. Measured: u, v
+  // and the diagonals lead in 46, 1, 8 and 9 of the 64 blocks, median spread 0.50. Issue 30's
+  // cirrus, whose flow turned right round over the tile, gave 30, 11, 14 and 9: it fails.
   auto textures = make();
-  auto look = [&](const char* style, int* leads) {
-    const Fetched f = fetch(*textures, proceduralScene(style, 0.5));
-    const int block = int(f.size) / 8;
-    std::vector<double> spread;
-    for (int by = 0; by < int(f.size); by += block)
-      for (int bx = 0; bx < int(f.size); bx += block) {
-        const std::vector<double> c = blockAutocorrelations(f, bx, by, block, 4);
-        const auto best = std::max_element(c.begin(), c.end());
-        spread.push_back(*best - *std::min_element(c.begin(), c.end()));
-        if (leads) ++leads[best - c.begin()];
-      }
-    std::sort(spread.begin(), spread.end());
-    return spread[spread.size() / 2];
-  };
-  int leads[4] = {0, 0, 0, 0}, veilLeads[4] = {0, 0, 0, 0};
-  const double cirrus = look("cirrus", leads);
-  look("cirrostratus", veilLeads);
+  const Fetched f = fetch(*textures, proceduralScene("cirrus", 0.5));
+  const int block = int(f.size) / 8;
+  std::vector<double> spread;
+  int leads[4] = {0, 0, 0, 0};
+  for (int by = 0; by < int(f.size); by += block)
+    for (int bx = 0; bx < int(f.size); bx += block) {
+      const std::vector<double> c = blockAutocorrelations(f, bx, by, block, 4);
+      const auto best = std::max_element(c.begin(), c.end());
+      spread.push_back(*best - *std::min_element(c.begin(), c.end()));
+      ++leads[best - c.begin()];
+    }
+  std::sort(spread.begin(), spread.end());
+  const double cirrus = spread[spread.size() / 2];
   std::cout << "cirrus: median directional spread " << cirrus << "; blocks led by u, v, "
-            << "diagonals: " << leads[0] << ", " << leads[1] << ", " << leads[2] << ", "
-            << leads[3] << " (cirrostratus along u: " << veilLeads[0] << ")\n";
+            << "diagonals: " << leads[0] << ", " << leads[1] << ", " << leads[2] << ", " << leads[3]
+            << "\n";
   EXPECT_GT(cirrus, 0.15) << "fibrous within each block";
-  for (int k = 0; k < 4; ++k) EXPECT_LE(leads[k], 64 * 6 / 10) << "direction " << k;
-  EXPECT_GT(veilLeads[0], 64 * 6 / 10) << "a combed texture fails the check";
+  EXPECT_GT(leads[0], 64 * 6 / 10) << "the fibres do not run along u";
+  EXPECT_LE(leads[1], 64 / 10) << "fibres across the wind";
 }
 
 TEST_F(HighCloudTest, CirrocumulusHasARipplePeriodNorthSouth) {

@@ -72,12 +72,43 @@ TEST(HighCloudWind, TextureDriftsDownwind) {
   EXPECT_NEAR(p2.texture.y, 6000.0f, 1e-2f);
 }
 
+// A procedural texture's +u axis (its cirrus streaks' mean direction) is laid downwind; an
+// image keeps north up. The drift wraps over whole tiles along the texture's own axes, so
+// after any time the offset is a whole number of its periods away from the true drift.
+TEST(HighCloudWind, ProceduralTextureLiesAlongTheWind) {
+  Scene scene;
+  scene.highClouds.source = HighCloudSource::Procedural;
+  scene.highClouds.windSpeedMs = 10.0;
+  scene.highClouds.tileSizeKm = 30.0;
+  const IsoTime later = scene.time.start.plusSeconds(12345.0);  // 123 km, four tiles and more
+  const LightingState st = computeLighting(scene, later);
+  const shared::ViewState view = makeViewState(scene.camera, 8, 8);
+  for (double from : {270.0, 0.0, 225.0, 100.0}) {
+    SCOPED_TRACE("wind from " + std::to_string(from));
+    scene.highClouds.windFrom = from;
+    const auto p = skyHighCloudsParams(scene, st, later, view, true, 64, 4, {});
+    const double toward = (from + 180.0) * kDeg;
+    EXPECT_NEAR(p.tileUEast, std::sin(toward), 1e-6);
+    EXPECT_NEAR(p.tileUNorth, std::cos(toward), 1e-6);
+    // The offset along +u: minus the drift, wrapped into one tile; none across it.
+    const double u = p.texture.x * p.tileUEast + p.texture.y * p.tileUNorth;
+    const double v = p.texture.x * p.tileUNorth - p.texture.y * p.tileUEast;
+    EXPECT_NEAR(u, -std::fmod(123450.0, 30000.0), 0.05);
+    EXPECT_NEAR(v, 0.0, 0.05);
+  }
+  scene.highClouds.source = HighCloudSource::Image;
+  scene.highClouds.windFrom = 225.0;
+  const auto image = skyHighCloudsParams(scene, st, later, view, true, 64, 4, {});
+  EXPECT_EQ(image.tileUEast, 1.0f);
+  EXPECT_EQ(image.tileUNorth, 0.0f);
+}
+
 // ---- GPU: the shading against a reference ------------------------------------------------
 
 // The high_clouds layer of a scene with a constant coefficient texture and flat normals,
-// computed independently of the shader (kozlov model): Kozlov 3.2-3.4 for sun and moon,
-// faded into the sky by Kozlov 3.1's haze. With a constant texture the level of detail does
-// not matter, so every pixel can be compared.
+// computed independently of the shader (kozlov model): Kozlov 3.2-3.4 and the ice's forward
+// scattering for sun and moon, faded into the sky by Kozlov 3.1's haze. With a constant
+// texture the level of detail does not matter, so every pixel can be compared.
 TEST_F(SkyHighCloudsTest, CloudTermsMatchTheReference) {
   const fs::path dir = fs::temp_directory_path() / ("sky-hc-ref-" + std::to_string(::getpid()));
   fs::create_directories(dir);
@@ -140,8 +171,13 @@ TEST_F(SkyHighCloudsTest, CloudTermsMatchTheReference) {
         const float wAngle = std::acos(std::clamp(cosW, -1.0f, 1.0f));  // 3.4
         const glm::vec3 edge =
             l.E * std::exp(-wAngle * wAngle / (edgeL * edgeL)) / (3.14159265f * edgeL * edgeL);
+        // The ice's forward scattering: the opacity 1 - B times the light times the
+        // Henyey-Greenstein phase of g = 0.75, normalised per steradian.
+        const float g = 0.75f, denom = 1.0f + g * g - 2.0f * g * cosW;
+        const float phase = (1.0f - g * g) / (4.0f * 3.14159265f * denom * std::sqrt(denom));
+        const glm::vec3 ice = l.E * phase * (1.0f - coefficients.b);
         // 3.4 with the edge channel read as 0.3 optical depth
-        rgb += coefficients.r * lit + coefficients.g * dense + coefficients.a * 0.3f * edge;
+        rgb += coefficients.r * lit + coefficients.g * dense + coefficients.a * 0.3f * edge + ice;
       }
       rgb *= 1.5f;
       const float through = test::referenceHaze(V.z, scene.sky);
