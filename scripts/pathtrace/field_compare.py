@@ -108,9 +108,9 @@ def compared_region(meta, outer, d):
     cam = float(meta["camera_altitude_m"])
     horizon_z = -math.sqrt(max(1.0 - (GROUND_RADIUS_M / (GROUND_RADIUS_M + cam)) ** 2, 0.0))
     above = d[..., 2] > horizon_z
-    low_top = float(meta["low_top_m"])
+    # The top of the highest layer the boxes reach into.
     box_top = cam + float(outer["box_max_m"][2])
-    top = float(meta["mid_top_m"]) if box_top > low_top + 1.0 else low_top
+    top = float(meta["mid_top_m"]) if box_top > float(meta["mid_base_m"]) else float(meta["low_top_m"])
     r0 = EARTH_RADIUS_M + cam
     r1 = EARTH_RADIUS_M + top
     b = r0 * d[..., 2]
