@@ -44,7 +44,8 @@
 #              clear sky. PEER_RESULTS: the peer's images (default ../shared/peers/takram/
 #              results); PEER_CLEAR: its clear skies, peer_clear_VIEW.png (default
 #              configs/pathtrace/peer_clear; made with the peer's run.sh, COVERAGE=0 and the
-#              view's EXTRA_QUERY, see there)
+#              view's EXTRA_QUERY, see there); PEER_OCIO: the OCIO config ours goes through
+#              (default: skyrender's own)
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 ./scripts/install-deps.sh --pathtracer
@@ -184,6 +185,7 @@ if [ "${PEER:-0}" = 1 ]; then
     --set weather.cover_low=0.4 --set 'weather.region.lat=[32,38]' --set 'weather.region.lon=[136,142]'
     --set clouds.low.base_m=750 --set clouds.low.top_m=2200 --set high_clouds.cover=0.2
     --set output.width=640 --set output.height=360 --set "output.view=${PEER_VIEW:-Un-tone-mapped}")
+  [ -z "${PEER_OCIO:-}" ] || PEER_FLAGS+=(--ocio "$PEER_OCIO")
   declare -A PEER_SUN=([toward]="3 0 10" [away]="3 180 10" [backlit]="12 0 20" [noon]="60 180 20")
   for v in toward away backlit noon; do
     read -r el az pitch <<< "${PEER_SUN[$v]}"

@@ -14,10 +14,10 @@ measured the same way on their PNGs:
   and the pixels around it are left out of the clear sky. On ours the segmentation is held
   against our alpha (the EXR's clouds.A): the share of our cloud pixels that are opaque and
   of our clear-sky pixels that are clear.
-- **Values**: the PNG decoded by the sRGB curve to display-linear RGB (for ours, rendered with
-  the 'Un-tone-mapped' view, this is the scene-linear image times the exposure, clipped at 1;
-  the peer's is AgX's compressed display values: the two are not the same transform, see the
-  docs).
+- **Values**: the PNG decoded by the sRGB curve to display-linear RGB: the peer's through AgX;
+  ours through compare.sh's PEER_VIEW (AgX, with main's OCIO config, for the figures in the
+  docs: the same transform; with 'Un-tone-mapped', the scene-linear image times the exposure,
+  clipped at 1, which is not).
 - **ratio**: mean luminance of the cloud pixels over that of the clear-sky pixels; **lit
   hue**: the HSV hue of the mean RGB of the brightest quarter of the cloud pixels.
 
