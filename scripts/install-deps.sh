@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages skylayers needs, only those that are missing.
 # Usage: scripts/install-deps.sh [--pathtracer] [--peer]
-#   --pathtracer  also installs Blender (Cycles) and the Python modules of OpenVDB and
-#                 OpenImageIO, which only the path-traced cloud comparison
+#   --pathtracer  also installs Blender (Cycles) and the Python modules of OpenVDB,
+#                 OpenImageIO, YAML and SciPy, which only the path-traced cloud comparison
 #                 (scripts/pathtrace/compare.sh) needs; CI and the build never do, and
 #                 Blender pulls in some 500 MB.
 #   --peer        also installs Chromium, which only the benchmark harness's peer
@@ -44,7 +44,9 @@ PACKAGES=(
 )
 for arg in "$@"; do
   case "$arg" in
-    --pathtracer) PACKAGES+=(blender python3-openvdb python3-openimageio) ;;
+    # The field comparison (issue 46) reads skyrender's settings (YAML) and fills the air in
+    # front of the clouds from the nearest pixel (scipy.ndimage).
+    --pathtracer) PACKAGES+=(blender python3-openvdb python3-openimageio python3-yaml python3-scipy) ;;
     --peer) PACKAGES+=(chromium) ;;
     *) echo "error: install-deps.sh: unknown option '$arg' (expected --pathtracer or --peer)" >&2; exit 2 ;;
   esac

@@ -2,7 +2,8 @@
 // skyrender export-volume: the cloud density at the centre of every voxel of a box, for the
 // path-traced reference (scripts/pathtrace). The density is the raymarch's own: the same
 // cloud_field.glsl function with the same parameters and textures, so the grid holds exactly
-// the field the clouds pass marches through (the CPU multiplies by the extinction).
+// the field the clouds pass marches through (the CPU multiplies by the extinction), at full
+// detail or at the level of detail the raymarch resolves at each voxel's distance.
 #include "common/volumetric_clouds_shared.h"
 #include "common/cloud_volume_export_shared.h"
 #include "common/geo.glsl"
@@ -23,7 +24,9 @@ void main() {
   uvec3 id = gl_GlobalInvocationID;
   if (any(greaterThanEqual(id, box.voxels.xyz))) return;
   vec3 p = box.firstVoxelCentreM.xyz + vec3(id) * box.voxelM.xyz;
+  // The field as a sample of the raymarch's footprint at this distance sees it (0: full detail).
+  float footprintM = max(box.footprintPerM * length(p), box.footprintMinM);
   CloudSample s;
-  cloudSampleAt(p, 0.0, s);
+  cloudSampleAt(p, footprintM, s);
   imageStore(grid, ivec3(id), vec4(s.density, 0.0, 0.0, 0.0));
 }

@@ -401,18 +401,51 @@ CloudVolumeBox boxOption(const std::string& text) {
   return {glm::dvec3(v[0], v[1], v[2]), glm::dvec3(v[3], v[4], v[5])};
 }
 
+// A number given as `option`'s value, strictly: the whole text a finite number within
+// [min, max] (numberOption for a repeated option's each value).
+double numberText(const std::string& option, const std::string& text, double min, double max) {
+  double v = 0.0;
+  auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (ec != std::errc() || end != text.data() + text.size() || !std::isfinite(v))
+    inputError(option + " '" + text + "': expected a number");
+  if (v < min || v > max) {
+    char range[96];
+    std::snprintf(range, sizeof range, "[%g, %g]", min, max);
+    inputError(option + " " + text + ": out of range " + range);
+  }
+  return v;
+}
+
 }  // namespace
 
 int exportVolumeCommand(const std::vector<std::string>& argv) {
-  CliArgs args("export-volume", argv,
-               {"--box", "--voxel-m", "--out", "--width", "--height", "--time", "--set", "--gpu"},
-               {"--set"}, {});
+  CliArgs args(
+      "export-volume", argv,
+      {"--box", "--voxel-m", "--lod", "--out", "--width", "--height", "--time", "--set", "--gpu"},
+      {"--set", "--box", "--voxel-m"}, {});
   Scene scene = loadScene(args, false);
   if (scene.time.frameCount() != 1)
     inputError("export-volume: the scene's time is a time-lapse; give one instant (--time)");
-  std::optional<CloudVolumeBox> box;
-  if (auto v = args.value("--box")) box = boxOption(*v);
-  const double voxelM = numberOption(args, "--voxel-m", 0.1, 10000, 50.0);
+  // Several boxes are the parts of one field, nested, finest first, each with its own voxel
+  // (one --voxel-m for all, or one per --box in order).
+  const std::vector<std::string>& boxes = args.values("--box");
+  const std::vector<std::string>& voxels = args.values("--voxel-m");
+  if (voxels.size() > 1 && voxels.size() != boxes.size())
+    inputError("--voxel-m is given " + std::to_string(voxels.size()) + " times for " +
+               std::to_string(boxes.size()) +
+               " --box: give one voxel for every box, or one for each box in order");
+  std::vector<double> voxelM;
+  for (const std::string& v : voxels) voxelM.push_back(numberText("--voxel-m", v, 0.1, 10000));
+  CloudVolumeRequest request;
+  request.defaultVoxelM = voxelM.empty() ? 50.0 : voxelM.front();
+  for (size_t k = 0; k < boxes.size(); ++k)
+    request.parts.push_back(
+        {boxOption(boxes[k]), voxelM.empty() ? 50.0 : voxelM[std::min(k, voxelM.size() - 1)]});
+  if (auto v = args.value("--lod")) {
+    const std::optional<CloudVolumeLod> lod = enumValue<CloudVolumeLod>(*v);
+    if (!lod) inputError("--lod '" + *v + "': expected full or view");
+    request.lod = *lod;
+  }
   std::optional<std::string> out = args.value("--out");
   if (!out) inputError("--out FILE.vdb is required (see skyrender export-volume --help)");
   const fs::path outPath = *out;
@@ -420,25 +453,30 @@ int exportVolumeCommand(const std::vector<std::string>& argv) {
   const fs::path folder = outPath.parent_path().empty() ? fs::path(".") : outPath.parent_path();
   if (!fs::is_directory(folder))
     inputError("--out " + *out + ": the folder " + folder.string() + " does not exist");
-  // The grid's size is checked before any GPU work.
-  if (box) cloudVolumeGrid(*box, voxelM);
+  // The grids' sizes and the boxes' nesting are checked before any GPU work.
+  for (const CloudVolumePart& part : request.parts) cloudVolumeGrid(part.box, part.voxelM);
+  checkCloudVolumeParts(request.parts);
   warnIfCacheUnwritable();
 
   Context ctx(contextOptions(args));
   ShaderCompiler compiler;
   Renderer renderer(ctx, compiler);
-  const CloudVolume volume = renderer.exportCloudVolume(scene, scene.time.start, box, voxelM);
-  writeCloudVolume(outPath, volume);
-  const VdbGrid& g = volume.extinction;
-  float maxExtinction = 0.0f;
-  size_t cloudy = 0;
-  for (float e : g.values) {
-    maxExtinction = std::max(maxExtinction, e);
-    cloudy += e > 0.0f;
+  const std::vector<CloudVolume> volumes =
+      renderer.exportCloudVolumes(scene, scene.time.start, request);
+  writeCloudVolumes(outPath, volumes);
+  for (const CloudVolume& volume : volumes) {
+    const VdbGrid& g = volume.extinction;
+    float maxExtinction = 0.0f;
+    size_t cloudy = 0;
+    for (float e : g.values) {
+      maxExtinction = std::max(maxExtinction, e);
+      cloudy += e > 0.0f;
+    }
+    const std::string grid = volumes.size() > 1 ? " grid " + g.name : "";
+    std::printf("wrote %s%s (%ux%ux%u voxels of %g m, %zu cloudy, extinction up to %.4g /m)\n",
+                outPath.string().c_str(), grid.c_str(), g.size.x, g.size.y, g.size.z, g.voxelSize,
+                cloudy, maxExtinction);
   }
-  std::printf("wrote %s (%ux%ux%u voxels of %g m, %zu cloudy, extinction up to %.4g /m)\n",
-              outPath.string().c_str(), g.size.x, g.size.y, g.size.z, g.voxelSize, cloudy,
-              maxExtinction);
   return 0;
 }
 

@@ -153,9 +153,20 @@ options:
   --box E0,N0,U0,E1,N1,U1
                        the box in metres east, north and up of the camera, minimum corner
                        then maximum (default: a 6 km square centred 4 km ahead along the
-                       heading, from the lowest layer's base to the highest layer's top)
+                       heading, from the lowest layer's base to the highest layer's top).
+                       Repeatable: several boxes are one field in nested parts, finest
+                       first, each inside the next, each its own grid ("density",
+                       "density_1", ...) holding its share of the field; each hands the field
+                       to the next over a band of two of the next one's voxels inside each
+                       face the next reaches well past, so a path tracer that adds the grids
+                       sees the field once (docs/outputs.md)
   --voxel-m M          voxel edge in metres (default: 50); the grid has ceil(size / M)
-                       voxels along each axis, at most 2^26 in all
+                       voxels along each axis, at most 2^26 a box and 2^28 in all. Give it
+                       once for every box or once for each --box, in order
+  --lod full|view      full (default): every noise octave at every voxel; view: the field as
+                       the raymarch resolves it, each voxel seen as a sample one pixel of the
+                       scene's camera (output.width, height) wide at its distance, and no
+                       finer than the voxel
   --width W, --height H
                        the image size recorded for the camera (same as --set output.width)
   --time TIME          one instant, same as --set time=TIME

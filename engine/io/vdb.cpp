@@ -1,6 +1,9 @@
 #include "engine/io/vdb.h"
 
+#include <sstream>
+
 #include <openvdb/io/File.h>
+#include <openvdb/io/Stream.h>
 #include <openvdb/openvdb.h>
 
 #include "engine/core/error.h"
@@ -21,14 +24,11 @@ void initialize() {
   (void)done;
 }
 
-}  // namespace
-
-void writeVdb(const std::filesystem::path& path, const VdbGrid& grid, const VdbMetadata& metadata) {
+openvdb::FloatGrid::Ptr makeVdbGrid(const VdbGrid& grid, const VdbMetadata& metadata) {
   const size_t count = size_t(grid.size.x) * grid.size.y * grid.size.z;
   if (grid.values.size() != count)
     internalError("writeVdb: " + std::to_string(grid.values.size()) + " values for " +
                   std::to_string(count) + " voxels");
-  initialize();
   openvdb::FloatGrid::Ptr vdb = openvdb::FloatGrid::create(0.0f);
   vdb->setName(grid.name);
   vdb->setGridClass(openvdb::GRID_FOG_VOLUME);
@@ -56,26 +56,63 @@ void writeVdb(const std::filesystem::path& path, const VdbGrid& grid, const VdbM
   }
   vdb->insertMeta(kSizeKey, openvdb::Vec3IMetadata(openvdb::Vec3i(
                                 int(grid.size.x), int(grid.size.y), int(grid.size.z))));
+  return vdb;
+}
+
+}  // namespace
+
+void writeVdb(const std::filesystem::path& path, const VdbGrid& grid, const VdbMetadata& metadata) {
+  writeVdb(path, std::vector<VdbGridWithMetadata>{{&grid, &metadata}});
+}
+
+void writeVdb(const std::filesystem::path& path, const std::vector<VdbGridWithMetadata>& grids) {
+  initialize();
+  openvdb::GridPtrVec vdbs;
+  for (const VdbGridWithMetadata& g : grids) {
+    for (const openvdb::GridBase::Ptr& other : vdbs)
+      if (other->getName() == g.grid->name)
+        internalError("writeVdb: two grids named '" + g.grid->name + "'");
+    vdbs.push_back(makeVdbGrid(*g.grid, *g.metadata));
+  }
+  // The file's length, from the same grids serialised in memory (OpenVDB's stream and file
+  // forms are the same bytes long): a short file is known without opening it.
+  std::streamoff expectedBytes = 0;
+  {
+    std::ostringstream bytes(std::ios_base::binary);
+    openvdb::io::Stream(bytes).write(vdbs);
+    expectedBytes = bytes.tellp();
+  }
   writeFileAtomic(path, [&](const std::filesystem::path& tmp) {
     try {
       openvdb::io::File file(tmp.string());
-      file.write({vdb});
+      file.write(vdbs);
       file.close();
     } catch (const openvdb::Exception& e) {
       inputError(path.string() + ": cannot write: " + e.what());
     }
     // OpenVDB writes through a std::ofstream whose errors it never checks: on a full disk
     // it returned normally after a 4,096-byte or empty file (issue 31, 1). So the temporary
-    // is read back, and only a grid whole to its last voxel is renamed into place.
-    bool whole = false;
+    // must be as long as the grids serialised, and is read back: only a file whose every grid
+    // is whole to its last voxel is renamed into place. The length comes first: OpenVDB
+    // reading a file cut short inside its grid descriptors of several grids took a string
+    // length from past the end and allocated gigabytes.
+    std::error_code sizeError;
+    const uintmax_t bytes = std::filesystem::file_size(tmp, sizeError);
+    if (sizeError || bytes != static_cast<uintmax_t>(expectedBytes))
+      inputError(path.string() + ": write failed (disk full?)");
+    bool whole = true;
     try {
       openvdb::io::File check(tmp.string());
       check.open();
-      openvdb::GridBase::Ptr back = check.hasGrid(grid.name) ? check.readGrid(grid.name) : nullptr;
+      for (const openvdb::GridBase::Ptr& vdb : vdbs) {
+        openvdb::GridBase::Ptr back =
+            check.hasGrid(vdb->getName()) ? check.readGrid(vdb->getName()) : nullptr;
+        whole = whole && back && back->activeVoxelCount() == vdb->activeVoxelCount();
+      }
       check.close();
-      whole = back && back->activeVoxelCount() == vdb->activeVoxelCount();
     } catch (const std::exception&) {
       // A truncated file fails to read, with a message about OpenVDB's internals.
+      whole = false;
     }
     if (!whole) inputError(path.string() + ": write failed (disk full?)");
   });

@@ -27,6 +27,13 @@ using VdbMetadata = std::map<std::string, VdbMetaValue>;
 // Writes `grid` (a fog volume) with `metadata` on the grid, through a temporary file (no
 // partial file on failure). BadInput naming the path when it cannot be written.
 void writeVdb(const std::filesystem::path& path, const VdbGrid& grid, const VdbMetadata& metadata);
+// The same for several grids in one file (names distinct), each with its own metadata: the
+// file is renamed into place only when every grid reads back whole.
+struct VdbGridWithMetadata {
+  const VdbGrid* grid;
+  const VdbMetadata* metadata;
+};
+void writeVdb(const std::filesystem::path& path, const std::vector<VdbGridWithMetadata>& grids);
 
 struct VdbFile {
   VdbGrid grid;          // dense over the grid's active bounding box as stored

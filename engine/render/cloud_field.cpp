@@ -78,9 +78,21 @@ glm::dvec3 CloudField::latLonAltitudeOf(const glm::dvec3& enu) const {
   return latLonAltitude(mIn.camera, enu);
 }
 
-// cloudSampleAtLla (shaders/common/cloud_field.glsl) with footprintM 0, no coarse check and
-// CLOUD_NOISE_ALL: at full detail every noiseKeep is 1, so the far field's mean drops out.
-CloudFieldSample CloudField::sample(const glm::dvec3& enu) const {
+namespace {
+
+// noiseKeep (cloud_field.glsl): how much of a noise channel whose cells are `cellM` wide a
+// sample `footprintM` wide resolves.
+float noiseKeep(float footprintM, float cellM) {
+  const float t = std::clamp((footprintM / cellM - 0.125f) / (0.5f - 0.125f), 0.0f, 1.0f);
+  return 1.0f - t * t * (3.0f - 2.0f * t);
+}
+
+}  // namespace
+
+// cloudSampleAtLla (shaders/common/cloud_field.glsl) with no coarse check and
+// CLOUD_NOISE_ALL, for a sample `footprintM` wide: at 0 (full detail) every noiseKeep is 1
+// and the far field's mean drops out.
+CloudFieldSample CloudField::sample(const glm::dvec3& enu, float footprintM) const {
   using namespace clouds;
   CloudFieldSample s;
   if (!mIn.anyCover) return s;
@@ -107,6 +119,17 @@ CloudFieldSample CloudField::sample(const glm::dvec3& enu) const {
   if (cover <= 0.0f || ph < 0.0f || ph > 1.0f) return s;
 
   const float profileCover = mIn.calibrated ? 1.0f : cover;
+  // The far field: the clouds' mean where the sample resolves none of their outline.
+  const float shapeCellM = 1.0f / params.shapeRepeatsPerM;
+  const float keepOutline = noiseKeep(footprintM, shapeCellM / 4.0f);
+  const float profile = mIn.tang ? tangTypeGradient(ph, type) : luGD(ph, profileCover);
+  const float cellTau =
+      params.extinction * profile * w.a * CLOUD_FAR_DENSITY * CLOUD_FAR_CHORD * shapeCellM / 4.0f;
+  const float clump = cellTau > 1e-4f ? (1.0f - std::exp(-cellTau)) / cellTau : 1.0f;
+  const float farDensity = cover * profile * CLOUD_FAR_DENSITY * clump;
+  s.density = farDensity * w.a;
+  if (keepOutline <= 0.0f) return s;
+
   const glm::vec3 p(enu);
   const glm::vec3 offset = p.x * glm::vec3(params.geo.east) + p.y * glm::vec3(params.geo.north) +
                            p.z * glm::vec3(params.geo.up);
@@ -122,19 +145,25 @@ CloudFieldSample CloudField::sample(const glm::dvec3& enu) const {
     shape = glm::mix(shape, sampleRepeat(mIn.shape, rolled * params.shapeRepeatsPerM), roll);
   }
   const float typeKeep = cloudTypeTexture(type);
-  const glm::vec3 keepShape(typeKeep);
+  const glm::vec3 keepShape = typeKeep * glm::vec3(noiseKeep(footprintM, shapeCellM / 8.0f),
+                                                   noiseKeep(footprintM, shapeCellM / 16.0f),
+                                                   noiseKeep(footprintM, shapeCellM / 32.0f));
   const glm::vec3 gba =
       glm::mix(glm::vec3(params.shapeMean.g, params.shapeMean.b, params.shapeMean.a),
                glm::vec3(shape.g, shape.b, shape.a), keepShape);
   shape = glm::vec4(shape.r, gba);
   glm::vec3 dq = (glm::vec3(params.detailOrigin) + offset) * params.detailRepeatsPerM;
-  const glm::vec3 keepDetail(typeKeep);
+  const float detailCellM = 1.0f / params.detailRepeatsPerM / (mIn.tang ? 4.0f : 2.0f);
+  const glm::vec3 keepDetail = typeKeep * glm::vec3(noiseKeep(footprintM, detailCellM),
+                                                    noiseKeep(footprintM, detailCellM / 2.0f),
+                                                    noiseKeep(footprintM, detailCellM / 4.0f));
   const float threshold = coverageThreshold(layer, type, cover);
   const float nstex = luNStex(shape);
   const float gs = luGS(ph, profileCover);
   const float baseShape = mIn.tang ? tangBaseShape(shape, ph, type) : nstex * gs;
   const float shapeOnly =
       mIn.tang ? tangDensity(baseShape, 0.0f, cover, threshold) : luNSfinal(nstex, gs, threshold);
+  s.density = glm::mix(farDensity, 0.0f, keepOutline) * w.a;
   if (shapeOnly <= 0.0f) return s;
   glm::vec3 detail(params.detailMean);
   if (keepDetail.x > 0.0f) {
@@ -147,7 +176,7 @@ CloudFieldSample CloudField::sample(const glm::dvec3& enu) const {
   const float density = mIn.tang ? tangCloudDensity(shape, detail, ph, cover, type, threshold)
                                  : luCloudDensity(shape, detail, ph, profileCover, threshold);
   const float sharpness = glm::mix(1.0f, params.edgeSharpness, keepShape.x);
-  s.density = cloudEdgeDensity(density, sharpness) * w.a;
+  s.density = glm::mix(farDensity, cloudEdgeDensity(density, sharpness), keepOutline) * w.a;
   return s;
 }
 

@@ -1,9 +1,10 @@
 #pragma once
 // The volumetric clouds' density field on the CPU, for queries (the public API's line of
 // sight, transmittance and density): the twin of cloudSampleAtLla in
-// shaders/common/cloud_field.glsl at full detail (a footprint of 0, as the density export
-// and the density slice read it), made from the frame's own CloudParams, weather map and
-// baked noise, so it is the field the raymarch marches through. The air between two points
+// shaders/common/cloud_field.glsl, at full detail (a footprint of 0, as the density export
+// and the density slice read it) unless a sample's width is given, made from the frame's
+// own CloudParams, weather map and baked noise, so it is the field the raymarch marches
+// through. The air between two points
 // is the physical atmosphere's medium (shaders/common/atmosphere.glsl atmosphereMedium).
 // tests/cloud_volume/cloud_field_test.cpp compares it with the GPU's density export.
 #include <optional>
@@ -46,8 +47,9 @@ class CloudField {
 public:
   explicit CloudField(CloudFieldInputs inputs);
 
-  // The cloud at a point of the camera's ENU frame (m).
-  CloudFieldSample sample(const glm::dvec3& enu) const;
+  // The cloud at a point of the camera's ENU frame (m), as a sample `footprintM` wide sees
+  // it: the raymarch's level of detail (docs/clouds.md), 0 for full detail.
+  CloudFieldSample sample(const glm::dvec3& enu, float footprintM = 0.0f) const;
   // Extinction through cloud at a point, 1/m.
   double extinction(const glm::dvec3& enu) const;
   // Optical depth through cloud along the segment a -> b (ENU, m), sampled every `stepM` at

@@ -26,7 +26,68 @@ std::string metres(double v) {
   return text;
 }
 
+std::string boxText(const CloudVolumeBox& b) {
+  char text[160];
+  std::snprintf(text, sizeof text, "%g,%g,%g,%g,%g,%g", b.minM.x, b.minM.y, b.minM.z, b.maxM.x,
+                b.maxM.y, b.maxM.z);
+  return text;
+}
+
+// s_k: how much of the field part k keeps at p (before the finer parts take theirs), rising
+// linearly from 0 on each of its handing-over faces to 1 a band inside it. A face hands over
+// when the next part reaches past it by at least its own band and two of the next part's
+// (there the next part's voxels can hold the ramp, and those of the part after it stay clear
+// of it). A face the next part reaches less far past is a face of the field, as one the
+// outermost part shares (boxes whose faces nearly meet are best made to meet).
+double partKeep(const std::vector<CloudVolumePart>& parts, size_t k, const glm::dvec3& p) {
+  const CloudVolumeBox& b = parts[k].box;
+  for (int a = 0; a < 3; ++a)
+    if (p[a] < b.minM[a] || p[a] > b.maxM[a]) return 0.0;
+  const double band = cloudVolumeBlendM(parts, k);
+  if (band <= 0.0) return 1.0;
+  const CloudVolumeBox& next = parts[k + 1].box;
+  const double reach = band + 2.0 * cloudVolumeBlendM(parts, k + 1);
+  double nearest = band;
+  for (int a = 0; a < 3; ++a) {
+    if (b.minM[a] - next.minM[a] >= reach) nearest = std::min(nearest, p[a] - b.minM[a]);
+    if (next.maxM[a] - b.maxM[a] >= reach) nearest = std::min(nearest, b.maxM[a] - p[a]);
+  }
+  return std::clamp(nearest / band, 0.0, 1.0);
+}
+
 }  // namespace
+
+void checkCloudVolumeParts(const std::vector<CloudVolumePart>& parts) {
+  uint64_t total = 0;
+  for (const CloudVolumePart& part : parts) {
+    const glm::uvec4 n = cloudVolumeGrid(part.box, part.voxelM).params.voxels;
+    total += uint64_t(n.x) * n.y * n.z;
+  }
+  if (total > kMaxCloudVolumeVoxelsInAll)
+    inputError("--box: the " + std::to_string(parts.size()) + " boxes need " +
+               std::to_string(total) + " voxels in all, more than the " +
+               std::to_string(kMaxCloudVolumeVoxelsInAll) +
+               " allowed (use larger voxels or smaller boxes)");
+  for (size_t k = 1; k < parts.size(); ++k) {
+    const CloudVolumeBox& inner = parts[k - 1].box;
+    const CloudVolumeBox& outer = parts[k].box;
+    for (int a = 0; a < 3; ++a)
+      if (inner.minM[a] < outer.minM[a] || inner.maxM[a] > outer.maxM[a])
+        inputError("--box " + boxText(outer) + " (box " + std::to_string(k + 1) +
+                   ") must contain --box " + boxText(inner) + " (box " + std::to_string(k) +
+                   "): several boxes are nested, finest first");
+  }
+}
+
+double cloudVolumeBlendM(const std::vector<CloudVolumePart>& parts, size_t k) {
+  return k + 1 < parts.size() ? kCloudVolumeBlendVoxels * parts[k + 1].voxelM : 0.0;
+}
+
+double cloudVolumeShare(const std::vector<CloudVolumePart>& parts, size_t k, const glm::dvec3& p) {
+  double share = partKeep(parts, k, p);
+  for (size_t j = 0; j < k && share > 0.0; ++j) share *= 1.0 - partKeep(parts, j, p);
+  return share;
+}
 
 CloudVolumeBox defaultCloudVolumeBox(const Scene& cloudScene, const glm::vec2& maxCover) {
   const CloudSettings& c = cloudScene.clouds;
@@ -64,9 +125,18 @@ CloudVolumeGrid cloudVolumeGrid(const CloudVolumeBox& box, double voxelM) {
   return g;
 }
 
+void setCloudVolumeFootprint(CloudVolumeGrid& grid, CloudVolumeLod lod,
+                             const shared::ViewState& view) {
+  const bool byView = lod == CloudVolumeLod::View;
+  // view.forward.w is the pixel's width per metre of distance, the raymarch's footprint.
+  grid.params.footprintPerM = byView ? view.forward.w : 0.0f;
+  grid.params.footprintMinM = byView ? static_cast<float>(grid.voxelM) : 0.0f;
+}
+
 CloudVolume makeCloudVolume(const Scene& cloudScene, const LightingState& lighting,
                             const IsoTime& time, const shared::ViewState& view,
-                            const CloudVolumeGrid& grid, std::vector<float> density) {
+                            const CloudVolumeGrid& grid, std::vector<float> density,
+                            const CloudVolumeBox& lightBox) {
   const CloudSettings& c = cloudScene.clouds;
   CloudVolume v;
   v.extinction.name = "density";
@@ -90,6 +160,13 @@ CloudVolume makeCloudVolume(const Scene& cloudScene, const LightingState& lighti
   m["box_max_m"] = grid.box.maxM;
   m["voxel_m"] = grid.voxelM;
   m["extinction_per_density"] = c.extinction;
+  const bool byView = grid.params.footprintPerM > 0.0f || grid.params.footprintMinM > 0.0f;
+  m["lod"] = std::string(enumName(byView ? CloudVolumeLod::View : CloudVolumeLod::Full));
+  m["footprint_per_m"] = double(grid.params.footprintPerM);
+  m["footprint_min_m"] = double(grid.params.footprintMinM);
+  m["grid_index"] = int64_t(0);
+  m["grid_count"] = int64_t(1);
+  m["blend_m"] = 0.0;
 
   const CameraSettings& cam = cloudScene.camera;
   m["camera_latitude_deg"] = cam.latitude;
@@ -110,11 +187,17 @@ CloudVolume makeCloudVolume(const Scene& cloudScene, const LightingState& lighti
 
   // Each light's illuminance where the raymarch takes it: the middle of the layer the box's
   // centre lies in (the low layer unless the centre is above its top), as cloudParams() does.
-  const double centreAltitude = cam.altitudeM + 0.5 * (grid.box.minM.z + grid.box.maxM.z);
+  const double centreAltitude = cam.altitudeM + 0.5 * (lightBox.minM.z + lightBox.maxM.z);
   const bool inMid = centreAltitude > c.low.topM;
   const double lightAltitude =
       inMid ? 0.5 * (c.mid.baseM + c.mid.topM) : 0.5 * (c.low.baseM + c.low.topM);
   m["light_altitude_m"] = lightAltitude;
+  // The layers' shells above sea level, so a reader can tell which rays leave the clouds
+  // inside the grid (scripts/pathtrace's field of view to the horizon).
+  m["low_base_m"] = c.low.baseM;
+  m["low_top_m"] = c.low.topM;
+  m["mid_base_m"] = c.mid.baseM;
+  m["mid_top_m"] = c.mid.topM;
   const BodyLight* bodies[2] = {&lighting.sun, &lighting.moon};
   const glm::vec4* space[2] = {&lighting.gpu.sunSpace, &lighting.gpu.moonSpace};
   const char* names[2] = {"sun", "moon"};
@@ -145,8 +228,24 @@ CloudVolume makeCloudVolume(const Scene& cloudScene, const LightingState& lighti
   return v;
 }
 
+void nameCloudVolumeParts(std::vector<CloudVolume>& volumes,
+                          const std::vector<CloudVolumePart>& parts) {
+  for (size_t k = 0; k < volumes.size(); ++k) {
+    volumes[k].extinction.name = k == 0 ? "density" : "density_" + std::to_string(k);
+    volumes[k].metadata["grid_index"] = int64_t(k);
+    volumes[k].metadata["grid_count"] = int64_t(volumes.size());
+    volumes[k].metadata["blend_m"] = cloudVolumeBlendM(parts, k);
+  }
+}
+
 void writeCloudVolume(const std::filesystem::path& path, const CloudVolume& volume) {
   writeVdb(path, volume.extinction, volume.metadata);
+}
+
+void writeCloudVolumes(const std::filesystem::path& path, const std::vector<CloudVolume>& volumes) {
+  std::vector<VdbGridWithMetadata> grids;
+  for (const CloudVolume& v : volumes) grids.push_back({&v.extinction, &v.metadata});
+  writeVdb(path, grids);
 }
 
 }  // namespace sky

@@ -295,6 +295,11 @@ CloudVolume Renderer::exportCloudVolume(const Scene& scene, const IsoTime& time,
   return mClouds.exportVolume(scene, time, box, voxelM);
 }
 
+std::vector<CloudVolume> Renderer::exportCloudVolumes(const Scene& scene, const IsoTime& time,
+                                                      const CloudVolumeRequest& request) {
+  return mClouds.exportVolumes(scene, time, request);
+}
+
 void Renderer::startAfresh() {
   mClouds.forgetKept();
   mClouds.invalidateReuse();

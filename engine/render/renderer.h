@@ -71,6 +71,12 @@ public:
   // without low or mid clouds, or a grid too large.
   CloudVolume exportCloudVolume(const Scene& scene, const IsoTime& time,
                                 const std::optional<CloudVolumeBox>& box, double voxelM);
+  // The same for several nested parts at once, each its own grid holding its share of the
+  // field (cloudVolumeShare), at the level of detail `request.lod` asks for: the field of a
+  // path tracer's view toward the horizon, fine near the camera and coarse far from it. BadInput
+  // as above, and for parts that are not nested (checkCloudVolumeParts).
+  std::vector<CloudVolume> exportCloudVolumes(const Scene& scene, const IsoTime& time,
+                                              const CloudVolumeRequest& request);
 
   // The cloud density field of `scene` at `time` on the CPU (engine/render/cloud_field.h):
   // the raymarch's own parameters, weather map and noise (baked or loaded as a frame would),

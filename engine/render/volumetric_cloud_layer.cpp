@@ -183,6 +183,15 @@ VolumetricCloudLayer::Images VolumetricCloudLayer::addTo(FrameGraph& graph, cons
 CloudVolume VolumetricCloudLayer::exportVolume(const Scene& scene, const IsoTime& time,
                                                const std::optional<CloudVolumeBox>& box,
                                                double voxelM) {
+  CloudVolumeRequest request;
+  if (box) request.parts.push_back({*box, voxelM});
+  request.defaultVoxelM = voxelM;
+  return std::move(exportVolumes(scene, time, request).front());
+}
+
+std::vector<CloudVolume> VolumetricCloudLayer::exportVolumes(const Scene& scene,
+                                                             const IsoTime& time,
+                                                             const CloudVolumeRequest& request) {
   const CloudSetup setup = this->setup(scene, time);
   if (setup.geometry.topDown)
     inputError(
@@ -191,25 +200,50 @@ CloudVolume VolumetricCloudLayer::exportVolume(const Scene& scene, const IsoTime
   const glm::vec2 maxCover = setup.weather->maxCover();
   if (maxCover.x <= 0.0f && maxCover.y <= 0.0f)
     inputError("export-volume: the scene has no low or mid clouds (weather cover is 0 everywhere)");
-  const CloudVolumeGrid grid =
-      cloudVolumeGrid(box.value_or(defaultCloudVolumeBox(setup.cloudScene, maxCover)), voxelM);
+  std::vector<CloudVolumePart> parts = request.parts;
+  if (parts.empty())
+    parts.push_back({defaultCloudVolumeBox(setup.cloudScene, maxCover), request.defaultVoxelM});
+  checkCloudVolumeParts(parts);
+  std::vector<CloudVolumeGrid> grids;
+  for (const CloudVolumePart& part : parts) grids.push_back(cloudVolumeGrid(part.box, part.voxelM));
 
-  FrameGraph graph(mRuntime);
-  const CloudLayers::Frame cloudFrame = mWeather.addTo(graph, setup.cloudScene, time);
   const shared::ViewState view =
       makeViewState(scene.camera, static_cast<uint32_t>(scene.output.width),
                     static_cast<uint32_t>(scene.output.height));
-  // The raymarch's own parameters, so the grid holds the very field it marches through.
-  CloudVolumeExportPass::Inputs in;
-  in.params = cloudParams(setup.volumetric, setup.lighting, time, view, cloudFrame.maxCover,
-                          cloudFrame.coverage, cloudFrame.noiseMeans);
-  in.variant = cloudVariant(setup.volumetric, cloudFrame.lowRolls);
-  in.box = grid.params;
-  in.textures = cloudFrame.textures;
-  graph.requestOutput(graph.add(mVolumeExport, in).grid, "cloud_volume");
-  FrameResult result = graph.execute();
-  return makeCloudVolume(setup.cloudScene, setup.lighting, time, view, grid,
-                         std::move(result.output("cloud_volume").pixels));
+  std::vector<CloudVolume> volumes;
+  for (size_t k = 0; k < parts.size(); ++k) {
+    CloudVolumeGrid& grid = grids[k];
+    setCloudVolumeFootprint(grid, request.lod, view);
+    // One graph a part, so only one part's 3D image is alive at a time.
+    FrameGraph graph(mRuntime);
+    const CloudLayers::Frame cloudFrame = mWeather.addTo(graph, setup.cloudScene, time);
+    // The raymarch's own parameters, so the grid holds the very field it marches through.
+    CloudVolumeExportPass::Inputs in;
+    in.params = cloudParams(setup.volumetric, setup.lighting, time, view, cloudFrame.maxCover,
+                            cloudFrame.coverage, cloudFrame.noiseMeans);
+    in.variant = cloudVariant(setup.volumetric, cloudFrame.lowRolls);
+    in.box = grid.params;
+    in.textures = cloudFrame.textures;
+    graph.requestOutput(graph.add(mVolumeExport, in).grid, "cloud_volume");
+    FrameResult result = graph.execute();
+    std::vector<float> density = std::move(result.output("cloud_volume").pixels);
+    if (parts.size() > 1) {
+      // Each part keeps its share of the field, so the parts add up to it once.
+      size_t i = 0;
+      const glm::uvec4 n = grid.params.voxels;
+      const glm::dvec3 first = grid.box.minM + 0.5 * grid.voxelM;
+      for (uint32_t z = 0; z < n.z; ++z)
+        for (uint32_t y = 0; y < n.y; ++y)
+          for (uint32_t x = 0; x < n.x; ++x, ++i)
+            if (density[i] != 0.0f)
+              density[i] *= static_cast<float>(
+                  cloudVolumeShare(parts, k, first + glm::dvec3(x, y, z) * grid.voxelM));
+    }
+    volumes.push_back(makeCloudVolume(setup.cloudScene, setup.lighting, time, view, grid,
+                                      std::move(density), parts.front().box));
+  }
+  if (parts.size() > 1) nameCloudVolumeParts(volumes, parts);
+  return volumes;
 }
 
 CloudField VolumetricCloudLayer::field(const Scene& scene, const IsoTime& time) {

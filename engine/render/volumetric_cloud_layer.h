@@ -67,6 +67,9 @@ public:
   // The cloud density field inside `box` on voxels of `voxelM` (Renderer::exportCloudVolume).
   CloudVolume exportVolume(const Scene& scene, const IsoTime& time,
                            const std::optional<CloudVolumeBox>& box, double voxelM);
+  // The field in each part of `request`, each times its share (Renderer::exportCloudVolumes).
+  std::vector<CloudVolume> exportVolumes(const Scene& scene, const IsoTime& time,
+                                         const CloudVolumeRequest& request);
   // The cloud density field on the CPU (Renderer::cloudField).
   CloudField field(const Scene& scene, const IsoTime& time);
 

@@ -31,6 +31,10 @@ the same quantities) and DIR/SCENE.vdb (the scene's camera and sun), and reports
   check of Cycles' world, skyrender's view of the clear sky against Cycles' view of the
   equirectangular sky it was given, mean relative luminance error and blue/red of each.
 
+The field_* scenes (issue 46, a whole field of clouds to the horizon) are measured by
+field_compare.py on the final image (its docstring): the cloud-to-sky ratio, the per-pixel
+error and the lit hue, ours against Cycles under our sky and under Blender's Nishita sky.
+
 Backlit means the sun is ahead of the camera (its azimuth within 90 degrees of the view's);
 noon means the sun higher than 45 degrees. Writes DIR/results.json and DIR/results.md, and
 for each scene IMAGES/SCENE.png: ours | Cycles | signed relative error (blue: ours darker, red:
@@ -47,6 +51,8 @@ import sys
 import numpy as np
 import OpenImageIO as oiio
 import pyopenvdb
+
+import field_compare
 
 GOAL_ERROR = 0.25          # issue 30: mean relative error at most 25 % on every scene
 STRETCH_ERROR = 0.15       # issue 30's stretch (issue 14's goal)
@@ -328,11 +334,19 @@ def main():
     p = argparse.ArgumentParser(prog="compare.py")
     p.add_argument("--dir", required=True, type=pathlib.Path)
     p.add_argument("--images", type=pathlib.Path)
+    p.add_argument("--reference", type=pathlib.Path,
+                   help="write the field scenes' Cycles numbers here (configs/pathtrace/field_cycles.json)")
+    p.add_argument("--samples", type=int, help="Cycles' samples per pixel, for --reference")
     p.add_argument("scenes", nargs="+")
     args = p.parse_args()
-    results = [compare(args.dir, s, args.images) for s in args.scenes]
-    (args.dir / "results.json").write_text(json.dumps(results, indent=2) + "\n")
-    table = markdown(results)
+    fields = [s for s in args.scenes if s.startswith("field_")]
+    results = [compare(args.dir, s, args.images) for s in args.scenes if s not in fields]
+    field_results = [field_compare.compare_field(args.dir, s, args.images, write_png) for s in fields]
+    (args.dir / "results.json").write_text(json.dumps(results + field_results, indent=2) + "\n")
+    if args.reference and field_results:
+        args.reference.write_text(json.dumps(field_compare.reference(field_results, args.samples), indent=2) + "\n")
+    table = "\n".join(t for t in (markdown(results) if results else "",
+                                  field_compare.markdown(field_results) if field_results else "") if t)
     (args.dir / "results.md").write_text(table)
     print(table, end="")
 

@@ -2,14 +2,18 @@
 path-traced reference for the raymarch (docs/cloud-model.md, "Path-traced reference").
 
     blender -b --factory-startup --python scripts/pathtrace/render_cycles.py -- \
-        --vdb cloud.vdb --out cycles.exr [--world sky.exr] [--lights both|sun|sky|ground] \
-        [--samples 128] [--bounces 128] [--seed 1]
+        --vdb cloud.vdb --out cycles.exr [--world sky.exr | --nishita] \
+        [--lights both|sun|sky|ground] [--samples 128] [--bounces 128] [--seed 1]
 
 Everything comes from the grid's metadata, so the scene is the one skyrender rendered:
 - the medium: the grid "density" is the extinction per metre; scattering = extinction (no
   absorption, as the raymarch assumes), the phase function the raymarch's dual-lobe
   Henyey-Greenstein as a mix of two Volume Scatter closures (g and g_back, weights 1 - w and
-  w), with as many volume bounces as --bounces (multiple scattering in full);
+  w), with as many volume bounces as --bounces (multiple scattering in full). An export of
+  several nested boxes (issue 46's field: grids "density", "density_1", ..., each holding its
+  share of the field) becomes one volume object a grid, all with the same medium, each read
+  from its own grid and marched at its own voxel; Cycles adds the densities of overlapping
+  volumes, so it sees the field once;
 - the sun: a sun lamp in the grid's sun direction with the sun's angular size and the
   illuminance the raymarch uses at the clouds. skyrender's units have illuminance 1 = pi x
   radiance 1 (shaders/common/lighting_shared.h); Cycles' sun strength is irradiance, and a
@@ -19,8 +23,14 @@ Everything comes from the grid's metadata, so the scene is the one skyrender ren
   equirectangular`, heading 90 so the image's centre is east, Blender's +x), the ground below
   the horizon as our composite draws it. Its R, G, B are radiance in skyrender's unit, which
   is Cycles' background radiance at strength 1 (the sun lamp carries the disc's light, so
-  the world must not). Without --world, the old constant world: radiance ambient_top above
-  the horizon and ambient_bottom below (the palette's ambient the raymarch used so far);
+  the world must not). With --nishita, Blender's own Nishita sky texture (Cycles world,
+  single scattering) for the same sun elevation and azimuth, from the same altitude (the
+  grid's light_altitude_m, where our world is rendered from), air, dust and ozone at their
+  defaults and no sun disc: an independent check of the sky's colour. Its values are
+  W/(m2 sr) weighted by the CIE functions (Blender's sky model), so strength 683 / 1e4 turns
+  them into skyrender's radiance (1 = 1e4 cd/m2). Without --world or --nishita, the old
+  constant world: radiance ambient_top above the horizon and ambient_bottom below (the
+  palette's ambient the raymarch used so far);
 - --lights sun or sky keeps only the sun lamp or only the world (both by default): light is
   additive, so the two renders split the cloud's light into sunlight and skylight; ground
   keeps only the world below the horizontal (the ground and the air in front of it), which
@@ -49,6 +59,8 @@ def parse_args():
     p.add_argument("--bounces", type=int, default=128)
     p.add_argument("--seed", type=int, default=1)
     p.add_argument("--world", help="equirectangular EXR of our sky (default: the constant ambient)")
+    p.add_argument("--nishita", action="store_true",
+                   help="Blender's Nishita sky texture as the world, for the grid's sun and altitude")
     p.add_argument("--lights", choices=("both", "sun", "sky", "ground"), default="both",
                    help="which light sources shine: both, the sun lamp only, the world only, "
                         "the world below the horizontal only")
@@ -60,21 +72,26 @@ def parse_args():
     return p.parse_args(argv)
 
 
+def grids(path):
+    """The density grids of an export, {name: metadata}, "density" first."""
+    found = {g.name: dict(g.metadata) for g in pyopenvdb.readAllGridMetadata(path)
+             if g.name == "density" or g.name.startswith("density_")}
+    if "density" not in found:
+        raise SystemExit(f"error: {path}: no grid named 'density' (not written by skyrender export-volume?)")
+    return dict(sorted(found.items(), key=lambda kv: int(kv[1].get("grid_index", 0))))
+
+
 def metadata(path):
-    meta = pyopenvdb.readAllGridMetadata(path)
-    for grid in meta:
-        if grid.name == "density":
-            return dict(grid.metadata)
-    raise SystemExit(f"error: {path}: no grid named 'density' (not written by skyrender export-volume?)")
+    return grids(path)["density"]
 
 
-def volume_material(m):
-    mat = bpy.data.materials.new("cloud")
+def volume_material(m, grid="density"):
+    mat = bpy.data.materials.new("cloud_" + grid)
     mat.use_nodes = True
     nt = mat.node_tree
     nt.nodes.clear()
     density = nt.nodes.new("ShaderNodeAttribute")
-    density.attribute_name = "density"
+    density.attribute_name = grid
     forward = nt.nodes.new("ShaderNodeVolumeScatter")
     back = nt.nodes.new("ShaderNodeVolumeScatter")
     forward.inputs["Anisotropy"].default_value = m["phase_g"]
@@ -141,6 +158,46 @@ def sky_world(path, below_only=False):
     return w
 
 
+def nishita_world(m, below_only=False):
+    # Blender 3.4's sky texture puts its sun at azimuth sun_rotation, clockwise from +y (north)
+    # seen from above, as ours is measured (checked by rendering it toward each azimuth).
+    w = bpy.data.worlds.new("nishita")
+    w.use_nodes = True
+    nt = w.node_tree
+    nt.nodes.clear()
+    sky = nt.nodes.new("ShaderNodeTexSky")
+    sky.sky_type = "NISHITA"
+    sky.sun_disc = False
+    sky.sun_elevation = math.radians(m["sun_elevation_deg"])
+    sky.sun_rotation = math.radians(m["sun_azimuth_deg"])
+    sky.altitude = float(m["light_altitude_m"])
+    sky.air_density = sky.dust_density = sky.ozone_density = 1.0
+    background = nt.nodes.new("ShaderNodeBackground")
+    # W/(m2 sr), CIE-weighted, to skyrender's unit of 1e4 cd/m2: 683 lm/W / 1e4.
+    background.inputs["Strength"].default_value = 683.0 / 1.0e4
+    out = nt.nodes.new("ShaderNodeOutputWorld")
+    if below_only:
+        coords = nt.nodes.new("ShaderNodeTexCoord")
+        xyz = nt.nodes.new("ShaderNodeSeparateXYZ")
+        below = nt.nodes.new("ShaderNodeMath")
+        below.operation = "LESS_THAN"
+        below.inputs[1].default_value = 0.0
+        mask = nt.nodes.new("ShaderNodeMixRGB")
+        mask.blend_type = "MULTIPLY"
+        mask.inputs["Fac"].default_value = 1.0
+        nt.links.new(coords.outputs["Generated"], xyz.inputs[0])
+        nt.links.new(xyz.outputs["Z"], below.inputs[0])
+        nt.links.new(sky.outputs["Color"], mask.inputs["Color1"])
+        nt.links.new(below.outputs[0], mask.inputs["Color2"])
+        nt.links.new(mask.outputs["Color"], background.inputs["Color"])
+    else:
+        nt.links.new(sky.outputs["Color"], background.inputs["Color"])
+    nt.links.new(background.outputs[0], out.inputs["Surface"])
+    w.cycles.sampling_method = "MANUAL"
+    w.cycles.sample_map_resolution = 1024
+    return w
+
+
 def constant_world(m):
     w = bpy.data.worlds.new("sky")
     w.use_nodes = True
@@ -176,16 +233,32 @@ def main():
     scene.unit_settings.scale_length = 1.0
 
     # The volume, in the grid's own transform (metres in the camera's east-north-up frame,
-    # which is Blender's x, y, z).
-    volume = bpy.data.volumes.new("cloud") if not args.world_only else None
-    if volume:
-        volume.filepath = args.vdb
-        volume.render.space = "WORLD"
-        volume.render.step_size = 0.0  # automatic: the grid's voxel size
-        volume.render.precision = "FULL"
-        volume.materials.append(volume_material(m))
-        obj = bpy.data.objects.new("cloud", volume)
-        scene.collection.objects.link(obj)
+    # which is Blender's x, y, z): one object a grid, each reading its own grid of the file
+    # (Cycles loads only the grids a shader asks for) and marched at its own voxel.
+    if not args.world_only:
+        parts = grids(args.vdb)
+        for name, g in parts.items():
+            volume = bpy.data.volumes.new("cloud_" + name)
+            volume.filepath = args.vdb
+            volume.render.space = "WORLD"
+            # One grid: automatic (its voxel, as before issue 46); several: each its own, not
+            # the finest of the file's.
+            volume.render.step_size = float(g["voxel_m"]) if len(parts) > 1 else 0.0
+            # Several: no voxel is empty space however thin. Blender's default clipping (0.001)
+            # leaves voxels below it out of the volume's bounds, and a grid that holds its
+            # share of the far field's thin haze would lose it where nothing denser is near.
+            if len(parts) > 1:
+                volume.render.clipping = 0.0
+            volume.render.precision = "FULL"
+            volume.materials.append(volume_material(m, name))
+            obj = bpy.data.objects.new("cloud_" + name, volume)
+            # Blender 3.4 places a voxel's value half a voxel further along x, y and z than
+            # OpenVDB's transform does (a 4-voxel cube of voxel centres 0.5..3.5 rendered
+            # centred at 2.5 on all three axes, measured): move the object back by half a voxel
+            # so Cycles' cloud lies where skyrender's does (issue 46; before, the far field's
+            # 250 m voxels put its clouds a third of a pixel up and right).
+            obj.location = tuple(-0.5 * float(g["voxel_m"]) for _ in range(3))
+            scene.collection.objects.link(obj)
 
     # The sun: its lamp shines along its local -z, so +z points at the sun.
     if args.lights in ("both", "sun"):
@@ -199,12 +272,16 @@ def main():
         sun.rotation_mode = "QUATERNION"
         sun.rotation_quaternion = mathutils.Vector(m["sun_direction"]).to_track_quat("Z", "Y")
         scene.collection.objects.link(sun)
+    if args.world and args.nishita:
+        sys.exit("error: --world and --nishita are two worlds: give one")
     if args.lights == "sun":
         scene.world = black_world()
     elif args.world:
         scene.world = sky_world(args.world, below_only=args.lights == "ground")
+    elif args.nishita:
+        scene.world = nishita_world(m, below_only=args.lights == "ground")
     elif args.lights == "ground":
-        sys.exit("error: --lights ground needs --world")
+        sys.exit("error: --lights ground needs --world or --nishita")
     else:
         scene.world = constant_world(m)
 
@@ -257,7 +334,8 @@ def main():
     scene.render.image_settings.exr_codec = "ZIP"
     scene.render.filepath = args.out
     bpy.ops.render.render(write_still=True)
-    world = "none" if args.lights == "sun" else (args.world or "constant ambient")
+    world = "none" if args.lights == "sun" else (
+        args.world or ("Nishita" if args.nishita else "constant ambient"))
     print(f"wrote {args.out} ({width}x{height}, {args.samples} samples, {args.bounces} bounces, "
           f"lights {args.lights}, world {world})")
 

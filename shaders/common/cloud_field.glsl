@@ -118,14 +118,8 @@ float noiseKeep(float footprintM, float cellM) {
   return 1.0 - smoothstep(0.125, 0.5, footprintM / cellM);
 }
 
-// The mean density of the far field per unit of cover and height profile: about the share of
-// a cloud's core density its volume averages to (docs/clouds.md, the horizon).
-#define CLOUD_FAR_DENSITY 0.5
-// The chord through a cloud, as a share of the outline's cell, whose optical depth sets the
-// far field's clumping (cloudSampleAtLla).
-#ifndef CLOUD_FAR_CHORD
-#define CLOUD_FAR_CHORD 0.1
-#endif
+// CLOUD_FAR_DENSITY and CLOUD_FAR_CHORD, the far field's mean and clumping, are in
+// volumetric_clouds_shared.h: the CPU twin (engine/render/cloud_field.cpp) reads them too.
 
 // The cloud at point p, whose latitude, longitude (degrees) and altitude are lla, seen by a
 // sample `footprintM` wide (0: full detail). Returns false where no cloud can be (outside

@@ -19,12 +19,19 @@ struct CloudVolumeExportParams {
   vec4 firstVoxelCentreM;  // xyz: voxel (0, 0, 0)'s centre in the camera's ENU frame (m); w: unused
   vec4 voxelM;             // xyz: a voxel's edge along east, north, up (m); w: unused
   uvec4 voxels;            // xyz: voxels along east, north, up; w: unused
+  // The width each voxel's sample stands for, as the raymarch's level of detail takes it
+  // (cloudSampleAt's footprintM, docs/clouds.md): max(footprintPerM x the voxel's distance
+  // from the camera, footprintMinM). Both 0: full detail.
+  float footprintPerM;  // metres of footprint per metre of distance (the view's pixel width)
+  float footprintMinM;  // the least footprint (m): the voxel, so no noise finer than it aliases
+  float unused0;
+  float unused1;
 };
 
 SKY_SHARED_END
 
 #ifdef __cplusplus
-static_assert(sizeof(sky::shared::CloudVolumeExportParams) == 48,
+static_assert(sizeof(sky::shared::CloudVolumeExportParams) == 64,
               "std140 layout of CloudVolumeExportParams");
 #endif
 #endif

@@ -35,6 +35,16 @@
 #define CLOUD_COVERAGE_TYPE_KEYS 3
 #define CLOUD_COVERAGE_LUT_VEC4S (2 * CLOUD_COVERAGE_TYPE_KEYS * CLOUD_COVERAGE_LUT_SIZE / 4)
 
+// The far field (cloudSampleAtLla in cloud_field.glsl, where a sample resolves none of the
+// clouds' outline): the mean density per unit of cover and height profile, about the share
+// of a cloud's core density its volume averages to (docs/clouds.md, the horizon), and the
+// chord through a cloud, as a share of the outline's cell, whose optical depth sets the far
+// field's clumping.
+#define CLOUD_FAR_DENSITY 0.5
+#ifndef CLOUD_FAR_CHORD
+#define CLOUD_FAR_CHORD 0.1
+#endif
+
 SKY_SHARED_BEGIN
 
 // A light's illuminance (rgb, renderer units; w unused) through the air at a layer's base,

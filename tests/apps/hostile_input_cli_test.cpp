@@ -166,6 +166,26 @@ TEST_F(SkyrenderCli, ExportVolumeOnAFullDiskFailsAndKeepsTheFileThatWasThere) {
   EXPECT_THAT(temporariesIn(mDir / "out"), ::testing::IsEmpty());
 }
 
+// Issue 46: an export of several boxes is one file of several grids, written whole or not at
+// all as one grid is: on a full disk none of its grids lands and the old file stays.
+TEST_F(SkyrenderCli, ExportOfSeveralBoxesOnAFullDiskFailsAndKeepsTheFileThatWasThere) {
+  const fs::path vdb = mDir / "out" / "field.vdb";
+  const std::string boxes =
+      " --box -3000,1000,1400,3000,7000,3600 --box -6000,0,1300,6000,12000,3600"
+      " --voxel-m 250 --voxel-m 500 --lod view";
+  CliRun r = run("export-volume --out " + vdb.string() + boxes);
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const auto whole = fs::file_size(vdb);
+  ASSERT_GT(whole, 8192u) << "the test needs grids larger than the 4 KiB the disk takes";
+  r = run("export-volume --out " + vdb.string() + boxes, diskFullAfter(4));
+  EXPECT_EQ(r.rc, 2) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "one line: " << r.err;
+  EXPECT_THAT(r.err, HasSubstr("field.vdb: write failed (disk full?)"));
+  EXPECT_THAT(r.out, Not(HasSubstr("wrote")));
+  EXPECT_EQ(fs::file_size(vdb), whole) << "the good file was replaced";
+  EXPECT_THAT(temporariesIn(mDir / "out"), ::testing::IsEmpty());
+}
+
 // Issue 31, 2: when the weather preview failed, the .weather.exr written before it stayed.
 // Now the two are written as one set, as a render's files are: both or neither.
 TEST_F(SkyrenderCli, WeatherWritesItsMapAndPreviewTogetherOrNeither) {
