@@ -335,7 +335,7 @@ def main():
     p.add_argument("--dir", required=True, type=pathlib.Path)
     p.add_argument("--images", type=pathlib.Path)
     p.add_argument("--reference", type=pathlib.Path,
-                   help="write the field scenes' Cycles numbers here (configs/pathtrace/field_cycles.json)")
+                   help="write the field scenes' Cycles numbers here (tests/data/pathtrace/field_cycles.json)")
     p.add_argument("--samples", type=int, help="Cycles' samples per pixel, for --reference")
     p.add_argument("scenes", nargs="+")
     args = p.parse_args()

@@ -37,7 +37,7 @@
 #   FIELD_RANGE_KM, FIELD_SHELLS_KM, FIELD_MIN_VOXEL_M  the field's boxes (field_boxes.py;
 #              defaults 100, 3,7,16,40 and 10)
 #   FIELD_REFERENCE  write the field scenes' Cycles numbers to this JSON (the committed one is
-#              configs/pathtrace/field_cycles.json, which tests/cloud_volume reads)
+#              tests/data/pathtrace/field_cycles.json, which tests/cloud_volume reads)
 #   PEER       1: also measure the peer's four low-sun views (../shared/peers/takram) beside
 #              ours on display-referred PNGs (peer_compare.py): ours rendered at 640x360 with
 #              the README's flags through PEER_VIEW (default Un-tone-mapped), each against its

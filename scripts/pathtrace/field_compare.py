@@ -438,7 +438,7 @@ def markdown(results):
 
 
 def reference(results, samples):
-    """The committed Cycles numbers (configs/pathtrace/field_cycles.json) later tests hold our
+    """The committed Cycles numbers (tests/data/pathtrace/field_cycles.json) later tests hold our
     ratios against: per scene, each world's cloud-to-sky ratio and lit hue, the compared
     region, and ours when they were made."""
     scenes = {}

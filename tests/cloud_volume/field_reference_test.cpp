@@ -1,4 +1,4 @@
-// The path-traced field's committed Cycles numbers (issue 46; configs/pathtrace/field_cycles.json,
+// The path-traced field's committed Cycles numbers (issue 46; tests/data/pathtrace/field_cycles.json,
 // written by `FIELD_REFERENCE=... scripts/pathtrace/compare.sh field_...`, docs/cloud-model.md
 // "A path-traced field"): the cloud-to-sky luminance ratio and the lit clouds' hue Cycles
 // gives each field scene. The file must cover every field scene with numbers a test can hold
@@ -24,8 +24,9 @@ namespace {
 namespace fs = std::filesystem;
 
 nlohmann::json fieldReference() {
-  std::ifstream in(configDir() / "pathtrace" / "field_cycles.json");
-  EXPECT_TRUE(in) << "configs/pathtrace/field_cycles.json";
+  // Reference numbers, not a scene: configs/ holds only scenes (SceneFiles loads them all).
+  std::ifstream in(dataRoot() / "tests" / "data" / "pathtrace" / "field_cycles.json");
+  EXPECT_TRUE(in) << "tests/data/pathtrace/field_cycles.json";
   return nlohmann::json::parse(in);
 }
 
