@@ -36,7 +36,7 @@ public:
   void checkDisplayView(const std::string& display, const std::string& view) const;
   // Multiplies RGB by 2^exposureEv, then converts scene_linear -> display/view in place on
   // interleaved RGBA floats (alpha untouched). Thread-safe; processors are cached per
-  // display/view/exposure for the object's lifetime.
+  // display and view for the object's lifetime (not per exposure: a time-lapse has one a frame).
   void toDisplay(std::span<float> rgba, const std::string& display, const std::string& view,
                  double exposureEv) const;
 
