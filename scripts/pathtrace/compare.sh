@@ -124,12 +124,26 @@ field() {
     --min-voxel-m "${FIELD_MIN_VOXEL_M:-10}")
   # shellcheck disable=SC2086  # the boxes are words
   nice -n "$NICE" "$SKYRENDER" export-volume "$scene" "${SIZE_SET[@]}" $boxes --out "$OUT/$s.vdb"
+  # The clouds outside the view that stand between it and the sun, a file each (they do not
+  # nest with the view's boxes): without them a 3 degree sun behind the camera lit the view's
+  # clouds as if the sky toward it were clear past their near side (field_boxes.py --shadow).
+  local shadow=() k=0 line
+  rm -f "$OUT/${s}"_shadow_*.vdb
+  while read -r line; do
+    [ -n "$line" ] || continue
+    # shellcheck disable=SC2086  # the box's words
+    nice -n "$NICE" "$SKYRENDER" export-volume "$scene" "${SIZE_SET[@]}" $line --out "$OUT/${s}_shadow_$k.vdb"
+    shadow+=(--vdb "$OUT/${s}_shadow_$k.vdb")
+    k=$((k + 1))
+  done < <(/usr/bin/python3 scripts/pathtrace/field_boxes.py "$OUT/${s}_settings.yaml" --shadow \
+    --range-km "${FIELD_RANGE_KM:-100}" --shells-km "${FIELD_SHELLS_KM:-3,7,16,40}" \
+    --min-voxel-m "${FIELD_MIN_VOXEL_M:-10}")
   local at=(--set "camera.altitude_m=$(light_altitude "$OUT/$s.vdb" "$WORLD_AT")")
   nice -n "$NICE" "$SKYRENDER" render "$scene" --out "$OUT" --name "${s}_world" "${CLEAR[@]}" "${at[@]}" \
     "${WORLD_SIZE[@]}" --set camera.projection=equirectangular --set camera.heading=90
   nice -n "$NICE" "$SKYRENDER" render "$scene" --out "$OUT" --name "${s}_clear" "${CLEAR[@]}" "${at[@]}" \
     "${SIZE_SET[@]}"
-  local common=(--vdb "$OUT/$s.vdb" --samples "$SAMPLES" --bounces "$BOUNCES" --seed "$SEED")
+  local common=(--vdb "$OUT/$s.vdb" "${shadow[@]}" --samples "$SAMPLES" --bounces "$BOUNCES" --seed "$SEED")
   if [[ "$FIELD_WORLDS" == *" sky "* ]]; then
     cycles "$OUT/${s}_world_check.log" --vdb "$OUT/$s.vdb" --out "$OUT/${s}_world_check.exr" \
       --world "$OUT/${s}_world.exr" --world-only --samples 16

@@ -18,6 +18,16 @@ each box, nested, finest first, then `--voxel-m M` for each, and `--lod view`.
   joined with the box inside it so the boxes nest. All boxes then take the outermost's near
   side, bottom and top (where they would differ only by the Earth's curvature and their
   margins), so they hand the field over only across their far and side faces.
+- `--shadow`: instead, the boxes of the clouds outside those that shadow them, one line of
+  `--box ... --voxel-m M --lod view` for each (a file each: they do not nest). The sun's light
+  reaches a cloud in the view boxes through the layer toward the sun, which at 3 degrees runs
+  some 28 km across the ground: where it leaves the view boxes (behind the camera with the
+  sun behind it) Cycles saw no cloud, and lit the view's clouds as if the sky toward a low
+  sun were clear past their near side. Each is the slab beyond a face of the outermost view
+  box that the layers' depth, swept toward the sun, crosses: as deep as that sweep, as wide
+  as the box and the sweep together, at the outermost box's voxel; behind the near side,
+  which all the view's boxes share, nested as they are, at their voxels but no finer than
+  50 m.
 - Box k's voxel is the width of one of the camera's pixels at the inner edge of its shell,
   2 tan(vfov / 2) / height x that distance (the raymarch's footprint, docs/clouds.md, "Level of
   detail by footprint"), and the first box's `--min-voxel-m`: the export evaluates each voxel
@@ -85,6 +95,8 @@ def main():
     ap.add_argument("--range-km", type=float, default=100.0)
     ap.add_argument("--shells-km", default="3,7,16,40")
     ap.add_argument("--min-voxel-m", type=float, default=10.0)
+    ap.add_argument("--shadow", action="store_true",
+                    help="print the boxes toward the sun outside the view's, one line each")
     args = ap.parse_args()
     with open(args.settings) as f:
         settings = yaml.safe_load(f)
@@ -117,6 +129,9 @@ def main():
         lo, hi = lo.copy(), hi.copy()
         lo[1], lo[2], hi[2] = outer_lo[1], outer_lo[2], outer_hi[2]
         boxes[k] = (lo, hi)
+    if args.shadow:
+        shadow_boxes(settings, boxes, voxels)
+        return
     words = []
     for lo, hi in boxes:
         words += ["--box", ",".join(f"{v:.0f}" for v in (*lo, *hi))]
@@ -131,6 +146,53 @@ def main():
               f"{int(n[0])}x{int(n[1])}x{int(n[2])}", file=sys.stderr)
     print(f"{total} voxels in all", file=sys.stderr)
 
+
+SHADOW_MIN_VOXEL_M = 50.0  # finer than a cumulus' billows: a coarser one smears the clouds
+
+
+def shadow_boxes(settings, boxes, voxels):
+    """One line of export-volume arguments for each slab beyond the outermost view box that
+    the light toward the sun crosses (see --shadow above)."""
+    sun = settings["sun"]
+    el, az = math.radians(float(sun["elevation"])), math.radians(float(sun["azimuth"]))
+    lo, hi = boxes[-1]
+    voxel = voxels[-1]
+    if el <= 0.0:
+        return  # no sunlight reaches the layer's clouds from above the horizon
+    # How far across the ground the light rises through the cloud layers, and which way
+    # (at most the raymarch's far reach, CLOUD_LIGHT_FAR_REACH_M).
+    clouds = settings["clouds"]
+    base = min(clouds["low"]["base_m"], clouds["mid"]["base_m"])
+    top = max(clouds["low"]["top_m"], clouds["mid"]["top_m"]) if float(
+        settings["weather"].get("cover_mid", 0)) > 0 else clouds["low"]["top_m"]
+    reach = min((top - base) / math.tan(el), 60000.0)
+    step = np.array([math.sin(az), math.cos(az)]) * reach
+    swept_lo = np.minimum(lo[:2], lo[:2] + step)
+    swept_hi = np.maximum(hi[:2], hi[:2] + step)
+    lines = []
+    # The slab across x takes the sweep's whole y; those across y only the box's x, so they
+    # never overlap (Cycles adds the densities of overlapping volumes).
+    if step[0] < -voxel:
+        lines.append([(([swept_lo[0], swept_lo[1]], [lo[0], swept_hi[1]]), voxel)])
+    elif step[0] > voxel:
+        lines.append([(([hi[0], swept_lo[1]], [swept_hi[0], swept_hi[1]]), voxel)])
+    if step[1] < -voxel:
+        # Behind the near side every view box shares: the near clouds' light crosses it, so
+        # the slab nests as the view's boxes do, each as wide as one and at its voxel (no
+        # finer than SHADOW_MIN_VOXEL_M).
+        lines.append([(([blo[0], swept_lo[1]], [bhi[0], lo[1]]), max(v, SHADOW_MIN_VOXEL_M))
+                      for (blo, bhi), v in zip(boxes, voxels)])
+    elif step[1] > voxel:
+        lines.append([(([lo[0], hi[1]], [hi[0], swept_hi[1]]), voxel)])
+    for parts in lines:
+        words = []
+        for (x0, y0), (x1, y1) in (b for b, _ in parts):
+            box = (np.floor(x0), np.floor(y0), lo[2], np.ceil(x1), np.ceil(y1), hi[2])
+            words += ["--box", ",".join(f"{v:.0f}" for v in box)]
+            print(f"shadow box {[int(v) for v in box]}", file=sys.stderr)
+        for _, v in parts:
+            words += ["--voxel-m", f"{v:g}"]
+        print(" ".join(words + ["--lod", "view"]))
 
 if __name__ == "__main__":
     main()

@@ -53,7 +53,10 @@ import pyopenvdb
 def parse_args():
     argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
     p = argparse.ArgumentParser(prog="render_cycles.py")
-    p.add_argument("--vdb", required=True)
+    p.add_argument("--vdb", required=True, action="append",
+                   help="the export (its first grid's metadata sets the light and camera); "
+                        "repeated: more exports that do not overlap it (a field's clouds toward "
+                        "the sun outside the view's boxes)")
     p.add_argument("--out", required=True)
     p.add_argument("--samples", type=int, default=128)
     p.add_argument("--bounces", type=int, default=128)
@@ -226,7 +229,7 @@ def constant_world(m):
 
 def main():
     args = parse_args()
-    m = metadata(args.vdb)
+    m = metadata(args.vdb[0])
     bpy.ops.wm.read_factory_settings(use_empty=True)
     scene = bpy.context.scene
     scene.unit_settings.system = "METRIC"
@@ -236,10 +239,11 @@ def main():
     # which is Blender's x, y, z): one object a grid, each reading its own grid of the file
     # (Cycles loads only the grids a shader asks for) and marched at its own voxel.
     if not args.world_only:
-        parts = grids(args.vdb)
-        for name, g in parts.items():
-            volume = bpy.data.volumes.new("cloud_" + name)
-            volume.filepath = args.vdb
+        parts = [(i, path, name, g) for i, path in enumerate(args.vdb)
+                 for name, g in grids(path).items()]
+        for i, path, name, g in parts:
+            volume = bpy.data.volumes.new(f"cloud_{i}_{name}")
+            volume.filepath = path
             volume.render.space = "WORLD"
             # One grid: automatic (its voxel, as before issue 46); several: each its own, not
             # the finest of the file's.
@@ -251,7 +255,7 @@ def main():
                 volume.render.clipping = 0.0
             volume.render.precision = "FULL"
             volume.materials.append(volume_material(m, name))
-            obj = bpy.data.objects.new("cloud_" + name, volume)
+            obj = bpy.data.objects.new(f"cloud_{i}_{name}", volume)
             # Blender 3.4 places a voxel's value half a voxel further along x, y and z than
             # OpenVDB's transform does (a 4-voxel cube of voxel centres 0.5..3.5 rendered
             # centred at 2.5 on all three axes, measured): move the object back by half a voxel
