@@ -13,7 +13,7 @@
 #include "engine/weather/weather_map.h"
 #include "engine/weather/weather_source.h"
 #include "passes/cloud_noise/cloud_noise.h"
-#include "passes/volumetric_clouds/volumetric_clouds.h"
+#include "passes/cloud_field/cloud_field.h"
 
 namespace sky {
 

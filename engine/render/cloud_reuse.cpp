@@ -8,7 +8,7 @@
 
 #include "engine/core/error.h"
 #include "engine/weather/geo.h"
-#include "passes/volumetric_clouds/volumetric_clouds.h"
+#include "passes/cloud_field/cloud_field.h"
 
 namespace sky {
 namespace {

@@ -6,7 +6,7 @@
 // shows exactly the field the raymarch marches. docs/clouds.md, "Outputs".
 #include "engine/graph/frame_graph.h"
 #include "engine/graph/pass_context.h"
-#include "passes/volumetric_clouds/volumetric_clouds.h"
+#include "passes/cloud_field/cloud_field.h"
 
 namespace sky {
 

@@ -8,7 +8,7 @@
 #include "engine/gpu/sampler.h"
 #include "engine/graph/frame_graph.h"
 #include "engine/graph/pass_context.h"
-#include "passes/volumetric_clouds/volumetric_clouds.h"
+#include "passes/cloud_field/cloud_field.h"
 #include "shaders/common/cloud_light_volume_shared.h"
 
 namespace sky {

@@ -7,7 +7,7 @@
 // docs/outputs.md, "Perception layers".
 #include "engine/graph/frame_graph.h"
 #include "engine/graph/pass_context.h"
-#include "passes/volumetric_clouds/volumetric_clouds.h"
+#include "passes/cloud_field/cloud_field.h"
 
 namespace sky {
 

@@ -6,7 +6,7 @@
 #include "engine/gpu/compute_pipeline.h"
 #include "engine/graph/frame_graph.h"
 #include "engine/graph/pass_context.h"
-#include "passes/volumetric_clouds/volumetric_clouds.h"
+#include "passes/cloud_field/cloud_field.h"
 #include "shaders/common/cloud_shadow_shared.h"
 
 namespace sky {

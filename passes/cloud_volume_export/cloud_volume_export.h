@@ -5,7 +5,7 @@
 // frame, with the frame's CloudParams and textures, into an R32F 3D image.
 #include "engine/graph/frame_graph.h"
 #include "engine/graph/pass_context.h"
-#include "passes/volumetric_clouds/volumetric_clouds.h"
+#include "passes/cloud_field/cloud_field.h"
 #include "shaders/common/cloud_volume_export_shared.h"
 
 namespace sky {

@@ -2,20 +2,13 @@
 // The volumetric low and mid clouds (Lu et al. 2023, Tang et al. 2019): a raymarch through
 // the spherical shells of the two layers (shaders/volumetric_clouds.comp), reading the weather
 // map (engine/weather) for cover and type and the baked noise (passes/cloud_noise) for the
-// density, lit by the frame's LightingState; with what every pass that samples the cloud
-// field shares (the textures, the shader variants, the uniforms). See docs/clouds.md.
-#include <array>
-#include <map>
-#include <memory>
+// density, lit by the frame's LightingState. What it shares with the other passes that sample
+// the cloud field is in passes/cloud_field. See docs/clouds.md.
 #include <optional>
-#include <string>
-#include <vector>
 
-#include "engine/gpu/compute_pipeline.h"
 #include "engine/graph/frame_graph.h"
 #include "engine/graph/pass_context.h"
-#include "engine/lighting/lighting_state.h"
-#include "engine/scene/scene.h"
+#include "passes/cloud_field/cloud_field.h"
 #include "shaders/common/host_depth_shared.h"
 #include "shaders/common/lighting_shared.h"
 #include "shaders/common/volumetric_clouds_shared.h"
@@ -25,70 +18,6 @@ namespace sky {
 class Context;
 class Sampler;
 class ShaderCompiler;
-
-// What the cloud shaders sample: the baked noise and the weather map.
-struct CloudTextures {
-  ImageId shape, detail, curl;              // passes/cloud_noise
-  const Sampler* noiseSampler = nullptr;    // linear, repeat
-  ImageId weather, weatherCoarse;           // engine/render WeatherTextures
-  const Sampler* weatherSampler = nullptr;  // linear, clamp
-};
-
-// Every pass that samples the cloud field (the raymarch, the density slice, the volume
-// export) reads these textures in setup and binds them at the same slots in execute
-// (cloud_field.glsl declares them).
-void readCloudTextures(GraphBuilder& b, const CloudTextures& t);
-// The five sampler bindings; the caller appends its own parameters and images.
-std::vector<Binding> cloudTextureBindings(const CloudTextures& t);
-
-// Where a frame's cloud rays start: the observer's camera, or straight down from above the
-// clouds over every pixel's latitude and longitude (camera.mode geographic_topdown).
-enum class CloudFrame { Observer, TopDown };
-// How a view step's scattering is integrated: exactly for a homogeneous step (Hillaire 2016,
-// clouds.energy_conserving true) or as the Riemann sum S dt.
-enum class CloudStepIntegral { Exact, Riemann };
-// Whether the shape noise's second lookup, stretched along the wind, is compiled in: only when
-// some low cloud of the map is stratocumulus (cloudRollWeight). On lavapipe the lookup costs a
-// fifth of the pass wherever it is compiled in, even where no sample reads it.
-enum class CloudRolls { Off, On };
-
-// The cloud shaders' variant: the scene's discrete choices, compiled in as constants
-// (cloudVariantDefines), one pipeline per combination, so the compiler drops the unused model
-// and lookups (lavapipe runs both sides of every branch; no test at run time can). Nothing in
-// it comes from a continuous setting: light steps, splits, octaves and the noise each light
-// step reads are uniforms, so moving a slider never compiles a pipeline. A time-lapse uses
-// one; changing a choice costs one compile.
-struct CloudVariant {
-  CloudFrame frame = CloudFrame::Observer;
-  CloudModel model = CloudModel::Lu2023;
-  CloudPhase phase = CloudPhase::DualLobe;
-  CloudStepIntegral integral = CloudStepIntegral::Exact;
-  CloudCoverageMode coverage = CloudCoverageMode::Calibrated;
-  CloudRolls rolls = CloudRolls::On;
-  CloudQuality quality = CloudQuality::Standard;
-  CloudLight light = CloudLight::March;
-
-  bool operator==(const CloudVariant&) const = default;
-};
-
-struct VolumetricCloudsSettings;
-// The variant of a frame: the scene's choices, the frame's kind, whether the map has rolls
-// (CloudLayers::Frame::lowRolls). The reference always marches its light.
-CloudVariant cloudVariant(const VolumetricCloudsSettings& settings, bool lowRolls);
-// The GLSL defines that compile `v` (cloud_field.glsl and volumetric_clouds.comp read them).
-std::vector<ShaderDefine> cloudVariantDefines(const CloudVariant& v);
-
-// The cloud shaders compiled for each variant, built on first use and kept.
-class CloudPipelines {
-public:
-  CloudPipelines(const Context& ctx, ShaderCompiler& compiler, const char* file, const char* name);
-  // `extra`: a pass's own defines beside the variant's (the raymarch's host depth).
-  const ComputePipeline& get(const CloudVariant& variant,
-                             const std::vector<ShaderDefine>& extra = {});
-
-private:
-  ComputePipelineVariants mVariants;
-};
 
 class VolumetricCloudsPass {
 public:
@@ -132,97 +61,5 @@ public:
 private:
   CloudPipelines mPipelines;
 };
-
-// Calibrated coverage thresholds (CloudParams.coverageLut): [layer][type key][cover entry].
-using CoverageTables =
-    std::array<std::array<std::array<float, CLOUD_COVERAGE_LUT_SIZE>, CLOUD_COVERAGE_TYPE_KEYS>, 2>;
-
-// What the clouds take from the scene, built once per frame by engine/render
-// (volumetricCloudsSettings in engine/render/cloud_layers.h), not the whole Scene.
-struct VolumetricCloudsSettings {
-  CloudSettings clouds;  // clouds.*, with a forecast's layer altitudes in low and mid
-  WeatherRegion region;  // where the weather map lies
-  // The observer (camera.latitude, longitude, altitude_m), unless topDown: camera.mode
-  // geographic_topdown, rays straight down from above the region's centre.
-  double cameraLatDeg = 0.0, cameraLonDeg = 0.0, cameraAltitudeM = 0.0;
-  bool topDown = false;
-  IsoTime timeStart;       // time's start: the wind drifts the noise from this instant
-  double turbidity = 0.15;  // lighting.turbidity: the air the light crosses to each layer
-};
-
-// Where the frame's rays start: the observer, or for a top-down camera the region's centre
-// above the clouds.
-struct CloudFrameGeometry {
-  double latDeg, lonDeg, altitudeM;
-  bool topDown;
-};
-CloudFrameGeometry cloudFrameGeometry(const VolumetricCloudsSettings& settings);
-
-// The mean of each channel of the baked noise textures (CloudParams.shapeMean, .detailMean):
-// what the octaves finer than a pixel's footprint fade to at a distance.
-struct NoiseMeans {
-  glm::vec4 shape{0.5f};
-  glm::vec4 detail{0.5f};
-};
-
-// What a product of the cloud field made once and kept over frames (the light volume, the
-// shadow map) was made from. A frame whose key differs in anything but the drift, or whose
-// drift has gone further than `maxShiftM` (the cover the noise drifts through stays put),
-// makes it again; within that, the product is read shifted by the drift since.
-struct CloudFieldKey {
-  uint64_t settings = 0;  // the scene but for the camera's pose and the time, as a revision
-                          // number (engine/render/cloud_reuse.h, SettingsRevisions)
-  uint64_t mapRevision = 0;
-  glm::dvec3 camera{0.0};           // latitude, longitude (degrees), altitude (m)
-  glm::vec3 sun{0.0f}, moon{0.0f};  // directions (ENU)
-  uint32_t lights = 0;              // which are marched: bit 0 the sun, bit 1 the moon
-  glm::dvec2 drift{0.0};            // the wind's drift of the clouds (east, north, m)
-};
-// Whether what was made for `made` serves `now` (lights turned by under 0.05 degrees, the
-// camera moved by under 50 m, the drift within maxShiftM).
-bool cloudFieldReusable(const CloudFieldKey& made, const CloudFieldKey& now, double maxShiftM);
-
-// The bookkeeping of one such product (the pass owns the image): what it was made from.
-class KeptCloudProduct {
-public:
-  explicit KeptCloudProduct(double maxShiftM) : mMaxShiftM(maxShiftM) {}
-  // Whether a frame with `key` must make the product again; if so it is recorded as made
-  // for `key` (a frame that then fails calls invalidate()).
-  bool needsMaking(const CloudFieldKey& key) {
-    if (mValid && cloudFieldReusable(mMade, key, mMaxShiftM)) return false;
-    mMade = key;
-    mValid = true;
-    return true;
-  }
-  // How far (east, north, m) the clouds drifted from where they were when it was made.
-  glm::dvec2 shift(const CloudFieldKey& key) const { return key.drift - mMade.drift; }
-  void invalidate() { mValid = false; }
-
-private:
-  double mMaxShiftM;
-  CloudFieldKey mMade;
-  bool mValid = false;
-};
-
-// How far (east, north, m) the wind has carried the clouds' noise `elapsedS` seconds after the
-// scene's start (clouds.wind_speed_ms toward wind_from + 180 degrees).
-glm::dvec2 cloudWindDriftM(const CloudSettings& clouds, double elapsedS);
-
-// The pass's uniforms for one frame at `time`: the layers and shells, the frame, the wind's
-// drift of the noise since settings.timeStart, the key light and its illuminance at each
-// layer's altitude, the ambient light, the coverage tables and the noise means. `maxCover` is
-// the map's largest (low, mid) cover.
-shared::CloudParams cloudParams(const VolumetricCloudsSettings& settings,
-                                const LightingState& lighting, const IsoTime& time,
-                                const shared::ViewState& view, const glm::vec2& maxCover,
-                                const CoverageTables& coverage, const NoiseMeans& noiseMeans);
-
-// The key light at the clouds: the brighter of the sun and the moon there (the shadow map is
-// cast by it), from the uniforms' illuminance at the layers.
-struct CloudKeyLight {
-  glm::vec3 direction{0.0f, 0.0f, 1.0f};  // unit, ENU
-  bool isSun = true;
-};
-CloudKeyLight cloudKeyLight(const shared::CloudParams& params);
 
 }  // namespace sky
