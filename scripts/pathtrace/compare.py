@@ -64,19 +64,6 @@ OPAQUE_ALPHA = 0.9         # the pixels whose colour is the cloud's own (issue 3
 RIM_PX = 2                 # the thin edge: this many pixels in from the silhouette
 
 
-def read_channels(path, names):
-    buf = oiio.ImageBuf(str(path))
-    if buf.has_error:
-        sys.exit(f"error: {path}: {buf.geterror()}")
-    spec = buf.spec()
-    channels = list(spec.channelnames)
-    pixels = buf.get_pixels(oiio.FLOAT).reshape(spec.height, spec.width, spec.nchannels)
-    try:
-        return np.stack([pixels[:, :, channels.index(n)] for n in names], axis=-1)
-    except ValueError:
-        sys.exit(f"error: {path}: needs channels {names}, has {channels}")
-
-
 def grid_metadata(path):
     for grid in pyopenvdb.readAllGridMetadata(str(path)):
         if grid.name == "density":
@@ -160,9 +147,9 @@ def split(directory, scene, ref, y_ref_smooth, core_ref, rim, opaque):
     paths = [directory / f"{scene}_cycles_{k}.exr" for k in ("sun", "sky")]
     if not all(p.exists() for p in paths):
         return None
-    sun, sky = (read_channels(p, ["R", "G", "B", "A"]) for p in paths)
+    sun, sky = (field_compare.read(p, ["R", "G", "B", "A"]) for p in paths)
     ground_path = directory / f"{scene}_cycles_ground.exr"
-    ground = read_channels(ground_path, ["R", "G", "B", "A"]) if ground_path.exists() else None
+    ground = field_compare.read(ground_path, ["R", "G", "B", "A"]) if ground_path.exists() else None
     out = {}
     for name, where in (("core", core_ref), ("rim", rim), ("cloud", opaque)):
         y_sun, y_sky, y_all = (float(luminance(x)[where].mean()) for x in (sun, sky, ref))
@@ -185,8 +172,8 @@ def world_check(directory, scene):
     ours_path, cycles_path = directory / f"{scene}_clear.exr", directory / f"{scene}_world_check.exr"
     if not (ours_path.exists() and cycles_path.exists()):
         return None
-    ours = read_channels(ours_path, ["R", "G", "B"])
-    ref = read_channels(cycles_path, ["R", "G", "B"])
+    ours = field_compare.read(ours_path, ["R", "G", "B"])
+    ref = field_compare.read(cycles_path, ["R", "G", "B"])
     y_ours, y_ref = luminance(ours), luminance(ref)
     ok = y_ours > 0
     every = np.ones(y_ref.shape, dtype=bool)
@@ -196,8 +183,8 @@ def world_check(directory, scene):
 
 
 def compare(directory, scene, images):
-    ours = read_channels(directory / f"{scene}.exr", ["clouds.R", "clouds.G", "clouds.B", "clouds.A"])
-    ref = read_channels(directory / f"{scene}_cycles.exr", ["R", "G", "B", "A"])
+    ours = field_compare.read(directory / f"{scene}.exr", ["clouds.R", "clouds.G", "clouds.B", "clouds.A"])
+    ref = field_compare.read(directory / f"{scene}_cycles.exr", ["R", "G", "B", "A"])
     meta = grid_metadata(directory / f"{scene}.vdb")
     if ours.shape != ref.shape:
         sys.exit(f"error: {scene}: skyrender is {ours.shape[1]}x{ours.shape[0]}, Cycles "
@@ -274,7 +261,7 @@ def compare(directory, scene, images):
     result["world_check"] = world_check(directory, scene)
 
     if images:
-        sky = read_channels(directory / f"{scene}.exr", ["sky.R", "sky.G", "sky.B"])
+        sky = field_compare.read(directory / f"{scene}.exr", ["sky.R", "sky.G", "sky.B"])
         exposure = 0.85 / float(np.quantile(np.concatenate([y_ref[mask], y_ours[mask]]), 0.99))
         gap = np.ones((ours.shape[0], 4, 3), dtype=np.float32)
         side = np.concatenate([panel(ours, sky, exposure), gap,

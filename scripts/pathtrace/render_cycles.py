@@ -118,6 +118,29 @@ def black_world():
     return w
 
 
+def link_world(nt, color, background, below_only):
+    """Feeds `color` to the world's background and the background to its output; with
+    `below_only`, only below the horizontal (in a world shader "Generated" is the view
+    direction: the colour is kept where its z < 0)."""
+    out = nt.nodes.new("ShaderNodeOutputWorld")
+    if below_only:
+        coords = nt.nodes.new("ShaderNodeTexCoord")
+        xyz = nt.nodes.new("ShaderNodeSeparateXYZ")
+        below = nt.nodes.new("ShaderNodeMath")
+        below.operation = "LESS_THAN"
+        below.inputs[1].default_value = 0.0
+        mask = nt.nodes.new("ShaderNodeMixRGB")
+        mask.blend_type = "MULTIPLY"
+        mask.inputs["Fac"].default_value = 1.0
+        nt.links.new(coords.outputs["Generated"], xyz.inputs[0])
+        nt.links.new(xyz.outputs["Z"], below.inputs[0])
+        nt.links.new(color, mask.inputs["Color1"])
+        nt.links.new(below.outputs[0], mask.inputs["Color2"])
+        color = mask.outputs["Color"]
+    nt.links.new(color, background.inputs["Color"])
+    nt.links.new(background.outputs[0], out.inputs["Surface"])
+
+
 def sky_world(path, below_only=False):
     # Cycles maps a direction d to the equirectangular u = 0.5 - atan2(d.y, d.x) / 2 pi and
     # v = elevation / pi + 0.5 (v up): the image's centre looks along +x, azimuth grows to the
@@ -136,25 +159,7 @@ def sky_world(path, below_only=False):
     texture.projection = "EQUIRECTANGULAR"
     background = nt.nodes.new("ShaderNodeBackground")
     background.inputs["Strength"].default_value = 1.0
-    out = nt.nodes.new("ShaderNodeOutputWorld")
-    if below_only:
-        # In a world shader "Generated" is the view direction; keep the map where z < 0.
-        coords = nt.nodes.new("ShaderNodeTexCoord")
-        xyz = nt.nodes.new("ShaderNodeSeparateXYZ")
-        below = nt.nodes.new("ShaderNodeMath")
-        below.operation = "LESS_THAN"
-        below.inputs[1].default_value = 0.0
-        mask = nt.nodes.new("ShaderNodeMixRGB")
-        mask.blend_type = "MULTIPLY"
-        mask.inputs["Fac"].default_value = 1.0
-        nt.links.new(coords.outputs["Generated"], xyz.inputs[0])
-        nt.links.new(xyz.outputs["Z"], below.inputs[0])
-        nt.links.new(texture.outputs["Color"], mask.inputs["Color1"])
-        nt.links.new(below.outputs[0], mask.inputs["Color2"])
-        nt.links.new(mask.outputs["Color"], background.inputs["Color"])
-    else:
-        nt.links.new(texture.outputs["Color"], background.inputs["Color"])
-    nt.links.new(background.outputs[0], out.inputs["Surface"])
+    link_world(nt, texture.outputs["Color"], background, below_only)
     # Importance-sample the map: the aureole around a low sun is small and bright.
     w.cycles.sampling_method = "MANUAL"
     w.cycles.sample_map_resolution = max(image.size[0], 256)
@@ -178,24 +183,7 @@ def nishita_world(m, below_only=False):
     background = nt.nodes.new("ShaderNodeBackground")
     # W/(m2 sr), CIE-weighted, to skyrender's unit of 1e4 cd/m2: 683 lm/W / 1e4.
     background.inputs["Strength"].default_value = 683.0 / 1.0e4
-    out = nt.nodes.new("ShaderNodeOutputWorld")
-    if below_only:
-        coords = nt.nodes.new("ShaderNodeTexCoord")
-        xyz = nt.nodes.new("ShaderNodeSeparateXYZ")
-        below = nt.nodes.new("ShaderNodeMath")
-        below.operation = "LESS_THAN"
-        below.inputs[1].default_value = 0.0
-        mask = nt.nodes.new("ShaderNodeMixRGB")
-        mask.blend_type = "MULTIPLY"
-        mask.inputs["Fac"].default_value = 1.0
-        nt.links.new(coords.outputs["Generated"], xyz.inputs[0])
-        nt.links.new(xyz.outputs["Z"], below.inputs[0])
-        nt.links.new(sky.outputs["Color"], mask.inputs["Color1"])
-        nt.links.new(below.outputs[0], mask.inputs["Color2"])
-        nt.links.new(mask.outputs["Color"], background.inputs["Color"])
-    else:
-        nt.links.new(sky.outputs["Color"], background.inputs["Color"])
-    nt.links.new(background.outputs[0], out.inputs["Surface"])
+    link_world(nt, sky.outputs["Color"], background, below_only)
     w.cycles.sampling_method = "MANUAL"
     w.cycles.sample_map_resolution = 1024
     return w
