@@ -74,16 +74,21 @@ float lightMarchShortSteps(CloudLightPath path, int first, int last, int part) {
   return ds;
 }
 
+// The path over [startM, endM] in `parts` equal parts, each sampled once at path.offset of it
+// and tagged `part`: the long step and the far step.
+float lightMarchParts(CloudLightPath path, float startM, float endM, int parts, int part) {
+  float ds = 0.0;
+  float len = (endM - startM) / float(max(parts, 1));
+  for (int j = 0; j < parts; ++j) {
+    vec3 p = path.origin + path.direction * (startM + (float(j) + path.offset) * len);
+    ds += cloudDensityForLight(path, p, len, part) * len;
+  }
+  return ds;
+}
+
 // The long step over [distanceM, longEndM] in longParts equal parts.
 float lightMarchLongStep(CloudLightPath path) {
-  float ds = 0.0;
-  float len = (path.longEndM - path.distanceM) / float(max(path.longParts, 1));
-  for (int j = 0; j < path.longParts; ++j)
-    ds += cloudDensityForLight(path,
-                               path.origin + path.direction * (path.distanceM + (float(j) + path.offset) * len),
-                               len, CLOUD_LIGHT_PART_FAR) *
-          len;
-  return ds;
+  return lightMarchParts(path, path.distanceM, path.longEndM, path.longParts, CLOUD_LIGHT_PART_FAR);
 }
 
 // The far step over [longEndM, farEndM] in farParts equal parts: where a low light's path
@@ -94,14 +99,7 @@ float lightMarchLongStep(CloudLightPath path) {
 // stratocumulus deck's underside as if the sky toward it were clear past 6 km: 58 % brighter
 // than Cycles' (docs/cloud-model.md, "A path-traced field").
 float lightMarchFarStep(CloudLightPath path) {
-  float ds = 0.0;
-  float len = (path.farEndM - path.longEndM) / float(max(path.farParts, 1));
-  for (int j = 0; j < path.farParts; ++j)
-    ds += cloudDensityForLight(path,
-                               path.origin + path.direction * (path.longEndM + (float(j) + path.offset) * len),
-                               len, CLOUD_LIGHT_PART_MEAN) *
-          len;
-  return ds;
+  return lightMarchParts(path, path.longEndM, path.farEndM, path.farParts, CLOUD_LIGHT_PART_MEAN);
 }
 
 // Lu (24)'s ds: the density accumulated from path.origin toward the light in density x
