@@ -1,7 +1,8 @@
 #pragma once
 // What the layers of a frame (engine/render/sky_layer.h, volumetric_cloud_layer.h) build
-// their passes from: the frame's setup (the weather, the lights after it, where the clouds
-// lie), its view, and, in a frame of several views, what the first view made for the others.
+// their passes from: the frame's setup (engine/render/frame_setup.h: the weather, the lights
+// after it, where the clouds lie), its view, and, in a frame of several views, what the first
+// view made for the others.
 // Read-only to the layers: each reports what it made in its own Images.
 #include <chrono>
 #include <cstdint>
@@ -9,6 +10,7 @@
 
 #include "engine/lighting/lighting_state.h"
 #include "engine/render/cloud_layers.h"
+#include "engine/render/frame_setup.h"
 #include "engine/scene/scene.h"
 #include "engine/weather/local_weather.h"
 #include "passes/atmosphere_luts/atmosphere_luts.h"
@@ -19,18 +21,6 @@
 #include "shaders/common/view_shared.h"
 
 namespace sky {
-
-// What the clouds of a frame see, and what lights the whole frame: the scene with the weather
-// map's region and layer altitudes filled in, the volumetric pass's settings from it, where
-// their rays start, and the lights after the local weather.
-struct CloudSetup {
-  Scene cloudScene;
-  VolumetricCloudsSettings volumetric;
-  CloudFrameGeometry geometry;
-  LightingState lighting;
-  LocalWeather localWeather;
-  const WeatherMap* weather;  // owned by the CloudLayers, valid until its next weatherMap()
-};
 
 // What the views of a frame of several share, made by the first view's passes.
 struct SharedFrame {
@@ -51,7 +41,7 @@ struct SharedFrame {
 struct FrameInputs {
   const Scene& scene;
   const IsoTime& time;
-  const CloudSetup& setup;
+  const FrameSetup& setup;
   shared::ViewState view;
   uint32_t width, height;
   bool physical, topDown;

@@ -36,7 +36,7 @@ void Renderer::setBakeProgress(std::function<void(double)> progress) {
 FramePlan Renderer::buildFrame(FrameGraph& graph, const Scene& scene, const IsoTime& time,
                                const RenderOptions& options, RenderedFrame& out,
                                SharedFrame* shared) {
-  const CloudSetup setup = mClouds.setup(scene, time);
+  const FrameSetup setup = frameSetup(mWeather, scene, time);
   const WeatherMap& weather = *setup.weather;
   out.lighting = setup.lighting;
   out.localWeather = setup.localWeather;
@@ -198,7 +198,7 @@ void Renderer::summarisePerception(RenderedFrame& out, const Scene& scene, const
   for (const ImageLayer& layer : out.image.layers)
     if (layer.integer && !layer.channels.empty() && layer.channels[0] == "label") labels = &layer;
   if (!labels) internalError("render: the perception layers lack the labels");
-  if (!field) field.emplace(mClouds.field(scene, time));
+  if (!field) field.emplace(mClouds.field(scene, frameSetup(mWeather, scene, time), time));
   out.perception = perceptionSummary(*field, out.lighting.sun.direction, *labels);
 }
 
@@ -292,12 +292,15 @@ std::vector<DebugImageInfo> Renderer::debugImages(const Scene& scene, const IsoT
 
 CloudVolume Renderer::exportCloudVolume(const Scene& scene, const IsoTime& time,
                                         const std::optional<CloudVolumeBox>& box, double voxelM) {
-  return mClouds.exportVolume(scene, time, box, voxelM);
+  CloudVolumeRequest request;
+  if (box) request.parts.push_back({*box, voxelM});
+  request.defaultVoxelM = voxelM;
+  return std::move(exportCloudVolumes(scene, time, request).front());
 }
 
 std::vector<CloudVolume> Renderer::exportCloudVolumes(const Scene& scene, const IsoTime& time,
                                                       const CloudVolumeRequest& request) {
-  return mClouds.exportVolumes(scene, time, request);
+  return mClouds.exportVolumes(scene, frameSetup(mWeather, scene, time), time, request);
 }
 
 void Renderer::startAfresh() {
@@ -306,7 +309,7 @@ void Renderer::startAfresh() {
 }
 
 CloudField Renderer::cloudField(const Scene& scene, const IsoTime& time) {
-  return mClouds.field(scene, time);
+  return mClouds.field(scene, frameSetup(mWeather, scene, time), time);
 }
 
 }  // namespace sky

@@ -1,7 +1,5 @@
 #include "engine/render/volumetric_cloud_layer.h"
 
-#include <chrono>
-
 #include "engine/core/error.h"
 #include "engine/render/camera.h"
 #include "engine/weather/weather_map.h"
@@ -26,32 +24,6 @@ void VolumetricCloudLayer::forgetKept() {
   mShadow.invalidate();
 }
 
-CloudSetup VolumetricCloudLayer::setup(const Scene& scene, const IsoTime& time) {
-  const WeatherMap& weather = mWeather.weatherMap(scene, time);
-  CloudSetup s{scene, {}, {}, {}, {}, &weather};
-  // The map's region, resolved from the camera when the scene gives none.
-  s.cloudScene.weather.region = weather.region;
-  // A forecast file places the layers at the altitudes of its pressure levels (from gh); the
-  // scene's clouds.low/mid apply otherwise.
-  if (weather.layerAltitudesM) {
-    const glm::dvec4& a = *weather.layerAltitudesM;
-    s.cloudScene.clouds.low = {a.x, a.y};
-    s.cloudScene.clouds.mid = {a.z, a.w};
-  }
-  // A top-down view is lit as seen from the middle of the weather region.
-  s.volumetric = volumetricCloudsSettings(s.cloudScene);
-  s.geometry = cloudFrameGeometry(s.volumetric);
-  Scene litScene = scene;
-  litScene.camera.latitude = s.geometry.latDeg;
-  litScene.camera.longitude = s.geometry.lonDeg;
-  s.lighting = computeLighting(litScene, time);
-  // The weather where the camera stands sets the ambient light and the haze.
-  s.localWeather =
-      localWeather(weather, s.geometry.latDeg, s.geometry.lonDeg, scene.weather.localRadiusKm);
-  applyOvercast(s.lighting, scene.sky, s.localWeather.overcast);
-  return s;
-}
-
 VolumetricCloudLayer::Images VolumetricCloudLayer::addTo(FrameGraph& graph, const FrameInputs& f,
                                                          const SkyLayer::Images& sky,
                                                          const AtmosphereLuts& atmosphere) {
@@ -61,10 +33,6 @@ VolumetricCloudLayer::Images VolumetricCloudLayer::addTo(FrameGraph& graph, cons
   Images c;
   SharedFrame* shared = f.shared;
   const SharedFrame::Clouds* made = shared && shared->clouds ? &*shared->clouds : nullptr;
-  const auto texturesStart = std::chrono::steady_clock::now();
-  c.frame = made ? made->frame : mWeather.addTo(graph, cloudScene, f.time);
-  c.texturesMs = msSince(texturesStart);
-  c.noise = mWeather.noiseActivity();
   // Temporal reuse: a sequence's frames march a share of the pixels and reproject the rest,
   // at the view's size or at half its width and height. Not in a frame of several views.
   // Nor with a host's depth: the march stops at its geometry, which a history would not know.
@@ -76,37 +44,20 @@ VolumetricCloudLayer::Images VolumetricCloudLayer::addTo(FrameGraph& graph, cons
   const uint32_t cloudHeight = half ? (f.height + 1) / 2 : f.height;
   const shared::ViewState cloudView =
       half ? makeViewState(scene.camera, cloudWidth, cloudHeight) : f.view;
+  const CloudFieldFrame field = cloudFieldFrame(graph, mWeather, f.setup, f.time, cloudView,
+                                                mFieldSettings.of(cloudScene),
+                                                made ? &made->frame : nullptr);
+  c.frame = field.frame;
+  c.texturesMs = field.texturesMs;
+  c.noise = mWeather.noiseActivity();
   VolumetricCloudsPass::Inputs in;
-  in.params = cloudParams(f.setup.volumetric, f.lighting, f.time, cloudView, c.frame.maxCover,
-                          c.frame.coverage, c.frame.noiseMeans);
-  in.variant = cloudVariant(f.setup.volumetric, c.frame.lowRolls);
+  in.params = field.params;
+  in.variant = field.variant;
   in.lighting = f.lighting.gpu;
   in.textures = c.frame.textures;
   in.hostDepth = f.hostDepth;
-  // The ambient light from the sky the frame draws (either model) and the ground under it.
-  CloudAmbientPass::Inputs ambient;
-  const bool dualLobe = in.variant.phase == CloudPhase::DualLobe;
-  ambient.params = cloudAmbientParams({scene.ground.albedo, scene.lighting.turbidity,
-                                       in.params.shellBaseM, f.lighting.overcast, in.params.g,
-                                       in.params.gBack, dualLobe ? in.params.backWeight : 0.0f});
-  ambient.lighting = f.lighting.gpu;
-  ambient.moon = !moonLightNegligible(f.lighting.gpu);
-  if (f.physical)
-    ambient.atmosphere = CloudAmbientPass::Atmosphere{
-        atmosphere.cloudParams(), sky.luts.transmittance, sky.luts.skyViewSunClouds,
-        sky.luts.skyViewMoonClouds, &atmosphere.sampler()};
-  in.ambient = made ? made->ambient : graph.add(mAmbient, ambient).ambient;
+  in.ambient = made ? made->ambient : addAmbient(graph, f, in, sky, atmosphere);
   std::optional<CloudLightVolumePass::Outputs> lightVolume;
-  // What the light volume and the shadow map are made from: kept while it holds.
-  CloudFieldKey field;
-  field.settings = mFieldSettings.of(cloudScene);
-  field.mapRevision = mWeather.mapRevision();
-  field.camera = glm::dvec3(geometry.latDeg, geometry.lonDeg, geometry.altitudeM);
-  field.sun = glm::vec3(in.params.sunDirection);
-  field.moon = glm::vec3(in.params.moonDirection);
-  field.lights =
-      (in.params.sunMarched != 0.0f ? 1u : 0u) | (in.params.moonMarched != 0.0f ? 2u : 0u);
-  field.drift = cloudWindDriftM(scene.clouds, f.time.secondsSince(scene.time.start));
   // The light through the clouds from the light volume (the reference marches it).
   if (in.variant.light == CloudLight::Volume) {
     CloudLightVolumePass::Inputs v;
@@ -114,7 +65,7 @@ VolumetricCloudLayer::Images VolumetricCloudLayer::addTo(FrameGraph& graph, cons
     v.variant = in.variant;
     v.params.lightVolume = cloudLightVolumePlace(in.params, geometry.altitudeM);
     v.textures = in.textures;
-    v.key = field;
+    v.key = field.key;  // kept while it holds
     const CloudLightVolumePass::Outputs volume =
         made && made->volume ? *made->volume : mLightVolume.addTo(graph, v);
     if (shared) lightVolume = volume;
@@ -150,20 +101,7 @@ VolumetricCloudLayer::Images VolumetricCloudLayer::addTo(FrameGraph& graph, cons
     c.depth = resolved.depth;
     c.reuseStep = true;
   }
-  if (half) {
-    CloudUpsamplePass::Inputs u;
-    u.params.view = f.view;
-    u.params.source = cloudView;
-    u.params.planetRadiusM = in.params.geo.origin.w;
-    u.params.cameraAltitudeM = static_cast<float>(scene.camera.altitudeM);
-    u.params.shellBaseM = in.params.shellBaseM;
-    u.params.shellTopM = in.params.shellTopM;
-    u.clouds = c.clouds;
-    u.depth = c.depth;
-    const CloudUpsamplePass::Outputs full = graph.add(mUpsample, u);
-    c.clouds = full.clouds;
-    c.depth = full.depth;
-  }
+  if (half) upsampleToView(graph, f, cloudView, in.params, c);
   // The clouds' shadows on the ground around the observer (a top-down render draws no
   // ground, but the composite's cloud variant binds a map all the same).
   if (made) {
@@ -172,7 +110,7 @@ VolumetricCloudLayer::Images VolumetricCloudLayer::addTo(FrameGraph& graph, cons
     c.shadow =
         mShadow.addTo(graph, CloudShadowPass::Inputs{in.params, in.variant,
                                                      cloudShadowMap(in.params, geometry.altitudeM),
-                                                     in.textures, field});
+                                                     in.textures, field.key});
     // A cut through the density field for the debug view: culled unless it is asked for.
     graph.add(mSlice, CloudDensitySlicePass::Inputs{in.params, in.variant, in.textures});
     if (shared) shared->clouds = SharedFrame::Clouds{c.frame, in.ambient, lightVolume, c.shadow};
@@ -180,19 +118,46 @@ VolumetricCloudLayer::Images VolumetricCloudLayer::addTo(FrameGraph& graph, cons
   return c;
 }
 
-CloudVolume VolumetricCloudLayer::exportVolume(const Scene& scene, const IsoTime& time,
-                                               const std::optional<CloudVolumeBox>& box,
-                                               double voxelM) {
-  CloudVolumeRequest request;
-  if (box) request.parts.push_back({*box, voxelM});
-  request.defaultVoxelM = voxelM;
-  return std::move(exportVolumes(scene, time, request).front());
+ImageId VolumetricCloudLayer::addAmbient(FrameGraph& graph, const FrameInputs& f,
+                                         const VolumetricCloudsPass::Inputs& in,
+                                         const SkyLayer::Images& sky,
+                                         const AtmosphereLuts& atmosphere) {
+  // The ambient light from the sky the frame draws (either model) and the ground under it.
+  CloudAmbientPass::Inputs ambient;
+  const bool dualLobe = in.variant.phase == CloudPhase::DualLobe;
+  ambient.params = cloudAmbientParams({f.scene.ground.albedo, f.scene.lighting.turbidity,
+                                       in.params.shellBaseM, f.lighting.overcast, in.params.g,
+                                       in.params.gBack, dualLobe ? in.params.backWeight : 0.0f});
+  ambient.lighting = f.lighting.gpu;
+  ambient.moon = !moonLightNegligible(f.lighting.gpu);
+  if (f.physical)
+    ambient.atmosphere = CloudAmbientPass::Atmosphere{
+        atmosphere.cloudParams(), sky.luts.transmittance, sky.luts.skyViewSunClouds,
+        sky.luts.skyViewMoonClouds, &atmosphere.sampler()};
+  return graph.add(mAmbient, ambient).ambient;
+}
+
+void VolumetricCloudLayer::upsampleToView(FrameGraph& graph, const FrameInputs& f,
+                                          const shared::ViewState& marchedView,
+                                          const shared::CloudParams& params, Images& c) {
+  CloudUpsamplePass::Inputs u;
+  u.params.view = f.view;
+  u.params.source = marchedView;
+  u.params.planetRadiusM = params.geo.origin.w;
+  u.params.cameraAltitudeM = static_cast<float>(f.scene.camera.altitudeM);
+  u.params.shellBaseM = params.shellBaseM;
+  u.params.shellTopM = params.shellTopM;
+  u.clouds = c.clouds;
+  u.depth = c.depth;
+  const CloudUpsamplePass::Outputs full = graph.add(mUpsample, u);
+  c.clouds = full.clouds;
+  c.depth = full.depth;
 }
 
 std::vector<CloudVolume> VolumetricCloudLayer::exportVolumes(const Scene& scene,
+                                                             const FrameSetup& setup,
                                                              const IsoTime& time,
                                                              const CloudVolumeRequest& request) {
-  const CloudSetup setup = this->setup(scene, time);
   if (setup.geometry.topDown)
     inputError(
         "export-volume: camera.mode geographic_topdown has no camera to export the "
@@ -216,14 +181,13 @@ std::vector<CloudVolume> VolumetricCloudLayer::exportVolumes(const Scene& scene,
     setCloudVolumeFootprint(grid, request.lod, view);
     // One graph a part, so only one part's 3D image is alive at a time.
     FrameGraph graph(mRuntime);
-    const CloudLayers::Frame cloudFrame = mWeather.addTo(graph, setup.cloudScene, time);
     // The raymarch's own parameters, so the grid holds the very field it marches through.
+    const CloudFieldFrame field = cloudFieldFrame(graph, mWeather, setup, time, view);
     CloudVolumeExportPass::Inputs in;
-    in.params = cloudParams(setup.volumetric, setup.lighting, time, view, cloudFrame.maxCover,
-                            cloudFrame.coverage, cloudFrame.noiseMeans);
-    in.variant = cloudVariant(setup.volumetric, cloudFrame.lowRolls);
+    in.params = field.params;
+    in.variant = field.variant;
     in.box = grid.params;
-    in.textures = cloudFrame.textures;
+    in.textures = field.frame.textures;
     graph.requestOutput(graph.add(mVolumeExport, in).grid, "cloud_volume");
     FrameResult result = graph.execute();
     std::vector<float> density = std::move(result.output("cloud_volume").pixels);
@@ -246,8 +210,8 @@ std::vector<CloudVolume> VolumetricCloudLayer::exportVolumes(const Scene& scene,
   return volumes;
 }
 
-CloudField VolumetricCloudLayer::field(const Scene& scene, const IsoTime& time) {
-  const CloudSetup setup = this->setup(scene, time);
+CloudField VolumetricCloudLayer::field(const Scene& scene, const FrameSetup& setup,
+                                       const IsoTime& time) {
   if (setup.geometry.topDown)
     inputError(
         "cloud queries: camera.mode geographic_topdown has no observer to place the clouds "
@@ -262,16 +226,14 @@ CloudField VolumetricCloudLayer::field(const Scene& scene, const IsoTime& time) 
     // As exportCloudVolume: the textures and tables a frame would import, then the
     // raymarch's own uniforms.
     FrameGraph graph(mRuntime);
-    const CloudLayers::Frame cloudFrame = mWeather.addTo(graph, setup.cloudScene, time);
     const shared::ViewState view =
         makeViewState(scene.camera, static_cast<uint32_t>(scene.output.width),
                       static_cast<uint32_t>(scene.output.height));
-    in.params = cloudParams(setup.volumetric, setup.lighting, time, view, cloudFrame.maxCover,
-                            cloudFrame.coverage, cloudFrame.noiseMeans);
-    const CloudVariant variant = cloudVariant(setup.volumetric, cloudFrame.lowRolls);
-    in.tang = variant.model == CloudModel::Tang2019;
-    in.calibrated = variant.coverage == CloudCoverageMode::Calibrated;
-    in.rolls = variant.rolls == CloudRolls::On;
+    const CloudFieldFrame field = cloudFieldFrame(graph, mWeather, setup, time, view);
+    in.params = field.params;
+    in.tang = field.variant.model == CloudModel::Tang2019;
+    in.calibrated = field.variant.coverage == CloudCoverageMode::Calibrated;
+    in.rolls = field.variant.rolls == CloudRolls::On;
     in.shape = mWeather.noise().shapeVolume();
     in.detail = mWeather.noise().detailVolume();
     in.curl = mWeather.noise().curlPlane();

@@ -35,10 +35,6 @@ public:
   VolumetricCloudLayer(const Context& ctx, ShaderCompiler& compiler, GraphRuntime& runtime,
                        CloudLayers& weather);
 
-  // What a frame of `scene` at `time` is lit by and where its clouds lie: the weather map
-  // (built or kept), the scene's clouds placed in it, the lights after the local weather.
-  CloudSetup setup(const Scene& scene, const IsoTime& time);
-
   // The volumetric clouds of a frame at the view's size, their shadow map and their textures,
   // and what the layer reports of the frame.
   struct Images {
@@ -64,16 +60,23 @@ public:
   // made were not made.
   void forgetKept();
 
-  // The cloud density field inside `box` on voxels of `voxelM` (Renderer::exportCloudVolume).
-  CloudVolume exportVolume(const Scene& scene, const IsoTime& time,
-                           const std::optional<CloudVolumeBox>& box, double voxelM);
-  // The field in each part of `request`, each times its share (Renderer::exportCloudVolumes).
-  std::vector<CloudVolume> exportVolumes(const Scene& scene, const IsoTime& time,
-                                         const CloudVolumeRequest& request);
-  // The cloud density field on the CPU (Renderer::cloudField).
-  CloudField field(const Scene& scene, const IsoTime& time);
+  // The field of a frame of `scene` with `setup` (frameSetup) in each part of `request`, each
+  // times its share (Renderer::exportCloudVolumes).
+  std::vector<CloudVolume> exportVolumes(const Scene& scene, const FrameSetup& setup,
+                                         const IsoTime& time, const CloudVolumeRequest& request);
+  // The cloud density field of such a frame on the CPU (Renderer::cloudField).
+  CloudField field(const Scene& scene, const FrameSetup& setup, const IsoTime& time);
 
 private:
+  // The clouds' ambient light (CloudAmbientPass) for the march `in`.
+  ImageId addAmbient(FrameGraph& graph, const FrameInputs& f,
+                     const VolumetricCloudsPass::Inputs& in, const SkyLayer::Images& sky,
+                     const AtmosphereLuts& atmosphere);
+  // The clouds `c` marched at `marchedView` (half the view's size) brought to the view's.
+  void upsampleToView(FrameGraph& graph, const FrameInputs& f,
+                      const shared::ViewState& marchedView, const shared::CloudParams& params,
+                      Images& c);
+
   GraphRuntime& mRuntime;
   CloudLayers& mWeather;
   CloudAmbientPass mAmbient;
