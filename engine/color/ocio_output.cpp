@@ -47,7 +47,7 @@ std::string joinNames(const std::vector<std::string>& names) {
 // One processor per display and view. The exposure is not in the key nor in the chain: a
 // time-lapse under automatic exposure has a new value every frame, and a processor each (in
 // our map and in OCIO's own processor cache) grew a 2,000-frame run by 58 KB a frame with
-// AgX's LUT (SkyrenderCli.TwoThousandFramesInOneProcessKeepMemoryFlat).
+// AgX's LUT (SkyrenderCli.AThousandFramesInOneProcessKeepMemoryFlat).
 std::string cacheKey(const std::string& display, const std::string& view) {
   return display + '\x1f' + view;
 }
