@@ -169,33 +169,37 @@ CloudLightPath cloudLightPath(vec3 p, vec2 latLon, float h, vec3 L, float footpr
                         farEnd, cloudLightFarParts(longEnd, farEnd));
 }
 
-// What the light marches of one view sample found: the optical depth toward the sun (x) and
-// the moon (y), and how many density samples it took.
+// What the light marches of one view sample found: the optical depth toward the sun (x, z)
+// and the moon (y, w), through the sample's own cloud (xy) and beyond it (zw;
+// CloudLightDepth), and how many density samples it took.
 struct CloudKeyLights {
-  vec2 tau;
+  vec4 tau;
   int samples;
 };
 
 // Lu (24): the optical depth from the cloud sample s at p toward the sun and the moon.
 CloudKeyLights marchKeyLights(vec3 p, float h, CloudSample s, float footprintM, float offset,
                               int longShare) {
-  CloudKeyLights k = CloudKeyLights(vec2(0.0), 0);
+  CloudKeyLights k = CloudKeyLights(vec4(0.0), 0);
   for (int i = 0; i < 2; ++i) {
     if (!keyLightMarched(i, s.layer)) continue;
     vec3 L = keyLightDirection(i);
     CloudLightPath path = cloudLightPath(p, s.latLon, h, L, footprintM, offset, longShare);
 #if CLOUD_LIGHT_VOLUME
     // The cloud's own fine structure near the sample marched here, the rest from the volume
-    // at the point where this part ends (it holds the light's path from there on).
-    k.tau[i] = params.extinction * lightMarchDensityNear(path, CLOUD_LIGHT_VOLUME_NEAR);
+    // at the point where this part ends (it holds the light's path from there on, as one sum:
+    // it counts as beyond the sample's own cloud).
+    CloudLightDepth d = lightMarchDepthNear(path, CLOUD_LIGHT_VOLUME_NEAR);
     k.samples += CLOUD_LIGHT_VOLUME_NEAR * path.split;
     vec3 far = p + L * params.lightVolume.startM;
-    k.tau[i] += textureLod(lightVolume, cloudLightVolumeCoord(params.lightVolume, params.geo, far),
-                           0.0)[i];
+    d.beyond += textureLod(lightVolume, cloudLightVolumeCoord(params.lightVolume, params.geo, far),
+                           0.0)[i] / params.extinction;
 #else
-    k.tau[i] = params.extinction * lightMarchDensity(path);
+    CloudLightDepth d = lightMarchDepth(path);
     k.samples += lightMarchSamples(path);
 #endif
+    k.tau[i] = params.extinction * d.own;
+    k.tau[2 + i] = params.extinction * d.beyond;
   }
   return k;
 }
@@ -212,7 +216,7 @@ float meanCosine() {
 // with the clamp (22), the phase (23) and the multiple-scattering octaves, plus the diffusion
 // term, of which the point keeps `diffuseShare` (diffuseBoundaryShare). Scattering equals
 // extinction: cloud droplets barely absorb.
-vec3 cloudKeyLightScattering(vec3 d, int layer, float altitudeM, float type, vec2 tau,
+vec3 cloudKeyLightScattering(vec3 d, int layer, float altitudeM, float type, vec4 tau,
                              float diffuseShare) {
   vec3 S = vec3(0.0);
   // Lu (22): the attenuation is at most that of ac times the densest path toward the light.
@@ -220,7 +224,10 @@ vec3 cloudKeyLightScattering(vec3 d, int layer, float altitudeM, float type, vec
       params.extinction * params.attenuationClamp * lightMarchReach(params.lightDistanceM);
   for (int i = 0; i < 2; ++i) {
     if (!keyLightMarched(i, layer)) continue;
-    vec3 E = keyLightAt(i, layer, altitudeM);
+    // The clouds beyond the sample's own shadow its light as a beam: what they scatter is
+    // spread over the sky, of which the little that reaches this cloud is not counted (the
+    // ambient is the clear sky's).
+    vec3 E = keyLightAt(i, layer, altitudeM) * exp(-tau[2 + i]);
     // The phase function is per steradian; in the renderer's units (illuminance 1 = pi x
     // radiance 1, lighting_shared.h) radiance = pi * E * phase.
     S += VIEW_PI * E *
@@ -354,7 +361,7 @@ struct CloudMarch {
   int lightSamples;     // density samples in its light marches
   vec3 lastScattering;  // in-scattered light per unit of weight at the last sample
   float lastT;          // and where it was
-  vec2 tau;             // the light (optical depth toward the sun, the moon) of the ray's
+  vec4 tau;             // the light (optical depth toward the sun, the moon; own, beyond) of the ray's
   int lightLayer;       // current cloud, and the layer it was marched in (-1: none yet)
   float lightT;         // where along the ray it was marched
   bool lightFar;        // for a sample of the far field
@@ -587,7 +594,7 @@ void cloudTakeOpaqueRest(inout CloudMarch m) {
 // lights it and adds its share, until the shells end, the ray's samples run out or the
 // transmittance falls below the cutoff.
 CloudMarch cloudMarchRay(CloudRay ray) {
-  CloudMarch m = CloudMarch(vec3(0.0), 1.0, 0.0, 0, 0, vec3(0.0), 0.0, vec2(0.0), -1, 0.0, false);
+  CloudMarch m = CloudMarch(vec3(0.0), 1.0, 0.0, 0, 0, vec3(0.0), 0.0, vec4(0.0), -1, 0.0, false);
   if (params.anyCover <= 0.0) return m;
   vec2 iv[2];
   float tauTotal = 0.0;

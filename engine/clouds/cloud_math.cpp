@@ -113,6 +113,15 @@ float cloudEdgeDensity(float d, float k) {
   return 1.0f - std::pow(1.0f - std::max(d, 0.0f), k);
 }
 
+float cloudFarExtinction(float meanSigma, float fraction, float chordM) {
+  if (meanSigma <= 0.0f || fraction <= 0.0f) return 0.0f;
+  const float a = std::min(fraction, 0.999f);
+  const float q = a / (1.0f - a);
+  const float tau = meanSigma / a * chordM;
+  return 2.0f * tau * q /
+         (tau + 1.0f + q + std::sqrt((tau - q) * (tau - q) + 2.0f * (tau + q) + 1.0f)) / chordM;
+}
+
 glm::vec3 integrateStep(glm::vec3 S, float sigmaT, float dt) {
   const float x = sigmaT * dt;
   if (x < 0.01f) return S * (dt * (1.0f - x * (0.5f - x * (1.0f / 6.0f - x * (1.0f / 24.0f)))));

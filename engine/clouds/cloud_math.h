@@ -5,6 +5,7 @@
 // comments on the GLSL side say what each equation is. All functions are pure.
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include <glm/common.hpp>
 #include <glm/vec2.hpp>
@@ -162,6 +163,7 @@ float diffuseTransmittance(float tau, float g);                   // two-stream,
 float cloudDiffuseInScatter(float tau, float g, float strength);  // the diffusion term
 float cloudDiffusionLeak(float type);      // faster fall-off through finite convective cells
 float cloudEdgeDensity(float d, float k);  // sharp boundaries
+float cloudFarExtinction(float meanSigma, float fraction, float chordM);  // Markov mixture
 glm::vec3 cloudAmbientDiffuse(glm::vec3 above, glm::vec3 below, glm::vec3 face, glm::vec3 back,
                               float sigmaT, float hTopM, float hBottomM, float tauView, float g,
                               float strength);  // Tang (6)(7) + diffusion between four faces
@@ -197,41 +199,59 @@ int lightLongParts(float distanceM, float longEndM, float partM);
 // The far step's parts for parts at most CLOUD_LIGHT_FAR_PART_M long (cloudLightFarParts).
 int lightFarParts(float longEndM, float farEndM);
 
-// Lu (24)'s ds toward the light: `density(glm::vec3 p, float lengthM, int part)` plays
-// cloudDensityForLight (part 0 near, 1 far, 2 the far step's mean).
+// cloud_light_march.glsl's CloudLightDepth: the march's density x metres through the sample's
+// own cloud (up to the first sample at or below CLOUD_LIGHT_CLEAR_DENSITY) and beyond it.
+struct LightDepth {
+  float own = 0.0f, beyond = 0.0f;
+  bool left = false;
+  void add(float density, float lengthM) {
+    if (density <= CLOUD_LIGHT_CLEAR_DENSITY) left = true;
+    (left ? beyond : own) += density * lengthM;
+  }
+};
+
+// Lu (24)'s ds toward the light, split (lightMarchDepth): `density(glm::vec3 p, float
+// lengthM, int part)` plays cloudDensityForLight (part 0 near, 1 far, 2 the far step's mean).
 template <class DensityFn>
-float lightMarchDensity(const LightPath& path, DensityFn&& density) {
+LightDepth lightMarchDepth(const LightPath& path, DensityFn&& density) {
+  LightDepth d;
   const auto shortSteps = [&](int first, int last, int part) {
-    float ds = 0.0f;
     for (int i = first; i < last; ++i) {
       const float start = lightStepStart(i, path.steps, path.distance);
       const float len =
           lightStepLength(i, path.steps, path.distance) / static_cast<float>(path.split);
       for (int j = 0; j < path.split; ++j)
-        ds += density(path.origin +
+        d.add(density(path.origin +
                           path.direction * (start + (static_cast<float>(j) + path.offset) * len),
-                      len, part) *
-              len;
+                      len, part),
+              len);
     }
-    return ds;
   };
   const int near = std::clamp(path.nearSteps, 0, path.steps);
-  float ds = shortSteps(0, near, 0) + shortSteps(near, path.steps, 1);
+  shortSteps(0, near, 0);
+  shortSteps(near, path.steps, 1);
   const float len =
       (path.longEnd - path.distance) / static_cast<float>(std::max(path.longParts, 1));
   for (int j = 0; j < path.longParts; ++j)
-    ds += density(path.origin + path.direction *
+    d.add(density(path.origin + path.direction *
                                     (path.distance + (static_cast<float>(j) + path.offset) * len),
-                  len, 1) *
-          len;
+                  len, 1),
+          len);
   const float farLen =
       (path.farEnd - path.longEnd) / static_cast<float>(std::max(path.farParts, 1));
   for (int j = 0; j < path.farParts; ++j)
-    ds += density(path.origin + path.direction *
+    d.add(density(path.origin + path.direction *
                                     (path.longEnd + (static_cast<float>(j) + path.offset) * farLen),
-                  farLen, 2) *
-          farLen;
-  return ds;
+                  farLen, 2),
+          farLen);
+  return d;
+}
+
+// lightMarchDensity: all of it, own and beyond.
+template <class DensityFn>
+float lightMarchDensity(const LightPath& path, DensityFn&& density) {
+  const LightDepth d = lightMarchDepth(path, std::forward<DensityFn>(density));
+  return d.own + d.beyond;
 }
 
 }  // namespace sky::clouds

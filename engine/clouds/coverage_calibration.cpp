@@ -201,6 +201,26 @@ public:
     return sum / mColumns;
   }
 
+  // The mean density at each of the grid's heights (what operator() sums down a column,
+  // averaged over the columns instead), and the share of the samples in cloud there.
+  std::vector<FarMean> meanPerHeight(float threshold) const {
+    std::vector<FarMean> mean(static_cast<size_t>(mHeights));
+    if (threshold >= 1.0f) return mean;
+    const float invT = 1.0f / (1.0f - threshold);
+    std::vector<double> density(mean.size(), 0.0), inCloud(mean.size(), 0.0);
+    for (int k = 0; k < mColumns; ++k)
+      for (int j = 0; j < mHeights; ++j) {
+        const size_t i = size_t(k) * size_t(mHeights) + size_t(j);
+        const float shaped = std::clamp((mX[i] - threshold) * invT, 0.0f, 1.0f);
+        const float d = std::clamp((shaped - mE[i]) * mInvE[i], 0.0f, 1.0f) * mScale[i];
+        density[size_t(j)] += cloudEdgeDensity(d, mEdgeSharpness);
+        inCloud[size_t(j)] += d > 0.0f ? 1.0 : 0.0;
+      }
+    for (size_t j = 0; j < mean.size(); ++j)
+      mean[j] = {float(density[j] / mColumns), float(inCloud[j] / mColumns)};
+    return mean;
+  }
+
 private:
   int mColumns, mHeights;
   double mOpticalDepthPerDensity;
@@ -307,6 +327,30 @@ CoverageLut calibrateCoverage(const NoiseVolume& shape, const NoiseVolume& detai
     lut[size_t(i)] = solveThreshold(CoverOpacity(samples, column, cover), cover);
   });
   return lut;
+}
+
+FarMeanTable farMeanDensity(const NoiseVolume& shape, const NoiseVolume& detail,
+                            const CoverageColumn& column, const CoverageLut& lut) {
+  checkVolume(shape, "shape");
+  checkVolume(detail, "detail");
+  static_assert(kHeights % kFarMeanHeights == 0, "each far height averages whole grid heights");
+  const GridSamples samples = sampleGrid(shape, detail, column, {kColumns, kHeights, {}});
+  FarMeanTable table{};
+  parallelFor(kFarMeanCovers, [&](int i) {
+    const float cover = float(i) / float(kFarMeanCovers - 1);
+    const std::vector<FarMean> mean =
+        CoverOpacity(samples, column, cover).meanPerHeight(coverageThreshold(lut, cover));
+    constexpr int per = kHeights / kFarMeanHeights;
+    for (int j = 0; j < kFarMeanHeights; ++j) {
+      FarMean sum;
+      for (int k = 0; k < per; ++k) {
+        sum.density += mean[size_t(j * per + k)].density / per;
+        sum.fraction += mean[size_t(j * per + k)].fraction / per;
+      }
+      table[size_t(i)][size_t(j)] = sum;
+    }
+  });
+  return table;
 }
 
 }  // namespace sky::clouds

@@ -47,6 +47,21 @@ struct CoverageColumn {
 inline constexpr int kCoverageLutSize = 64;
 using CoverageLut = std::array<float, kCoverageLutSize>;
 
+// The far field per height (shaders/common/cloud_field.glsl farMeanDensity): for cover
+// i / (kFarMeanCovers - 1) at its calibrated threshold, over the tile, at height fraction
+// (j + 0.5) / kFarMeanHeights of the cloud's range (averaged over that slice), the mean of the
+// density the raymarch marches (cloudEdgeDensity of the cloud's density) and the share of the
+// space in cloud. A field at 40 % cover holds narrow towers whose tops fill far less than 40 %
+// of the area: the cover times the full-cover profile put too much cloud in the top of the
+// layer, where a low sun's light crosses it (docs/cloud-model.md, "The far field").
+inline constexpr int kFarMeanCovers = 16;
+inline constexpr int kFarMeanHeights = 8;
+struct FarMean {
+  float density = 0.0f;   // the mean density
+  float fraction = 0.0f;  // the share of the samples with density above 0
+};
+using FarMeanTable = std::array<std::array<FarMean, kFarMeanHeights>, kFarMeanCovers>;
+
 // The thresholds whose mean column opacity 1 - exp(-extinction * integral of density dz) over
 // 2048 columns spread through the shape tile (32 heights each, trilinear noise) equals each
 // cover: 1 (no cloud) at cover 0; where even the lowest threshold (-1) stays below the cover,
@@ -54,6 +69,11 @@ using CoverageLut = std::array<float, kCoverageLutSize>;
 // column. Throws internalError for an empty volume.
 CoverageLut calibrateCoverage(const NoiseVolume& shape, const NoiseVolume& detail,
                               const CoverageColumn& column);
+
+// The far field's mean density and cloud share per height for each cover, at the thresholds of `lut`
+// (calibrateCoverage's for the same column), on the calibration's grid.
+FarMeanTable farMeanDensity(const NoiseVolume& shape, const NoiseVolume& detail,
+                            const CoverageColumn& column, const CoverageLut& lut);
 
 // The threshold for `cover` in [0, 1], linear between the LUT's entries.
 float coverageThreshold(const CoverageLut& lut, float cover);

@@ -123,10 +123,19 @@ CloudFieldSample CloudField::sample(const glm::dvec3& enu, float footprintM) con
   const float shapeCellM = 1.0f / params.shapeRepeatsPerM;
   const float keepOutline = noiseKeep(footprintM, shapeCellM / 4.0f);
   const float profile = mIn.tang ? tangTypeGradient(ph, type) : luGD(ph, profileCover);
-  const float cellTau =
-      params.extinction * profile * w.a * CLOUD_FAR_DENSITY * CLOUD_FAR_CHORD * shapeCellM / 4.0f;
-  const float clump = cellTau > 1e-4f ? (1.0f - std::exp(-cellTau)) / cellTau : 1.0f;
-  const float farDensity = cover * profile * CLOUD_FAR_DENSITY * clump;
+  float farDensity;
+  if (mIn.calibrated) {
+    const glm::vec2 far = farMeanDensity(layer, type, cover, ph);
+    const float sigma = params.extinction * w.a;
+    farDensity = sigma > 0.0f ? cloudFarExtinction(sigma * far.x, far.y,
+                                                   CLOUD_FAR_MARKOV_CHORD * shapeCellM / 4.0f) / sigma
+                              : 0.0f;
+  } else {
+    const float cellTau = params.extinction * profile * w.a * CLOUD_FAR_DENSITY *
+                          CLOUD_FAR_CHORD * shapeCellM / 4.0f;
+    const float clump = cellTau > 1e-4f ? (1.0f - std::exp(-cellTau)) / cellTau : 1.0f;
+    farDensity = cover * profile * CLOUD_FAR_DENSITY * clump;
+  }
   s.density = farDensity * w.a;
   if (keepOutline <= 0.0f) return s;
 
@@ -178,6 +187,32 @@ CloudFieldSample CloudField::sample(const glm::dvec3& enu, float footprintM) con
   const float sharpness = glm::mix(1.0f, params.edgeSharpness, keepShape.x);
   s.density = glm::mix(farDensity, cloudEdgeDensity(density, sharpness), keepOutline) * w.a;
   return s;
+}
+
+// farMeanDensity (cloud_field.glsl): the calibrated far mean and share in cloud, linear in
+// height, cover and type.
+glm::vec2 CloudField::farMeanDensity(int layer, float type, float cover, float ph) const {
+  const auto entry = [&](int index) {
+    const glm::vec4& pair = mIn.params.farMeanLut[index >> 1];
+    return (index & 1) == 0 ? glm::vec2(pair.x, pair.y) : glm::vec2(pair.z, pair.w);
+  };
+  const float x = std::clamp(cover, 0.0f, 1.0f) * float(CLOUD_FAR_MEAN_COVERS - 1);
+  const float y = std::clamp(type, 0.0f, 1.0f) * float(CLOUD_COVERAGE_TYPE_KEYS - 1);
+  const float z = std::clamp(ph * float(CLOUD_FAR_MEAN_HEIGHTS) - 0.5f, 0.0f,
+                             float(CLOUD_FAR_MEAN_HEIGHTS - 1));
+  const int x0 = std::min(int(x), CLOUD_FAR_MEAN_COVERS - 2);
+  const int y0 = std::min(int(y), CLOUD_COVERAGE_TYPE_KEYS - 2);
+  const int z0 = std::min(int(z), CLOUD_FAR_MEAN_HEIGHTS - 2);
+  const float fx = x - float(x0), fy = y - float(y0), fz = z - float(z0);
+  glm::vec2 v[2];
+  for (int t = 0; t < 2; ++t) {
+    const int row = ((layer * CLOUD_COVERAGE_TYPE_KEYS + y0 + t) * CLOUD_FAR_MEAN_COVERS + x0) *
+                        CLOUD_FAR_MEAN_HEIGHTS + z0;
+    const int next = row + CLOUD_FAR_MEAN_HEIGHTS;  // the next cover entry
+    v[t] = glm::mix(glm::mix(entry(row), entry(row + 1), fz),
+                    glm::mix(entry(next), entry(next + 1), fz), fx);
+  }
+  return glm::mix(v[0], v[1], fy);
 }
 
 // coverageThreshold (cloud_field.glsl): the paper's 1 - cover, or the calibrated table's,

@@ -9,6 +9,7 @@
 // tests/cloud_volume/cloud_field_test.cpp compares it with the GPU's density export.
 #include <optional>
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
@@ -77,6 +78,7 @@ public:
 
 private:
   float coverageThreshold(int layer, float type, float cover) const;
+  glm::vec2 farMeanDensity(int layer, float type, float cover, float ph) const;
 
   CloudFieldInputs mIn;
 };

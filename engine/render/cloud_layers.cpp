@@ -1,5 +1,6 @@
 #include "engine/render/cloud_layers.h"
 
+#include <algorithm>
 #include <sstream>
 
 #include "engine/clouds/cloud_math.h"
@@ -8,6 +9,11 @@
 #include "engine/weather/weather_region.h"
 
 namespace sky {
+
+static_assert(clouds::kCoverageLutSize == CLOUD_COVERAGE_LUT_SIZE &&
+                  clouds::kFarMeanCovers == CLOUD_FAR_MEAN_COVERS &&
+                  clouds::kFarMeanHeights == CLOUD_FAR_MEAN_HEIGHTS,
+              "the calibration's tables are the shader's (volumetric_clouds_shared.h)");
 
 VolumetricCloudsSettings volumetricCloudsSettings(const Scene& cloudScene) {
   VolumetricCloudsSettings s;
@@ -36,7 +42,7 @@ CoverageTables CloudLayers::coverageTables(const Scene& scene, const WeatherMap&
   const CloudSettings& c = scene.clouds;
   CoverageTables tables{};
   // Until calibrated (and for the paper's remap) each entry is Lu's 1 - CMc.
-  for (auto& layer : tables)
+  for (auto& layer : tables.thresholds)
     for (auto& type : layer)
       for (int i = 0; i < CLOUD_COVERAGE_LUT_SIZE; ++i)
         type[static_cast<size_t>(i)] = 1.0f - static_cast<float>(i) / (CLOUD_COVERAGE_LUT_SIZE - 1);
@@ -79,15 +85,18 @@ CoverageTables CloudLayers::coverageTables(const Scene& scene, const WeatherMap&
           << column.textureKeep;
       auto it = mLuts.find(key.str());
       if (it == mLuts.end()) {
-        it = mLuts
-                 .emplace(key.str(), clouds::calibrateCoverage(mNoise.shapeVolume(),
-                                                               mNoise.detailVolume(), column))
-                 .first;
+        Calibration calibration;
+        calibration.thresholds =
+            clouds::calibrateCoverage(mNoise.shapeVolume(), mNoise.detailVolume(), column);
+        calibration.farMean = clouds::farMeanDensity(mNoise.shapeVolume(), mNoise.detailVolume(),
+                                                     column, calibration.thresholds);
+        it = mLuts.emplace(key.str(), calibration).first;
         ++mLastCalibrations;
       }
-      for (int i = 0; i < CLOUD_COVERAGE_LUT_SIZE; ++i)
-        tables[static_cast<size_t>(layer)][static_cast<size_t>(k)][static_cast<size_t>(i)] =
-            it->second[static_cast<size_t>(i)];
+      const size_t li = static_cast<size_t>(layer), ti = static_cast<size_t>(k);
+      std::copy(it->second.thresholds.begin(), it->second.thresholds.end(),
+                tables.thresholds[li][ti].begin());
+      tables.farMean[li][ti] = it->second.farMean;
     }
   }
   return tables;

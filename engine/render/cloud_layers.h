@@ -67,7 +67,11 @@ private:
   WeatherTextures mWeather;
   WeatherSource mSource;
   uint64_t mMapRevision = 0;
-  std::map<std::string, clouds::CoverageLut> mLuts;  // by model, layer, type and column
+  struct Calibration {
+    clouds::CoverageLut thresholds{};
+    clouds::FarMeanTable farMean{};
+  };
+  std::map<std::string, Calibration> mLuts;  // by model, layer, type and column
   int mLastCalibrations = 0;
 };
 

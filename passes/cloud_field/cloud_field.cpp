@@ -267,12 +267,21 @@ shared::CloudParams cloudParams(const VolumetricCloudsSettings& settings,
   p.sliceTopM = static_cast<float>(std::max(c.low.topM, c.mid.topM) + 500.0);
 
   int i = 0;
-  for (const auto& layer : coverage)
+  for (const auto& layer : coverage.thresholds)
     for (const auto& type : layer)
       for (float threshold : type) {
         p.coverageLut[i / 4][i % 4] = threshold;
         ++i;
       }
+  i = 0;
+  for (const auto& layer : coverage.farMean)
+    for (const auto& type : layer)
+      for (const auto& cover : type)
+        for (const clouds::FarMean& mean : cover) {
+          p.farMeanLut[i / 2][2 * (i % 2)] = mean.density;
+          p.farMeanLut[i / 2][2 * (i % 2) + 1] = mean.fraction;
+          ++i;
+        }
   return p;
 }
 

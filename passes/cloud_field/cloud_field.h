@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/clouds/coverage_calibration.h"
 #include "engine/gpu/compute_pipeline.h"
 #include "engine/graph/frame_graph.h"
 #include "engine/graph/pass_context.h"
@@ -88,9 +89,17 @@ private:
   ComputePipelineVariants mVariants;
 };
 
-// Calibrated coverage thresholds (CloudParams.coverageLut): [layer][type key][cover entry].
-using CoverageTables =
-    std::array<std::array<std::array<float, CLOUD_COVERAGE_LUT_SIZE>, CLOUD_COVERAGE_TYPE_KEYS>, 2>;
+// Calibrated coverage: the thresholds (CloudParams.coverageLut), [layer][type key][cover
+// entry], and the far field's mean density and cloud share per height (CloudParams.farMeanLut),
+// [layer][type key][cover entry][height].
+struct CoverageTables {
+  template <class T>
+  using PerLayerAndType = std::array<std::array<T, CLOUD_COVERAGE_TYPE_KEYS>, 2>;
+  PerLayerAndType<std::array<float, CLOUD_COVERAGE_LUT_SIZE>> thresholds{};
+  PerLayerAndType<
+      std::array<std::array<clouds::FarMean, CLOUD_FAR_MEAN_HEIGHTS>, CLOUD_FAR_MEAN_COVERS>>
+      farMean{};
+};
 
 // What the clouds take from the scene, built once per frame by engine/render
 // (volumetricCloudsSettings in engine/render/cloud_layers.h), not the whole Scene.

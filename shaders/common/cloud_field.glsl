@@ -103,6 +103,33 @@ float coverageThreshold(int layer, float type, float cover) {
   return mix(a, b, fy);
 }
 
+// The far field's mean density and share in cloud (CloudParams.farMeanLut) of a layer at
+// `cover` and height fraction ph of a type's range: linear in height between the slices'
+// middles (held beyond the outer ones), in cover and in type. engine/render/cloud_field.cpp
+// has the CPU twin.
+vec2 farMeanEntry(int index) {
+  vec4 pair = params.farMeanLut[index >> 1];
+  return (index & 1) == 0 ? pair.xy : pair.zw;
+}
+vec2 farMeanDensity(int layer, float type, float cover, float ph) {
+  float x = clamp(cover, 0.0, 1.0) * float(CLOUD_FAR_MEAN_COVERS - 1);
+  float y = clamp(type, 0.0, 1.0) * float(CLOUD_COVERAGE_TYPE_KEYS - 1);
+  float z = clamp(ph * float(CLOUD_FAR_MEAN_HEIGHTS) - 0.5, 0.0, float(CLOUD_FAR_MEAN_HEIGHTS - 1));
+  int x0 = min(int(x), CLOUD_FAR_MEAN_COVERS - 2);
+  int y0 = min(int(y), CLOUD_COVERAGE_TYPE_KEYS - 2);
+  int z0 = min(int(z), CLOUD_FAR_MEAN_HEIGHTS - 2);
+  float fx = x - float(x0), fy = y - float(y0), fz = z - float(z0);
+  vec2 v[2];
+  for (int t = 0; t < 2; ++t) {
+    int row = ((layer * CLOUD_COVERAGE_TYPE_KEYS + y0 + t) * CLOUD_FAR_MEAN_COVERS + x0) *
+              CLOUD_FAR_MEAN_HEIGHTS + z0;
+    int next = row + CLOUD_FAR_MEAN_HEIGHTS;  // the next cover entry
+    v[t] = mix(mix(farMeanEntry(row), farMeanEntry(row + 1), fz),
+               mix(farMeanEntry(next), farMeanEntry(next + 1), fz), fx);
+  }
+  return mix(v[0], v[1], fy);
+}
+
 // Point p of the frame in ECEF axes relative to the camera (m). Added to a texture's origin
 // (shapeOrigin, detailOrigin) it gives the point's Earth-fixed noise position, so the noise
 // stays with the ground (and the wind) when the camera moves.
@@ -118,8 +145,9 @@ float noiseKeep(float footprintM, float cellM) {
   return 1.0 - smoothstep(0.125, 0.5, footprintM / cellM);
 }
 
-// CLOUD_FAR_DENSITY and CLOUD_FAR_CHORD, the far field's mean and clumping, are in
-// volumetric_clouds_shared.h: the CPU twin (engine/render/cloud_field.cpp) reads them too.
+// CLOUD_FAR_DENSITY, CLOUD_FAR_CHORD and CLOUD_FAR_MARKOV_CHORD, the far field's mean and
+// clumping, are in volumetric_clouds_shared.h: the CPU twin (engine/render/cloud_field.cpp)
+// reads them too.
 
 // The cloud at point p, whose latitude, longitude (degrees) and altitude are lla, seen by a
 // sample `footprintM` wide (0: full detail). Returns false where no cloud can be (outside
@@ -170,15 +198,15 @@ bool cloudSampleAtLla(vec3 p, vec3 lla, float footprintM, bool coarseCheck, int 
 
   // Far away a sample spans whole clouds (the shape's R has 4 cells a repeat), and the field
   // there is drawn as a smooth medium instead of the speckle of clouds hit and missed at
-  // random. Where the outline is not resolved at all no noise is read (the long light step,
-  // most samples near the horizon). Its density is the clouds' mean (the cover times the
-  // height profile times CLOUD_FAR_DENSITY) times the clumping factor (1 - e^-tau) / tau of a
-  // cloud's optical depth tau across a chord of CLOUD_FAR_CHORD of its cell: a field of
-  // separate opaque clouds dims a ray by the clouds it meets, not by their density spread
-  // out (the effective extinction of a Poisson field of clumps). The mean alone was an opaque
-  // haze of 60 m mean free path, under which the light from a low sun crossed a hundred
-  // optical depths and the band at the horizon came out 10-14 % darker than a supersampled
-  // render of the same clouds (docs/clouds.md, "The horizon").
+  // random. Where the outline is not resolved at all no noise is read (the far light step,
+  // most samples near the horizon). A field of separate opaque clouds dims a ray by the
+  // clouds it meets, not by their density spread out: the mean alone was an opaque haze of
+  // 60 m mean free path, under which the light from a low sun crossed a hundred optical
+  // depths (docs/clouds.md, "The horizon"). With calibrated coverage the density is the
+  // measured mean per height seen through a Markov mixture (cloudFarExtinction). The paper's
+  // coverage takes the cover times the height profile times CLOUD_FAR_DENSITY, times the
+  // clumping factor (1 - e^-tau) / tau of a cloud's optical depth tau across a chord of
+  // CLOUD_FAR_CHORD of its cell.
   const bool tang = CLOUD_TANG != 0;
   // Lu's height profile (6)(10) and erosion (15) read CMc too: a cell at 30 % cover gets
   // clouds only 30 % of the layer tall and a third as dense, which no threshold can make look
@@ -190,10 +218,21 @@ bool cloudSampleAtLla(vec3 p, vec3 lla, float footprintM, bool coarseCheck, int 
   float keepOutline = noiseKeep(footprintM, shapeCellM / 4.0);
   float profile = tang ? tangTypeGradient(s.ph, type) : luGD(s.ph, profileCover);
   s.outline = keepOutline;
-  float cellTau = params.extinction * profile * w.a * CLOUD_FAR_DENSITY * CLOUD_FAR_CHORD *
-                  shapeCellM / 4.0;
-  float clump = cellTau > 1e-4 ? (1.0 - exp(-cellTau)) / cellTau : 1.0;
-  float farDensity = cover * profile * CLOUD_FAR_DENSITY * clump;
+  float farDensity;
+  if (CLOUD_CALIBRATED != 0) {
+    // Calibrated coverage knows the clouds' mean and their share of the space at each height
+    // (farMeanLut), and dims by the Markov mixture of the two (cloudFarExtinction).
+    vec2 far = farMeanDensity(layer, type, cover, s.ph);
+    float sigma = params.extinction * w.a;
+    farDensity = sigma > 0.0 ? cloudFarExtinction(sigma * far.x, far.y,
+                                                  CLOUD_FAR_MARKOV_CHORD * shapeCellM / 4.0) / sigma
+                             : 0.0;
+  } else {
+    float cellTau = params.extinction * profile * w.a * CLOUD_FAR_DENSITY * CLOUD_FAR_CHORD *
+                    shapeCellM / 4.0;
+    float clump = cellTau > 1e-4 ? (1.0 - exp(-cellTau)) / cellTau : 1.0;
+    farDensity = cover * profile * CLOUD_FAR_DENSITY * clump;
+  }
   s.density = farDensity * w.a;
   if (keepOutline <= 0.0 || noise == CLOUD_NOISE_NONE) return true;
 

@@ -58,37 +58,53 @@ int cloudLightFarParts(float longEndM, float farEndM) {
   return clamp(int(ceil(len / CLOUD_LIGHT_FAR_PART_M)), 1, CLOUD_LIGHT_MAX_FAR_PARTS);
 }
 
+// The optical depth (in density x metres) a light march gathers, split where the path first
+// leaves cloud: `own` up to the first density sample at or below CLOUD_LIGHT_CLEAR_DENSITY,
+// the sample's own cloud, through which its light diffuses (the octaves and the diffusion
+// term of cloud_lighting.glsl), and `beyond`, the rest: the clouds between it and the light,
+// which shadow it as a beam (volumetric_clouds.comp cloudKeyLightScattering).
+struct CloudLightDepth {
+  float own;
+  float beyond;
+  bool left;  // a sample has found clear air: everything after it is beyond
+};
+
+void lightDepthAdd(inout CloudLightDepth d, float density, float lengthM) {
+  if (density <= CLOUD_LIGHT_CLEAR_DENSITY) d.left = true;
+  if (d.left) d.beyond += density * lengthM;
+  else d.own += density * lengthM;
+}
+
 // Short steps first .. last - 1, each split path.split ways, every sample standing for its
 // sub-step, tagged `part`.
-float lightMarchShortSteps(CloudLightPath path, int first, int last, int part) {
-  float ds = 0.0;
+void lightMarchShortSteps(CloudLightPath path, int first, int last, int part,
+                          inout CloudLightDepth d) {
   for (int i = first; i < last; ++i) {
     float start = lightStepStart(i, path.steps, path.distanceM);
     float len = lightStepLength(i, path.steps, path.distanceM) / float(path.split);
     for (int j = 0; j < path.split; ++j)
-      ds += cloudDensityForLight(path,
-                                 path.origin + path.direction * (start + (float(j) + path.offset) * len),
-                                 len, part) *
-            len;
+      lightDepthAdd(d,
+                    cloudDensityForLight(
+                        path, path.origin + path.direction * (start + (float(j) + path.offset) * len),
+                        len, part),
+                    len);
   }
-  return ds;
 }
 
 // The path over [startM, endM] in `parts` equal parts, each sampled once at path.offset of it
 // and tagged `part`: the long step and the far step.
-float lightMarchParts(CloudLightPath path, float startM, float endM, int parts, int part) {
-  float ds = 0.0;
+void lightMarchParts(CloudLightPath path, float startM, float endM, int parts, int part,
+                     inout CloudLightDepth d) {
   float len = (endM - startM) / float(max(parts, 1));
   for (int j = 0; j < parts; ++j) {
     vec3 p = path.origin + path.direction * (startM + (float(j) + path.offset) * len);
-    ds += cloudDensityForLight(path, p, len, part) * len;
+    lightDepthAdd(d, cloudDensityForLight(path, p, len, part), len);
   }
-  return ds;
 }
 
 // The long step over [distanceM, longEndM] in longParts equal parts.
-float lightMarchLongStep(CloudLightPath path) {
-  return lightMarchParts(path, path.distanceM, path.longEndM, path.longParts, CLOUD_LIGHT_PART_FAR);
+void lightMarchLongStep(CloudLightPath path, inout CloudLightDepth d) {
+  lightMarchParts(path, path.distanceM, path.longEndM, path.longParts, CLOUD_LIGHT_PART_FAR, d);
 }
 
 // The far step over [longEndM, farEndM] in farParts equal parts: where a low light's path
@@ -98,29 +114,41 @@ float lightMarchLongStep(CloudLightPath path) {
 // Without it a 3 degree sun, whose path crosses a 1.5 km layer over some 25 km, lit a
 // stratocumulus deck's underside as if the sky toward it were clear past 6 km: 58 % brighter
 // than Cycles' (docs/cloud-model.md, "A path-traced field").
-float lightMarchFarStep(CloudLightPath path) {
-  return lightMarchParts(path, path.longEndM, path.farEndM, path.farParts, CLOUD_LIGHT_PART_MEAN);
+void lightMarchFarStep(CloudLightPath path, inout CloudLightDepth d) {
+  lightMarchParts(path, path.longEndM, path.farEndM, path.farParts, CLOUD_LIGHT_PART_MEAN, d);
 }
 
 // Lu (24)'s ds: the density accumulated from path.origin toward the light in density x
 // metres, by the midpoint rule (each sample at path.offset of its step) over the short steps
 // covering [0, distanceM] (lightStepLength), the long step over [distanceM, longEndM] and
-// the far step over [longEndM, farEndM]. Exact for densities linear along the path; a
-// density edge costs at most the length of the (sub-)step it falls in.
-float lightMarchDensity(CloudLightPath path) {
+// the far step over [longEndM, farEndM], split into the sample's own cloud and what lies
+// beyond. Exact for densities linear along the path; a density edge costs at most the length
+// of the (sub-)step it falls in.
+CloudLightDepth lightMarchDepth(CloudLightPath path) {
+  CloudLightDepth d = CloudLightDepth(0.0, 0.0, false);
   int near = clamp(path.nearSteps, 0, path.steps);
-  return lightMarchShortSteps(path, 0, near, CLOUD_LIGHT_PART_NEAR) +
-         lightMarchShortSteps(path, near, path.steps, CLOUD_LIGHT_PART_FAR) +
-         lightMarchLongStep(path) + lightMarchFarStep(path);
+  lightMarchShortSteps(path, 0, near, CLOUD_LIGHT_PART_NEAR, d);
+  lightMarchShortSteps(path, near, path.steps, CLOUD_LIGHT_PART_FAR, d);
+  lightMarchLongStep(path, d);
+  lightMarchFarStep(path, d);
+  return d;
+}
+
+// All of it, own and beyond (the light volume stores the sum).
+float lightMarchDensity(CloudLightPath path) {
+  CloudLightDepth d = lightMarchDepth(path);
+  return d.own + d.beyond;
 }
 
 // The first `k` short steps alone, [0, lightStepStart(k)]: the part near the point, where the
 // cloud's fine structure shadows itself, that a caller reading the rest from the light volume
 // (cloud_light_volume.glsl) marches itself.
-float lightMarchDensityNear(CloudLightPath path, int k) {
+CloudLightDepth lightMarchDepthNear(CloudLightPath path, int k) {
+  CloudLightDepth d = CloudLightDepth(0.0, 0.0, false);
   int near = clamp(path.nearSteps, 0, k);
-  return lightMarchShortSteps(path, 0, near, CLOUD_LIGHT_PART_NEAR) +
-         lightMarchShortSteps(path, near, k, CLOUD_LIGHT_PART_FAR);
+  lightMarchShortSteps(path, 0, near, CLOUD_LIGHT_PART_NEAR, d);
+  lightMarchShortSteps(path, near, k, CLOUD_LIGHT_PART_FAR, d);
+  return d;
 }
 
 // How many density samples lightMarchDensity takes (the cost heat map counts them).

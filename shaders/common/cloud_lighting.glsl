@@ -209,6 +209,25 @@ float cloudEdgeDensity(float d, float k) {
   return 1.0 - pow(1.0 - max(d, 0.0), k);
 }
 
+// A field of clouds seen at a scale that resolves none of them (the far field): the mean
+// extinction meanSigma, of which a share `fraction` of the space is cloud with chords chordM
+// long, dims a beam not by the mean but at the decay rate of the transmittance through a
+// binary Markov mixture of cloud and clear air (Levermore, Pomraning, Sanzo & Wong 1986,
+// "Linear transport theory in a random medium"): the smaller root of its two-state equations,
+// with tau = the chord's optical depth in cloud and q = fraction / (1 - fraction) the ratio of
+// the chords in cloud to the gaps between them, in units of the chord,
+//   sigma chord = 2 tau q / (tau + 1 + q + sqrt((tau - q)^2 + 2 (tau + q) + 1)).
+// Sparse opaque clouds dim at the rate a beam meets them (about q / chord, not the mean); a
+// closed deck (q large) at the mean itself; thin clouds (tau small) at the mean.
+float cloudFarExtinction(float meanSigma, float fraction, float chordM) {
+  if (meanSigma <= 0.0 || fraction <= 0.0) return 0.0;
+  float a = min(fraction, 0.999);
+  float q = a / (1.0 - a);
+  float tau = meanSigma / a * chordM;
+  return 2.0 * tau * q / (tau + 1.0 + q + sqrt((tau - q) * (tau - q) + 2.0 * (tau + q) + 1.0)) /
+         chordM;
+}
+
 // Hillaire 2016 ("Physically based sky, atmosphere and cloud rendering in Frostbite"): the
 // in-scattered light S integrated over a step of length dt with the step's own extinction,
 // (S - S exp(-sigmaT dt)) / sigmaT. Summed over steps with the transmittance before each, a

@@ -34,16 +34,32 @@
 #define CLOUD_COVERAGE_LUT_SIZE 64
 #define CLOUD_COVERAGE_TYPE_KEYS 3
 #define CLOUD_COVERAGE_LUT_VEC4S (2 * CLOUD_COVERAGE_TYPE_KEYS * CLOUD_COVERAGE_LUT_SIZE / 4)
+// With calibrated coverage, the far field's mean density and share in cloud
+// (engine/clouds/coverage_calibration.h farMeanDensity), a pair (2 floats) for cover
+// i / (CLOUD_FAR_MEAN_COVERS - 1) at height fraction (j + 0.5) / CLOUD_FAR_MEAN_HEIGHTS, for
+// each layer and type key: [layer][type][cover][height].
+#define CLOUD_FAR_MEAN_COVERS 16
+#define CLOUD_FAR_MEAN_HEIGHTS 8
+#define CLOUD_FAR_MEAN_VEC4S \
+  (2 * CLOUD_COVERAGE_TYPE_KEYS * CLOUD_FAR_MEAN_COVERS * CLOUD_FAR_MEAN_HEIGHTS * 2 / 4)
 
 // The far field (cloudSampleAtLla in cloud_field.glsl, where a sample resolves none of the
-// clouds' outline): the mean density per unit of cover and height profile, about the share
-// of a cloud's core density its volume averages to (docs/clouds.md, the horizon), and the
+// clouds' outline): with the paper's coverage, the mean density per unit of cover and height
+// profile, about the share of a cloud's core density its volume averages to (docs/clouds.md,
+// the horizon; calibrated coverage reads the measured farMeanLut instead), and the
 // chord through a cloud, as a share of the outline's cell, whose optical depth sets the far
 // field's clumping.
 #define CLOUD_FAR_DENSITY 0.5
 #ifndef CLOUD_FAR_CHORD
 #define CLOUD_FAR_CHORD 0.1
 #endif
+// With calibrated coverage, the far field's clouds are as long, along a path, as this share
+// of the outline's cell (875 m with the default 5 km shape repeat) in the Markov mixture
+// (cloudFarExtinction). Measured, not assumed: the resolved clouds' light along paths at 1-12
+// degrees through broken cumulus and a stratocumulus deck
+// (CloudFieldCpu.TheFarFieldLetsALowSunThroughAsTheResolvedCloudsDo) is matched within 0.06
+// by 0.7; 0.1 let through 0.07 against 0.25 at 1 degree, 1.0 let through 0.37.
+#define CLOUD_FAR_MARKOV_CHORD 0.7
 
 SKY_SHARED_BEGIN
 
@@ -142,13 +158,15 @@ struct CloudParams {
   // Where the cloud light volume lies (clouds.light volume; passes/cloud_light_volume).
   CloudLightVolume lightVolume;
   vec4 coverageLut[CLOUD_COVERAGE_LUT_VEC4S];
+  vec4 farMeanLut[CLOUD_FAR_MEAN_VEC4S];
 };
 
 SKY_SHARED_END
 
 #ifdef __cplusplus
 static_assert(sizeof(sky::shared::CloudParams) ==
-                  64 + 64 + 16 + 10 * 16 + 21 * 16 + 32 + CLOUD_COVERAGE_LUT_VEC4S * 16,
+                  64 + 64 + 16 + 10 * 16 + 21 * 16 + 32 + CLOUD_COVERAGE_LUT_VEC4S * 16 +
+                      CLOUD_FAR_MEAN_VEC4S * 16,
               "std140 layout of CloudParams");
 #endif
 #endif

@@ -1,7 +1,9 @@
 // The CPU twin of the cloud density field (engine/render/cloud_field.h), the public API's
 // queries, against the GPU's own evaluation of the field: the density export
 // (passes/cloud_volume_export), which runs cloud_field.glsl at full detail at voxel centres.
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <vector>
 
@@ -111,6 +113,72 @@ TEST_F(CloudFieldCpu, TheAirAloneDimsAHorizontalKilometreAsTheAtmosphereSays) {
   // Blue is dimmed most (Rayleigh's 1 / lambda^4).
   EXPECT_GT(tau.b, tau.g);
   EXPECT_GT(tau.g, tau.r);
+}
+
+// The far field (cloudSampleAtLla where a sample resolves no outline) stands for clouds the
+// march cannot resolve: those a low sun's light crosses past the light march's long step, and
+// all of those a distant view sample and its light see. What it lets through a path must be,
+// on average, what the resolved clouds let through on the same paths (the mean of exp(-tau):
+// what lights a field of clouds on average), both
+//   - past 6 km (the long step's end at the default 1.2 km short steps) from points in cloud,
+//     to where the path rises above the layer: the far step of the light march;
+//   - from points anywhere in the layer, the whole path: a distant view sample's light.
+// Paths start in a 40 km square around the camera; the optical depth at full detail every
+// 25 m against the far field's every 250 m.
+struct FarFieldLight {
+  double resolved = 0.0, far = 0.0;
+  int paths = 0;
+};
+
+FarFieldLight farFieldLight(const CloudField& field, double elevationDeg, bool inCloud,
+                            double fromM) {
+  const shared::CloudParams& p = field.params();
+  const double sigma = p.extinction;
+  const double e = elevationDeg * M_PI / 180.0;
+  const glm::dvec3 toLight(0.0, std::cos(e), std::sin(e));
+  uint32_t rng = 12345u;
+  auto uniform = [&rng]() {
+    rng = rng * 1664525u + 1013904223u;
+    return double(rng >> 8) / double(1u << 24);
+  };
+  FarFieldLight out;
+  for (int tries = 0; tries < 20000 && out.paths < 300; ++tries) {
+    const glm::dvec3 start(-20000.0 + 40000.0 * uniform(), -20000.0 + 40000.0 * uniform(),
+                           p.lowBaseM + (p.lowTopM - p.lowBaseM) * uniform());
+    if (inCloud && field.sample(start).density <= 0.0) continue;
+    const double to = (p.lowTopM + 10.0 - start.z) / toLight.z;
+    if (to <= fromM) continue;
+    double tauResolved = 0.0, tauFar = 0.0;
+    for (double t = fromM + 12.5; t < to; t += 25.0)
+      tauResolved += sigma * field.sample(start + toLight * t).density * 25.0;
+    for (double t = fromM + 125.0; t < to; t += 250.0)
+      tauFar += sigma * field.sample(start + toLight * t, 1e9f).density * 250.0;
+    out.resolved += std::exp(-tauResolved);
+    out.far += std::exp(-tauFar);
+    ++out.paths;
+  }
+  out.resolved /= std::max(out.paths, 1);
+  out.far /= std::max(out.paths, 1);
+  return out;
+}
+
+TEST_F(CloudFieldCpu, TheFarFieldLetsALowSunThroughAsTheResolvedCloudsDo) {
+  // Broken cumulus at 40 % and a stratocumulus deck at 70 % (the path-traced fields).
+  for (const char* name : {"field_sun3_away", "field_deck_sunset"}) {
+    const Scene scene = loadSceneFile(configDir() / "pathtrace" / (std::string(name) + ".yaml"),
+                                      {"output.width=32", "output.height=18"});
+    const CloudField field = renderer().cloudField(scene, scene.time.start);
+    ASSERT_TRUE(field.anyCover());
+    for (double elevation : {1.0, 3.0, 6.0, 12.0})
+      for (bool inCloud : {true, false}) {
+        const FarFieldLight l = farFieldLight(field, elevation, inCloud, inCloud ? 6000.0 : 0.0);
+        std::printf("%s, light %.0f deg up, %s: resolved %.3f, far field %.3f (%d paths)\n", name,
+                    elevation, inCloud ? "from cloud, past 6 km" : "from the layer, all of it",
+                    l.resolved, l.far, l.paths);
+        if (l.paths < 50) continue;  // the path leaves the layer first
+        EXPECT_NEAR(l.far, l.resolved, 0.065) << name << " at " << elevation << " degrees";
+      }
+  }
 }
 
 }  // namespace

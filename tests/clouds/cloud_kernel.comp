@@ -10,12 +10,14 @@
 
 // The light march's density (cloud_light_march.glsl asks the includer for it): a test field
 // chosen per query. 0: constant 0.7; 1: linear ramp 0.3 + 0.0005 z; 2: a slab of 1 below z =
-// gSlabTop and 0 above.
+// gSlabTop and 0 above; 3: that slab, clear air above it up to gCloudBase (a gap longer than
+// any step along the path), then 0.5 (a cloud, a gap, another cloud).
 int gDensityKind = 0;
-float gSlabTop = 0.0;
+float gSlabTop = 0.0, gCloudBase = 0.0;
 float cloudDensityForLight(CloudLightPath path, vec3 p, float lengthM, int part) {
   if (gDensityKind == 0) return 0.7;
   if (gDensityKind == 1) return 0.3 + 0.0005 * p.z;
+  if (gDensityKind == 3 && p.z >= gCloudBase) return 0.5;
   return p.z < gSlabTop ? 1.0 : 0.0;
 }
 
@@ -114,6 +116,19 @@ void main() {
                                                 3, reach + 2.0 * distance, 2));
   }
   put(17, vec4(march[0], march[1], march[2], gSlabTop));
+  // Split where the path leaves the first cloud (lightMarchDepth): the slab, then the gapped one.
+  vec4 split;
+  gCloudBase = gSlabTop + 2.0 * distance * L.z;
+  for (int k = 2; k < 4; ++k) {
+    gDensityKind = k;
+    LatLonLine line = LatLonLine(p, L, vec2(0.0), vec2(0.0));
+    float reach = lightMarchReach(distance);
+    CloudLightDepth d = lightMarchDepth(CloudLightPath(p, L, line, 0.0, 0.5, distance, n, 1, n,
+                                                       reach, 3, reach + 2.0 * distance, 2));
+    split[2 * (k - 2)] = d.own;
+    split[2 * (k - 2) + 1] = d.beyond;
+  }
+  put(24, split);
   put(18, vec4(L, distance));
   put(19, vec4(p, float(n)));
 
@@ -140,5 +155,6 @@ void main() {
                                    2000.0 * r2.w, 2000.0 * r0.w, 10.0 * r2.x, gD, 1.5 * r2.z),
                cloudTypeTexture(typeD)));
   put(23, vec4(cloudRollWeight(0, typeD), cloudRollWeight(1, typeD),
-               cloudPhaseSkyLight(r0.xyz - 0.5, 10.0 * r2.x, r1.w).x, 0.0));
+               cloudPhaseSkyLight(r0.xyz - 0.5, 10.0 * r2.x, r1.w).x,
+               cloudFarExtinction(0.02 * r1.x, 1.1 * r2.y, 50.0 + 1000.0 * r0.w)));
 }

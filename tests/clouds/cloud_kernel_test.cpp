@@ -29,7 +29,7 @@ using namespace sky::clouds;
 
 constexpr int kQueries = 256;  // KERNEL_QUERIES in cloud_kernel.comp
 constexpr int kGroup = 64;     // KERNEL_GROUP
-constexpr int kRows = 24;
+constexpr int kRows = 25;
 
 // What each row of the results image holds (cloud_kernel.comp writes them in this order).
 enum KernelRow {
@@ -56,7 +56,8 @@ enum KernelRow {
   kEnergy,
   kDiffusion,       // diffuseTransmittance, cloudDiffuseInScatter, cloudEdgeDensity, leak
   kAmbientDiffuse,  // cloudAmbientDiffuse
-  kRollWeight,      // cloudRollWeight, low and mid layer; cloudPhaseSkyLight
+  kRollWeight,      // cloudRollWeight, low and mid layer; cloudPhaseSkyLight; cloudFarExtinction
+  kMarchSplit,      // lightMarchDepth's own and beyond: the slab, the slab with a gap
 };
 
 // Float maths on lavapipe against float maths in C++: exp, log, pow and division differ in the
@@ -264,10 +265,11 @@ TEST_F(CloudKernelTest, LightingMatchesItsTwin) {
                  cloudTypeTexture(typeD)},
                 ambientNames, 2e-4);
       const char* rollNames[4] = {"cloudRollWeight low", "cloudRollWeight mid",
-                                  "cloudPhaseSkyLight", ""};
+                                  "cloudPhaseSkyLight", "cloudFarExtinction"};
       expectRow(kRollWeight, i,
                 {cloudRollWeight(0, typeD), cloudRollWeight(1, typeD),
-                 cloudPhaseSkyLight(glm::vec3(r0) - 0.5f, 10.0f * r2.x, r1.w).x, 0.0f},
+                 cloudPhaseSkyLight(glm::vec3(r0) - 0.5f, 10.0f * r2.x, r1.w).x,
+                 cloudFarExtinction(0.02f * r1.x, 1.1f * r2.y, 50.0f + 1000.0f * r0.w)},
                 rollNames);
     }
     const float stepSigma = at(kIntegrateInputs, i, 0), dt = at(kIntegrateInputs, i, 1);
@@ -359,22 +361,40 @@ TEST_F(CloudKernelTest, LightMarchMatchesAnalyticIntegrals) {
     EXPECT_LE(std::abs(slab - edge), 0.5 * bound + 1e-3 * reach) << "slab, query " << i;
     worstSlab = std::max(worstSlab, std::abs(slab - edge) / reach);
     // And the twin, on the same densities.
+    LightPath path;
+    path.origin = p;
+    path.direction = L;
+    path.distance = distance;
+    path.steps = path.nearSteps = n;
+    path.longEnd = lightMarchReach(distance);
+    path.longParts = 3;
+    path.farEnd = path.longEnd + 2.0f * distance;
+    path.farParts = 2;
     const auto twin = [&](std::function<float(glm::vec3)> density) {
-      LightPath path;
-      path.origin = p;
-      path.direction = L;
-      path.distance = distance;
-      path.steps = path.nearSteps = n;
-      path.longEnd = lightMarchReach(distance);
-      path.longParts = 3;
-      path.farEnd = path.longEnd + 2.0f * distance;
-      path.farParts = 2;
       return lightMarchDensity(path, [&](glm::vec3 q, float, int) { return density(q); });
     };
     EXPECT_NEAR(at(kMarch, i, 0), twin([](glm::vec3) { return 0.7f; }), 1e-5 * constant);
     EXPECT_NEAR(at(kMarch, i, 1), twin([](glm::vec3 q) { return 0.3f + 0.0005f * q.z; }),
                 1e-5 * ramp);
     EXPECT_NEAR(slab, twin([&](glm::vec3 q) { return q.z < slabTop ? 1.0f : 0.0f; }), 1e-5 * reach);
+    // Split where the path leaves the first cloud: the slab is all its own (nothing beyond);
+    // with a second cloud past a gap of 2 distance along the path (longer than any step, so
+    // some sample falls in it), the own part is the slab's and the second cloud is beyond.
+    // And the twin's split on the same densities.
+    const glm::vec4 split = row(kMarchSplit, i);
+    EXPECT_NEAR(split.x, slab, 1e-5 * reach) << "slab's own, query " << i;
+    EXPECT_EQ(split.y, 0.0f) << "slab's beyond, query " << i;
+    EXPECT_NEAR(split.z, slab, 1e-5 * reach) << "gapped slab's own, query " << i;
+    const float cloudBase = slabTop + 2.0f * distance * L.z;
+    const LightDepth gapped = lightMarchDepth(path, [&](glm::vec3 q, float, int) {
+      if (q.z >= cloudBase) return 0.5f;
+      return q.z < slabTop ? 1.0f : 0.0f;
+    });
+    EXPECT_NEAR(split.z, gapped.own, 1e-5 * reach) << "query " << i;
+    EXPECT_NEAR(split.w, gapped.beyond, 1e-5 * reach) << "query " << i;
+    // The second cloud, from where the path enters it to the march's end, half as dense.
+    const double into = std::max(0.0, reach - (double(cloudBase) - p.z) / L.z);
+    EXPECT_NEAR(split.w, 0.5 * into, 0.5 * double(distance) + 1e-3 * reach) << "query " << i;
   }
   std::cout << "light march, slab: worst error " << worstSlab << " of the march length\n";
 }

@@ -8,6 +8,9 @@
 #include <iostream>
 #include <string>
 
+#include <glm/common.hpp>
+#include <glm/vec3.hpp>
+
 #include <gtest/gtest.h>
 
 #include "engine/clouds/cloud_math.h"
@@ -169,6 +172,53 @@ TEST_F(CoverageCalibrationTest, FullHeightProfileCoversAreaNotHaze) {
       EXPECT_NEAR(share, 0.2, 0.05);
     }
   }
+}
+
+// The far field's table (farMeanDensity) is the field's own statistics: at each cover and
+// height slice, the mean density and the share of the space in cloud over fresh points of the
+// tile (not the calibration's grid), straight through luCloudDensity at the calibrated
+// threshold. Tolerance: 0.02 of the density (the slice's own spread over 8 heights) and 0.03
+// of the share. Clear at cover 0; a whole sheet at cover 1 in the slices the type fills.
+TEST_F(CoverageCalibrationTest, FarMeanIsTheFieldsMeanAndShareInCloud) {
+  CoverageColumn col = column(CloudModel::Lu2023, 0, 1.0f);
+  col.profileCover = 1.0f;  // as the renderer calibrates
+  const CoverageLut lut = calibrateCoverage(sShape, sDetail, col);
+  const FarMeanTable table = farMeanDensity(sShape, sDetail, col, lut);
+  for (int j = 0; j < kFarMeanHeights; ++j) {
+    EXPECT_EQ(table[0][size_t(j)].density, 0.0f);
+    EXPECT_EQ(table[0][size_t(j)].fraction, 0.0f);
+  }
+  for (int i : {4, 8, 12}) {
+    const float cover = float(i) / float(kFarMeanCovers - 1);
+    const float threshold = coverageThreshold(lut, cover);
+    for (int j = 0; j < kFarMeanHeights; ++j) {
+      // 2048 fresh points in the slice: R3 places through the whole tile (the layer crosses
+      // it at every depth), each at its own height in the slice (golden-ratio steps).
+      double density = 0.0, inCloud = 0.0;
+      const int n = 2048;
+      for (int k = 0; k < n; ++k) {
+        const double g = 1.22074408460575947536;
+        glm::dvec3 u = 0.31 + double(k) / glm::dvec3(g, g * g, g * g * g);
+        u -= glm::floor(u);
+        const double v = std::fmod(0.17 + double(k) * 0.6180339887498949, 1.0);
+        const float ph = (float(j) + float(v)) / float(kFarMeanHeights);
+        const double range = double(col.typeRange.y) - double(col.typeRange.x);
+        const glm::dvec3 p = u * col.shapeScaleM +
+                             glm::dvec3(0.0, 0.0, (double(col.typeRange.x) + ph * range) *
+                                                      col.thicknessM);
+        const glm::vec4 shape = sampleNoise(sShape, glm::vec3(p / col.shapeScaleM));
+        const glm::vec3 detail = glm::vec3(sampleNoise(sDetail, glm::vec3(p / col.detailScaleM)));
+        const float d = luCloudDensity(shape, detail, ph, 1.0f, threshold);
+        density += cloudEdgeDensity(d, col.edgeSharpness);
+        inCloud += d > 0.0f ? 1.0 : 0.0;
+      }
+      const FarMean& m = table[size_t(i)][size_t(j)];
+      EXPECT_NEAR(m.density, density / n, 0.02) << "cover " << cover << " slice " << j;
+      EXPECT_NEAR(m.fraction, inCloud / n, 0.03) << "cover " << cover << " slice " << j;
+    }
+  }
+  // At full cover the slices the cumulus fills are all cloud.
+  EXPECT_GT(table[kFarMeanCovers - 1][kFarMeanHeights / 2].fraction, 0.99f);
 }
 
 TEST_F(CoverageCalibrationTest, DeterministicAndWithinBudget) {

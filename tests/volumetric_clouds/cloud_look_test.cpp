@@ -275,9 +275,15 @@ double adjacentVariance(const std::vector<double>& lum, int width, int y0, int y
 TEST_F(CloudLookTest, TheHorizonBandIsNoNoisierThanASupersampledRender) {
   // Pitch 5: the horizon sits low in the frame and the band just above it looks through
   // 100+ km of the low layer. The render at 96 x 54 against the same view at 384 x 216 box
-  // filtered to 96 x 54 (16 rays a pixel): a renderer that filters by footprint already gives
-  // what the supersampled one averages to; speckle (clouds hit or missed at random) gives
-  // several times its variance. Tolerance: 2x.
+  // filtered to 96 x 54 (16 rays a pixel): a renderer that filters by footprint gives what the
+  // supersampled one averages to, row by row, and little of the speckle of clouds hit or
+  // missed at random. Measured (docs/clouds.md, "The horizon"):
+  //   - the rows' mean luminance, the 12 rows above the horizon: 5.0 % RMS off; 17 % with the
+  //     far field before the calibrated mean (a haze 15-33 % too bright 5-11 degrees up), 5.4 %
+  //     with no level of detail at all. Tolerance 8 %.
+  //   - the variance between neighbours along the 6 rows above the horizon: 2.9x the
+  //     supersampled render's; 6.2x with no level of detail and no band rays (speckle), 1.0x
+  //     under the haze, which hid the clouds between. Tolerance 3.5x.
   const std::vector<std::string> view = {"camera.pitch=5"};
   const int w = 96, h = 54, s = 4;
   const RenderedFrame small = render(peerView(w, h, view));
@@ -301,13 +307,25 @@ TEST_F(CloudLookTest, TheHorizonBandIsNoNoisierThanASupersampledRender) {
       horizon = y;
       break;
     }
-  ASSERT_GT(horizon, 8);
+  ASSERT_GT(horizon, 12);
   ASSERT_LT(horizon, h);
   const int y0 = horizon - 6, y1 = horizon;  // about 6 degrees of sky above the horizon
   const double va = adjacentVariance(la, w, y0, y1), vb = adjacentVariance(lb, w, y0, y1);
+  double rowErr2 = 0.0;
+  for (int y = horizon - 12; y < horizon; ++y) {
+    double ma = 0.0, mb = 0.0;
+    for (int x = 0; x < w; ++x) {
+      ma += la[static_cast<size_t>(y) * w + x];
+      mb += lb[static_cast<size_t>(y) * w + x];
+    }
+    rowErr2 += (ma / mb - 1.0) * (ma / mb - 1.0);
+  }
+  const double rowRms = std::sqrt(rowErr2 / 12.0);
   std::cout << "horizon band rows " << y0 << "-" << y1 << ": variance " << va << ", supersampled "
-            << vb << "\n";
-  EXPECT_LT(va, 2.0 * vb + 1e-6);
+            << vb << " (" << va / vb << "x); the 12 rows' means " << 100.0 * rowRms
+            << " % RMS off\n";
+  EXPECT_LT(va, 3.5 * vb + 1e-6);
+  EXPECT_LT(rowRms, 0.08);
 }
 
 // The README's default view (configs/default.yaml, pitch 10) at 160 x 90 against the same
