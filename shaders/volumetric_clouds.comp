@@ -187,13 +187,16 @@ CloudKeyLights marchKeyLights(vec3 p, float h, CloudSample s, float footprintM, 
     CloudLightPath path = cloudLightPath(p, s.latLon, h, L, footprintM, offset, longShare);
 #if CLOUD_LIGHT_VOLUME
     // The cloud's own fine structure near the sample marched here, the rest from the volume
-    // at the point where this part ends (it holds the light's path from there on, as one sum:
-    // it counts as beyond the sample's own cloud).
+    // at the point where this part ends (it holds the light's path from there on as one sum:
+    // beyond the sample's own cloud if this part left it, its own cloud's if not, as the full
+    // march would count it until it finds clear air).
     CloudLightDepth d = lightMarchDepthNear(path, CLOUD_LIGHT_VOLUME_NEAR);
     k.samples += CLOUD_LIGHT_VOLUME_NEAR * path.split;
     vec3 far = p + L * params.lightVolume.startM;
-    d.beyond += textureLod(lightVolume, cloudLightVolumeCoord(params.lightVolume, params.geo, far),
-                           0.0)[i] / params.extinction;
+    float rest = textureLod(lightVolume, cloudLightVolumeCoord(params.lightVolume, params.geo, far),
+                            0.0)[i] / params.extinction;
+    if (d.left) d.beyond += rest;
+    else d.own += rest;
 #else
     CloudLightDepth d = lightMarchDepth(path);
     k.samples += lightMarchSamples(path);
