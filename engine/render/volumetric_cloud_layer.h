@@ -19,6 +19,7 @@
 #include "passes/cloud_light_volume/cloud_light_volume.h"
 #include "passes/cloud_perception/cloud_perception.h"
 #include "passes/cloud_shadow/cloud_shadow.h"
+#include "passes/cloud_denoise/cloud_denoise.h"
 #include "passes/cloud_upsample/cloud_upsample.h"
 #include "passes/cloud_volume_export/cloud_volume_export.h"
 #include "passes/volumetric_clouds/volumetric_clouds.h"
@@ -84,6 +85,7 @@ private:
   CloudShadowPass mShadow;
   CloudReuse mReuse;  // the cloud history: temporal reuse across a sequence's frames
   CloudUpsamplePass mUpsample;
+  CloudDenoisePass mDenoise;
   CloudLightVolumePass mLightVolume;
   SettingsRevisions mFieldSettings;  // what the light volume and shadow map were made for
   CloudDensitySlicePass mSlice;

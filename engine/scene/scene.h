@@ -338,6 +338,7 @@ struct CloudSettings {
   double stepGrowth = 0.002;                // extra step length per metre of distance
   int maxSteps = 512;                       // per view ray
   int samples = 1;                          // marches per pixel, averaged: 1..64
+  bool denoise = true;  // a still's one march per pixel filtered of its grain (cloud_denoise)
   int lightSteps = 5;                 // short steps toward the light (plus one long one), 1..16
   int lightSplit = 2;                 // samples per short light step (the long one 2x), 1..4
   double lightDistanceM = 1200.0;     // length covered by the short light steps, metres

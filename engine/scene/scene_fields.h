@@ -259,6 +259,10 @@ void describe(V& v, CloudSettings& s) {
           "still's grain and antialias its cloud edges, at that many times the cost");
   // At most 16: the short steps double in length (cloud_lighting.glsl), so 16 already spans
   // 1:32768 and more would overflow the shader's 1 << i.
+  v.field("denoise", s.denoise,
+          "filter the grain of one march per pixel out of a frame with no temporal reuse, "
+          "keeping outlines (a 3 x 3 mean of the neighbours alike in depth); only with "
+          "samples 1 and quality standard");
   v.field("light_steps", s.lightSteps, NumberRange{1, 16},
           "short steps toward the light, followed by one long step");
   // Each short step's one sample is a random draw of its optical depth, and a noisy optical

@@ -47,6 +47,25 @@ float luminance(const glm::vec3& c) {
 
 }  // namespace
 
+CloudImages writeCloudImages(GraphBuilder& b, uint32_t width, uint32_t height,
+                             const CloudImageNames& names) {
+  ImageDesc desc;
+  desc.width = width;
+  desc.height = height;
+  desc.format = VK_FORMAT_R32G32B32A32_SFLOAT;
+  desc.name = names.clouds;
+  desc.about = names.cloudsAbout;
+  CloudImages out;
+  out.clouds = b.write(b.create(desc), Access::StorageWriteCompute);
+  desc.format = VK_FORMAT_R32G32_SFLOAT;
+  desc.name = names.depth;
+  desc.about = names.depthAbout;
+  desc.view = DebugView::Depth;
+  desc.channels = "depth,shell_entry";
+  out.depth = b.write(b.create(desc), Access::StorageWriteCompute);
+  return out;
+}
+
 void readCloudTextures(GraphBuilder& b, const CloudTextures& t) {
   if (!t.noiseSampler || !t.weatherSampler) internalError("cloud textures: no sampler");
   for (ImageId id : {t.shape, t.detail, t.curl, t.weather, t.weatherCoarse})

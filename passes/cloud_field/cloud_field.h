@@ -33,6 +33,22 @@ struct CloudTextures {
   const Sampler* weatherSampler = nullptr;  // linear, clamp
 };
 
+// The clouds' two images as the raymarch, the upsampling and the still's filter write them:
+// premultiplied radiance and opacity (RGBA32F: physical radiance, ~1e-7 by moonlight, is below
+// half float's normal range), and the transmittance-weighted distance with where the ray
+// enters the shells (RG32F). Each pass names them and says what they hold.
+struct CloudImages {
+  ImageId clouds, depth;
+};
+struct CloudImageNames {
+  const char* clouds;
+  const char* cloudsAbout;
+  const char* depth;
+  const char* depthAbout;
+};
+CloudImages writeCloudImages(GraphBuilder& b, uint32_t width, uint32_t height,
+                             const CloudImageNames& names);
+
 // Every pass that samples the cloud field (the raymarch, the density slice, the volume
 // export) reads these textures in setup and binds them at the same slots in execute
 // (cloud_field.glsl declares them).

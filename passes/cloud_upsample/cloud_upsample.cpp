@@ -1,5 +1,7 @@
 #include "passes/cloud_upsample/cloud_upsample.h"
 
+#include "passes/cloud_field/cloud_field.h"
+
 namespace sky {
 
 CloudUpsamplePass::CloudUpsamplePass(const Context& ctx, ShaderCompiler& compiler)
@@ -9,21 +11,16 @@ CloudUpsamplePass::Outputs CloudUpsamplePass::setup(GraphBuilder& b, const Input
   d.inputs = in;
   b.read(in.clouds, Access::StorageReadCompute);
   b.read(in.depth, Access::StorageReadCompute);
-  ImageDesc desc;
-  desc.width = in.params.view.size.x;
-  desc.height = in.params.view.size.y;
-  desc.format = VK_FORMAT_R32G32B32A32_SFLOAT;
-  desc.name = "clouds_upsampled";
-  desc.about = "the clouds at the view's size: premultiplied radiance (RGB) and opacity (A)";
-  d.outputs.clouds = b.write(b.create(desc), Access::StorageWriteCompute);
-  desc.format = VK_FORMAT_R32G32_SFLOAT;
-  desc.name = "clouds_depth_upsampled";
-  desc.about =
-      "the clouds' transmittance-weighted distance (m, R) and shell entry (m, G) at the view's "
-      "size";
-  desc.view = DebugView::Depth;
-  desc.channels = "depth,shell_entry";
-  d.outputs.depth = b.write(b.create(desc), Access::StorageWriteCompute);
+  const CloudImages images = writeCloudImages(
+      b, in.params.view.size.x, in.params.view.size.y,
+      {"clouds_upsampled",
+       "the clouds at the view's size: premultiplied radiance (RGB) and "
+       "opacity (A)",
+       "clouds_depth_upsampled",
+       "the clouds' transmittance-weighted distance (m, R) and shell entry "
+       "(m, G) at the view's size"});
+  d.outputs.clouds = images.clouds;
+  d.outputs.depth = images.depth;
   return d.outputs;
 }
 

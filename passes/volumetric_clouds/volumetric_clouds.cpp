@@ -32,19 +32,14 @@ VolumetricCloudsPass::Outputs VolumetricCloudsPass::setup(GraphBuilder& b, const
   ImageDesc desc;
   desc.width = (in.params.view.size.x + block - 1) / block;
   desc.height = (in.params.view.size.y + block - 1) / block;
-  // 32-bit: physical radiance, ~1e-7 by moonlight, below half float's normal range.
-  desc.format = VK_FORMAT_R32G32B32A32_SFLOAT;
-  desc.name = "clouds";
-  desc.about = "the marched clouds: premultiplied radiance (RGB) and opacity (A)";
-  d.outputs.clouds = b.write(b.create(desc), Access::StorageWriteCompute);
-  desc.format = VK_FORMAT_R32G32_SFLOAT;
-  desc.name = "clouds_depth";
-  desc.about =
-      "the clouds' transmittance-weighted distance (m, R) and where the ray enters the shells "
-      "(m, G)";
-  desc.view = DebugView::Depth;
-  desc.channels = "depth,shell_entry";
-  d.outputs.depth = b.write(b.create(desc), Access::StorageWriteCompute);
+  const CloudImages images = writeCloudImages(
+      b, desc.width, desc.height,
+      {"clouds", "the marched clouds: premultiplied radiance (RGB) and opacity (A)",
+       "clouds_depth",
+       "the clouds' transmittance-weighted distance (m, R) and where the ray enters the shells "
+       "(m, G)"});
+  d.outputs.clouds = images.clouds;
+  d.outputs.depth = images.depth;
   desc.format = VK_FORMAT_R16G16B16A16_SFLOAT;
   desc.name = "cloud_steps";
   desc.about =

@@ -54,11 +54,12 @@ TEST_F(SkyrenderCli, RendersTheDefaultSceneIntoExrPngAndReport) {
     EXPECT_GE(p["gpu_ms"].get<double>(), 0.0);
   }
   // By day (the sun 21 degrees up) the stars are drowned in the sky: no star passes. The
-  // weather map is uploaded in the first frame's graph, by transfer passes.
+  // weather map is uploaded in the first frame's graph, by transfer passes. A still filters
+  // its clouds' grain (cloud_denoise).
   EXPECT_THAT(passNames,
               ::testing::ElementsAre("sky_high_clouds", "upload weather_map", "upload weather_coarse",
-                                     "cloud_ambient", "volumetric_clouds", "cloud_shadow",
-                                     "atmosphere_composite", "readback"));
+                                     "cloud_ambient", "volumetric_clouds", "cloud_denoise",
+                                     "cloud_shadow", "atmosphere_composite", "readback"));
   EXPECT_EQ(report["light"]["key"], "sun");
   EXPECT_EQ(report["time"], "2024-06-21T19:00:00+02:00");
   EXPECT_TRUE(report.contains("gpu_ms_total"));
