@@ -4,7 +4,7 @@
 // step (volumetric_clouds.comp, pixelHash), so neighbouring pixels of one lit face differ by
 // the step's sampling and its light march's: grain a time-lapse averages out over frames and
 // a still keeps (the lit faces of a 640 x 360 frame held 1.5 times the reference march's
-// high-frequency energy, those of its nearest cloud 4.2 times; docs/clouds.md, "Grain").
+// high-frequency energy, those of its nearest cloud 2.6 times; docs/clouds.md, "Grain").
 // Each pixel becomes the binomial 3 x 3 mean (1 2 1 by 1 2 1) of its neighbours alike in what
 // they show:
 // - only where the finest detail is several pixels wide (CLOUD_DENOISE_FINE_PIXELS): there the
