@@ -9,6 +9,7 @@
 #include <glm/gtc/packing.hpp>
 
 #include "engine/clouds/cloud_math.h"
+#include "passes/cloud_field/cloud_field.h"
 
 namespace sky {
 
@@ -162,7 +163,8 @@ CloudFieldSample CloudField::sample(const glm::dvec3& enu, float footprintM) con
                glm::vec3(shape.g, shape.b, shape.a), keepShape);
   shape = glm::vec4(shape.r, gba);
   glm::vec3 dq = (glm::vec3(params.detailOrigin) + offset) * params.detailRepeatsPerM;
-  const float detailCellM = 1.0f / params.detailRepeatsPerM / (mIn.tang ? 4.0f : 2.0f);
+  const float detailCellM = static_cast<float>(cloudDetailCellM(
+      1.0 / params.detailRepeatsPerM, mIn.tang ? CloudModel::Tang2019 : CloudModel::Lu2023));
   const glm::vec3 keepDetail = typeKeep * glm::vec3(noiseKeep(footprintM, detailCellM),
                                                     noiseKeep(footprintM, detailCellM / 2.0f),
                                                     noiseKeep(footprintM, detailCellM / 4.0f));

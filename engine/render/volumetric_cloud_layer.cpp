@@ -122,9 +122,9 @@ VolumetricCloudLayer::Images VolumetricCloudLayer::addTo(FrameGraph& graph, cons
     CloudDenoisePass::Inputs d;
     d.params.view = f.view;
     d.params.depthSpread = kDenoiseDepthSpread;
-    // The detail noise's finest octave: its repeat holds 8 cells (lu2023) or 16 (tang2019).
-    d.params.detailCellM = 1.0f / field.params.detailRepeatsPerM /
-                           (field.variant.model == CloudModel::Tang2019 ? 16.0f : 8.0f);
+    // The detail noise's finest octave (B), a quarter of its coarsest cell.
+    d.params.detailCellM = static_cast<float>(
+        0.25 * cloudDetailCellM(1.0 / field.params.detailRepeatsPerM, field.variant.model));
     d.clouds = c.clouds;
     d.depth = c.depth;
     const CloudDenoisePass::Outputs filtered = graph.add(mDenoise, d);

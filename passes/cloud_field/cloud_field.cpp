@@ -212,7 +212,7 @@ shared::CloudParams cloudParams(const VolumetricCloudsSettings& settings,
   // lightNearSteps): a prefix, as the steps grow. A sample stands for its sub-step (the step
   // split light_split ways) and sees a quarter of it (lightFootprint); noiseKeep resolves
   // nothing from half a cell. The 0.1 % spares float rounding. The reference reads it all.
-  const double detailCellM = detailM / (c.model == CloudModel::Tang2019 ? 4.0 : 2.0);
+  const double detailCellM = cloudDetailCellM(detailM, c.model);
   uint32_t near = 0;
   for (int i = 0; i < c.lightSteps; ++i) {
     const double sub =

@@ -33,6 +33,13 @@ struct CloudTextures {
   const Sampler* weatherSampler = nullptr;  // linear, clamp
 };
 
+// The width (m) of the detail noise's coarsest cells for a repeat of `detailRepeatM` metres:
+// its R channel holds 2 cells a repeat (lu2023) or 4 (tang2019), G and B twice and four times
+// as many (docs/cloud-noise.md; cloud_field.glsl's detailCellM).
+inline double cloudDetailCellM(double detailRepeatM, CloudModel model) {
+  return detailRepeatM / (model == CloudModel::Tang2019 ? 4.0 : 2.0);
+}
+
 // The clouds' two images as the raymarch, the upsampling and the still's filter write them:
 // premultiplied radiance and opacity (RGBA32F: physical radiance, ~1e-7 by moonlight, is below
 // half float's normal range), and the transmittance-weighted distance with where the ray
