@@ -43,6 +43,7 @@ layout(binding = CLOUD_AMBIENT_BINDING_SKY_VIEW_MOON) uniform sampler2D skyViewM
 // of the zenith angle) by azimuths, and its radiance (16 KB of shared memory: Vulkan's least).
 shared vec3 skyRadiance[AMBIENT_DIRECTIONS];
 shared vec3 groundShared;  // groundRadiance, once for the workgroup
+shared vec3 meanShared;    // the upper hemisphere's mean radiance (skyHidden)
 
 float ringCosZenith(int ring) {
   return (float(ring) + 0.5) / float(CLOUD_AMBIENT_RINGS);
@@ -108,14 +109,22 @@ vec3 belowDirection(int ring, int column) {
 }
 
 // The sky's and the ground's light on a surface of normal n (cloud_ambient_shared.h).
+// The sky of `ring` as a cloud among others sees it: its own radiance r where no other cloud
+// hides it, the sky's mean where one does (CLOUD_AMBIENT_OCCLUSION_PER_COVER).
+vec3 skyHidden(vec3 r, int ring) {
+  return mix(meanShared, r, exp(-params.skyOcclusion / ringCosZenith(ring)));
+}
 vec3 lightOn(vec3 n, vec3 ground) {
-  vec3 below = vec3(0.0);
+  vec3 above = vec3(0.0), below = vec3(0.0);
   for (int ring = 0; ring < CLOUD_AMBIENT_RINGS; ++ring) {
     vec3 T = airTransmittance(ring);
-    for (int column = 0; column < CLOUD_AMBIENT_AZIMUTHS; ++column)
+    for (int column = 0; column < CLOUD_AMBIENT_AZIMUTHS; ++column) {
+      above += skyHidden(skyRadiance[ring * CLOUD_AMBIENT_AZIMUTHS + column], ring) *
+               max(dot(gridDirection(ring, column), n), 0.0);
       below += belowRadiance(T, ground, column) * max(dot(belowDirection(ring, column), n), 0.0);
+    }
   }
-  return skyLightOn(n) + below * (2.0 / float(AMBIENT_DIRECTIONS));
+  return (above + below) * (2.0 / float(AMBIENT_DIRECTIONS));
 }
 
 // The sky and the ground through the air scattered once toward the eye by a ray along d, less
@@ -149,7 +158,12 @@ void main() {
                                                         j % CLOUD_AMBIENT_AZIMUTHS));
   }
   barrier();
-  if (i == 0) groundShared = groundRadiance(L);
+  if (i == 0) {
+    groundShared = groundRadiance(L);
+    vec3 sum = vec3(0.0);
+    for (int j = 0; j < AMBIENT_DIRECTIONS; ++j) sum += skyRadiance[j];
+    meanShared = sum / float(AMBIENT_DIRECTIONS);
+  }
   barrier();
   if (i < AMBIENT_NORMALS) {
     int column = i % CLOUD_AMBIENT_MAP_WIDTH, row = i / CLOUD_AMBIENT_MAP_WIDTH;

@@ -174,13 +174,36 @@ CloudLightPath cloudLightPath(vec3 p, vec2 latLon, float h, vec3 L, float footpr
 // CloudLightDepth), and how many density samples it took.
 struct CloudKeyLights {
   vec4 tau;
+  vec2 behind;  // the optical depth away from the sun (x) and the moon (y): cloudDepthBehind
   int samples;
 };
+
+// The cloud behind the sample at p, away from the light L, over CLOUD_BEHIND_M in
+// CLOUD_BEHIND_PARTS equal parts each sampled once at `offset` of it with the shape alone, up
+// to the first clear one (the sample's own cloud, as lightDepthAdd splits it): what sends the
+// diffuse light back toward the lit face (diffuseBehindShare). A cloud that is still there
+// at the last part goes on past the probe and counts as thick (CLOUD_BEHIND_THICK). 600 m is
+// 20-60 optical depths of a cumulus' core, where the reflectance has reached 0.9 and more.
+#define CLOUD_BEHIND_M 600.0
+#define CLOUD_BEHIND_PARTS 2
+#define CLOUD_BEHIND_THICK 1.0e6
+float cloudDepthBehind(vec3 p, vec2 latLon, float h, vec3 L, float footprintM, float offset) {
+  CloudLightPath back = cloudLightPath(p, latLon, h, -L, footprintM, offset, 1);
+  float len = CLOUD_BEHIND_M / float(CLOUD_BEHIND_PARTS);
+  float depth = 0.0;
+  for (int j = 0; j < CLOUD_BEHIND_PARTS; ++j) {
+    float density =
+        cloudDensityForLight(back, p - L * ((float(j) + offset) * len), len, CLOUD_LIGHT_PART_FAR);
+    if (density <= CLOUD_LIGHT_CLEAR_DENSITY) return depth;
+    depth += density * len;
+  }
+  return CLOUD_BEHIND_THICK;
+}
 
 // Lu (24): the optical depth from the cloud sample s at p toward the sun and the moon.
 CloudKeyLights marchKeyLights(vec3 p, float h, CloudSample s, float footprintM, float offset,
                               int longShare) {
-  CloudKeyLights k = CloudKeyLights(vec4(0.0), 0);
+  CloudKeyLights k = CloudKeyLights(vec4(0.0), vec2(0.0), 0);
   for (int i = 0; i < 2; ++i) {
     if (!keyLightMarched(i, s.layer)) continue;
     vec3 L = keyLightDirection(i);
@@ -203,6 +226,8 @@ CloudKeyLights marchKeyLights(vec3 p, float h, CloudSample s, float footprintM, 
 #endif
     k.tau[i] = params.extinction * d.own;
     k.tau[2 + i] = params.extinction * d.beyond;
+    k.behind[i] = params.extinction * cloudDepthBehind(p, s.latLon, h, L, footprintM, offset);
+    k.samples += CLOUD_BEHIND_PARTS;
   }
   return k;
 }
@@ -220,7 +245,7 @@ float meanCosine() {
 // term, of which the point keeps `diffuseShare` (diffuseBoundaryShare). Scattering equals
 // extinction: cloud droplets barely absorb.
 vec3 cloudKeyLightScattering(vec3 d, int layer, float altitudeM, float type, vec4 tau,
-                             float diffuseShare) {
+                             vec2 behind, float diffuseShare) {
   vec3 S = vec3(0.0);
   // Lu (22): the attenuation is at most that of ac times the densest path toward the light.
   float tauClamp =
@@ -236,7 +261,7 @@ vec3 cloudKeyLightScattering(vec3 d, int layer, float altitudeM, float type, vec
     S += VIEW_PI * E *
          cloudInScatter(tau[i], tauClamp, dot(d, keyLightDirection(i)), params.g, params.gBack,
                         params.backWeight, CLOUD_DUAL_LOBE, int(params.octaves));
-    S += diffuseShare * E *
+    S += diffuseShare * diffuseBehindShare(tau[i], behind[i], meanCosine()) * E *
          cloudDiffuseInScatter(tau[i] * cloudDiffusionLeak(type), meanCosine(),
                                params.multipleScattering);
   }
@@ -365,6 +390,7 @@ struct CloudMarch {
   vec3 lastScattering;  // in-scattered light per unit of weight at the last sample
   float lastT;          // and where it was
   vec4 tau;             // the light (optical depth toward the sun, the moon; own, beyond) of the ray's
+  vec2 behind;          // and away from them (CloudKeyLights.behind)
   int lightLayer;       // current cloud, and the layer it was marched in (-1: none yet)
   float lightT;         // where along the ray it was marched
   bool lightFar;        // for a sample of the far field
@@ -552,6 +578,7 @@ vec3 cloudLightSample(CloudRay ray, CloudStep st, float tauView, inout CloudMarc
     CloudKeyLights k =
         marchKeyLights(st.p, st.altitudeM, st.s, st.footprint, offset, ray.longShare);
     m.tau = k.tau;
+    m.behind = k.behind;
     m.lightLayer = st.s.layer;
     m.lightT = st.t;
     m.lightFar = far;
@@ -561,7 +588,7 @@ vec3 cloudLightSample(CloudRay ray, CloudStep st, float tauView, inout CloudMarc
   float share = diffuseBoundaryShare(sigmaT * st.s.hBottom, sigmaT * st.s.hTop, meanCosine(),
                                      dot(ray.direction, geoUp(params.geo, st.p)));
   return scattering + cloudKeyLightScattering(ray.direction, st.s.layer, st.altitudeM,
-                                              st.s.type, m.tau, share);
+                                              st.s.type, m.tau, m.behind, share);
 }
 
 // A cloud sample's share of the pixel: Lu (19)(20) over its step. The step's integral of the
@@ -597,7 +624,7 @@ void cloudTakeOpaqueRest(inout CloudMarch m) {
 // lights it and adds its share, until the shells end, the ray's samples run out or the
 // transmittance falls below the cutoff.
 CloudMarch cloudMarchRay(CloudRay ray) {
-  CloudMarch m = CloudMarch(vec3(0.0), 1.0, 0.0, 0, 0, vec3(0.0), 0.0, vec4(0.0), -1, 0.0, false);
+  CloudMarch m = CloudMarch(vec3(0.0), 1.0, 0.0, 0, 0, vec3(0.0), 0.0, vec4(0.0), vec2(0.0), -1, 0.0, false);
   if (params.anyCover <= 0.0) return m;
   vec2 iv[2];
   float tauTotal = 0.0;

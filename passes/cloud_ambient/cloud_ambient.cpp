@@ -17,6 +17,7 @@ shared::CloudAmbientParams cloudAmbientParams(const CloudAmbientSettings& s) {
       light::atmosphereTransmittance(90.0, std::max(s.cloudBaseM, 0.0), s.turbidity);
   p.airDepth = glm::vec4(glm::vec3(-glm::log(glm::max(toBase, glm::dvec3(1e-30)))), 0.0f);
   p.groundLight = static_cast<float>(light::overcastGlobalShare(std::clamp(s.overcast, 0.0, 1.0)));
+  p.skyOcclusion = static_cast<float>(CLOUD_AMBIENT_OCCLUSION_PER_COVER * std::clamp(s.overcast, 0.0, 1.0));
   p.phaseG = static_cast<float>(s.phaseG);
   p.phaseGBack = static_cast<float>(s.phaseGBack);
   p.phaseBackWeight = static_cast<float>(s.phaseBackWeight);

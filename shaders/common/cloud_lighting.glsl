@@ -144,6 +144,28 @@ float cloudDiffuseInScatter(float tau, float g, float strength) {
   return strength * diffuseTransmittance(tau, g);
 }
 
+// The cloud behind a sample, away from the light, is what sends its diffuse light back toward
+// the lit face. The terms above take every cloud for a thick slab, whose lit face reflects all
+// of the diffuse light that does not pass through; a small cumulus, a few optical depths
+// across, lets most of it through and its lit face is dim. In the two-stream solution for a
+// conservative slab of total optical depth T (Bohren & Clothiaux 2006, 6.3) the diffuse field
+// at the lit face is the reflectance R(T) = cT / (1 + cT), c = 3/4 (1 - g), of what a thick
+// one has, and at the far face the transmittance, which diffuseTransmittance already gives;
+// between the two it is linear in optical depth. So the diffusion term keeps this share: R(T)
+// at the lit face, rising linearly to 1 at the far face, T = tau + tauBehind, tau the optical
+// depth toward the light through the sample's own cloud and tauBehind away from it (a large
+// tauBehind, the cloud going on past where it was probed: 1). Issue 46, against Cycles on the
+// path-traced field with a 3 degree sun behind the camera: 2.8 % too bright and 19.6 % off per
+// pixel without it, 0.3 % and 18.5 % with it (docs/cloud-model.md, "The sky that other
+// clouds hide").
+float diffuseBehindShare(float tau, float tauBehind, float g) {
+  float c = 0.75 * (1.0 - g);
+  float total = max(tau, 0.0) + max(tauBehind, 0.0);
+  if (total <= 0.0) return 1.0;
+  float reflectance = c * total / (1.0 + c * total);
+  return mix(reflectance, 1.0, clamp(max(tau, 0.0) / total, 0.0, 1.0));
+}
+
 // The slab keeps the diffuse light it does not let through; a cumulus cell, about as wide as
 // it is tall, loses it through its sides as well, so light toward its far side falls off
 // faster. cloudDiffuseInScatter's depth is scaled by this: 1 for stratiform and cellular
