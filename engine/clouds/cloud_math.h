@@ -22,6 +22,8 @@ namespace sky::clouds {
 // the LUT's. cloudTypeRange: [bottom, top] layer fractions of a cloud of type t (0 stratiform,
 // 0.5 cellular, 1 convective) in layer 0 (low) or 1 (mid). cloudHeightFraction: Lu's ph inside
 // that range (< 0 or > 1 outside the cloud). tang*: Tang's density and its parts.
+// cloudCumulusWeight, cumulusOutline, cumulusShape, cumulusGD, cumulusNDmod,
+// cumulusCloudDensity: cumulus (issue 46), the shape before Lu (12), Lu (10) and (15) for it.
 inline float luRemap(float v, float lo, float ho, float ln, float hn) {
   return ln + (v - lo) * (hn - ln) / (ho - lo);  // Lu (3)
 }
@@ -114,6 +116,48 @@ inline float cloudRollWeight(int layer, float t) {
   if (layer != 0) return 0.0f;
   const float x = std::clamp((std::abs(t - 0.5f) - 0.2f) / 0.1f, 0.0f, 1.0f);
   return 1.0f - x * x * (3.0f - 2.0f * x);  // GLSL 1 - smoothstep(0.2, 0.3, |t - 0.5|)
+}
+
+inline float cloudCumulusWeight(float t) {
+  const float x = std::clamp((t - 0.5f) / 0.5f, 0.0f, 1.0f);
+  return x * x * (3.0f - 2.0f * x);  // GLSL smoothstep(0.5, 1, t)
+}
+
+inline float cumulusOutline(float blobFine, float blobMid, float blobCoarse, float sizeField) {
+  const float s = luSat(2.0f * sizeField + 0.5f);
+  const float fine = blobFine - 0.3f * s;
+  const float mid = blobMid - 0.6f * std::abs(s - 0.5f);
+  const float coarse = blobCoarse - 0.6f * (1.0f - s);
+  return luSat(std::max(fine, std::max(mid, coarse)));
+}
+
+inline glm::vec4 cumulusShape(glm::vec4 shape, glm::vec4 shapeHalf, glm::vec4 shapeQuarter,
+                              float meanR, float w) {
+  const float outline =
+      cumulusOutline(shape.g, shapeHalf.g, shapeQuarter.g, shapeQuarter.r - meanR);
+  return {glm::mix(shape.r, outline, w), shape.g, shape.b, shape.a};
+}
+
+inline float cumulusGD(float ph, float cmc, float w) {
+  if (w <= 0.0f) return luGD(ph, cmc);
+  const float adiabatic = std::pow(std::max(ph, 0.0f), 2.0f / 3.0f);
+  return glm::mix(luGDb(ph), adiabatic, w) * luGDt(ph) * cmc * 2.0f;
+}
+
+inline float cumulusNDmod(float ndfbm, float cmc, float ph, float w) {
+  if (w <= 0.0f) return luNDmod(ndfbm, cmc, ph);
+  const float wispy = 0.35f * std::exp(-cmc * 0.75f);
+  const float billowy = glm::mix(wispy, 0.35f, w);
+  return luLerp(wispy * ndfbm, billowy * (1.0f - ndfbm), luSat(ph * 5.0f));
+}
+
+inline float cumulusCloudDensity(glm::vec4 shape, glm::vec3 detail, float ph, float cmc,
+                                 float threshold, float w) {
+  if (w <= 0.0f) return luCloudDensity(shape, detail, ph, cmc, threshold);
+  if (ph < 0.0f || ph > 1.0f) return 0.0f;
+  const float nsfinal = luNSfinal(luNStex(shape), luGS(ph, cmc), threshold);  // Lu (17)
+  const float ndmod = cumulusNDmod(luNDfbm(detail), cmc, ph, w);             // Lu (15)
+  return luDensity(nsfinal, ndmod, cumulusGD(ph, cmc, w));                   // Lu (18)
 }
 
 inline float cloudHeightFraction(float layerFraction, glm::vec2 range) {

@@ -10,6 +10,7 @@
 
 #include "engine/clouds/cloud_math.h"
 #include "engine/core/error.h"
+#include "shaders/common/volumetric_clouds_shared.h"
 
 namespace sky::clouds {
 namespace {
@@ -66,31 +67,60 @@ glm::dvec3 columnStart(int k, glm::vec3 offset) {
   return s - glm::floor(s);
 }
 
+// The side of the tile the columns spread over (m): the shape tile, or for cumulus the tile of
+// their outline's slower lookups (cumulusOutline), whose clusters of large clouds and clear
+// areas are kilometres across: columns through one shape tile would see a few of them.
+double columnTileM(const CoverageColumn& column) {
+  return column.cumulus > 0.0f ? column.shapeScaleM * CLOUD_CUMULUS_REPEAT_SHAPES
+                                  : column.shapeScaleM;
+}
+
 // The noise position (m) of a column's sample at height fraction ph of the cloud's range.
 glm::dvec3 samplePosition(const CoverageColumn& column, glm::dvec3 start, double ph) {
   const double range = double(column.typeRange.y) - double(column.typeRange.x);
   const double z = (double(column.typeRange.x) + ph * range) * column.thicknessM;
-  return start * column.shapeScaleM + glm::dvec3(0.0, 0.0, z);
+  return start * columnTileM(column) + glm::dvec3(0.0, 0.0, z);
 }
 
-// The noise samples as a cloud of the column's type sees them: its shape's G, B, A and its
-// detail kept by column.textureKeep, the rest their means (shaders/common/cloud_field.glsl).
-class KeptNoise {
+// The noise samples as a cloud of the column's type sees them (shaders/common/cloud_field.glsl):
+// its shape's R with the cumulus outline mixed in by column.cumulus (cumulusShape, from
+// the lookups at a half and a quarter of the frequency), then its shape's G, B, A and its
+// detail kept by column.textureKeep, the rest their means.
+class ColumnNoise {
 public:
-  KeptNoise(const NoiseVolume& shape, const NoiseVolume& detail, float keep) : mKeep(keep) {
-    if (keep >= 1.0f) return;  // the means are not needed
+  ColumnNoise(const NoiseVolume& shape, const NoiseVolume& detail, const CoverageColumn& column)
+      : mShape(shape),
+        mDetail(detail),
+        mShapeScaleM(column.shapeScaleM),
+        mDetailScaleM(column.detailScaleM),
+        mKeep(column.textureKeep),
+        mCumulus(column.cumulus) {
+    if (mKeep >= 1.0f && mCumulus <= 0.0f) return;  // the means are not needed
     mShapeMean = channelMeans(shape);
     mDetailMean = glm::vec3(channelMeans(detail));
   }
-  glm::vec4 shape(glm::vec4 s) const {
+  // At noise position p (m).
+  glm::vec4 shape(const glm::dvec3& p) const {
+    glm::vec4 s = sampleNoise(mShape, glm::vec3(p / mShapeScaleM));
+    if (mCumulus > 0.0f) {
+      const glm::dvec3 quarter = p / (mShapeScaleM * CLOUD_CUMULUS_REPEAT_SHAPES);
+      s = cumulusShape(s, sampleNoise(mShape, glm::vec3(2.0 * quarter)),
+                           sampleNoise(mShape, glm::vec3(quarter)), mShapeMean.r, mCumulus);
+    }
     if (mKeep >= 1.0f) return s;
     return {s.r, glm::mix(glm::vec3(mShapeMean.g, mShapeMean.b, mShapeMean.a),
                           glm::vec3(s.g, s.b, s.a), mKeep)};
   }
-  glm::vec3 detail(glm::vec3 d) const { return mKeep >= 1.0f ? d : glm::mix(mDetailMean, d, mKeep); }
+  glm::vec3 detail(const glm::dvec3& p) const {
+    const glm::vec3 d(sampleNoise(mDetail, glm::vec3(p / mDetailScaleM)));
+    return mKeep >= 1.0f ? d : glm::mix(mDetailMean, d, mKeep);
+  }
 
 private:
-  float mKeep;
+  const NoiseVolume& mShape;
+  const NoiseVolume& mDetail;
+  double mShapeScaleM, mDetailScaleM;
+  float mKeep, mCumulus;
   glm::vec4 mShapeMean{0.0f};
   glm::vec3 mDetailMean{0.0f};
 };
@@ -112,15 +142,14 @@ GridSamples sampleGrid(const NoiseVolume& shape, const NoiseVolume& detail,
   s.dzM = range * column.thicknessM / grid.heights;
   s.nstex.resize(size_t(s.columns) * size_t(s.heights));
   s.ndfbm.resize(s.nstex.size());
-  const KeptNoise kept(shape, detail, column.textureKeep);
+  const ColumnNoise noise(shape, detail, column);
   parallelFor(s.columns, [&](int k) {
     const glm::dvec3 start = columnStart(k, grid.offset);
     for (int j = 0; j < s.heights; ++j) {
       const glm::dvec3 p = samplePosition(column, start, (j + 0.5) / s.heights);
       const size_t i = size_t(k) * size_t(s.heights) + size_t(j);
-      s.nstex[i] = luNStex(kept.shape(sampleNoise(shape, glm::vec3(p / column.shapeScaleM))));
-      s.ndfbm[i] =
-          luNDfbm(kept.detail(glm::vec3(sampleNoise(detail, glm::vec3(p / column.detailScaleM)))));
+      s.nstex[i] = luNStex(noise.shape(p));
+      s.ndfbm[i] = luNDfbm(noise.detail(p));
     }
   });
   return s;
@@ -159,10 +188,10 @@ public:
       const float ph = heightFraction(j, s.heights);
       const size_t h = size_t(j);
       if (column.model == CloudModel::Lu2023) {
-        shapeFactor[h] = luGS(ph, cmc);  // Lu (7)
-        e0[h] = luNDmod(0.0f, cmc, ph);  // Lu (15)
-        e1[h] = luNDmod(1.0f, cmc, ph);
-        scale[h] = luGD(ph, cmc);  // Lu (10)
+        shapeFactor[h] = luGS(ph, cmc);                      // Lu (7)
+        e0[h] = cumulusNDmod(0.0f, cmc, ph, column.cumulus);  // Lu (15)
+        e1[h] = cumulusNDmod(1.0f, cmc, ph, column.cumulus);
+        scale[h] = cumulusGD(ph, cmc, column.cumulus);  // Lu (10)
       } else {
         shapeFactor[h] = tangTypeGradient(ph, column.type);
         e0[h] = tangErosion(0.0f, ph);
@@ -295,7 +324,7 @@ double meanColumnOpacity(const NoiseVolume& shape, const NoiseVolume& detail,
   const int columns = grid.columns;
   const double range = double(column.typeRange.y) - double(column.typeRange.x);
   const double dz = range * column.thicknessM / grid.heights;
-  const KeptNoise kept(shape, detail, column.textureKeep);
+  const ColumnNoise noise(shape, detail, column);
   double sum = 0;
   for (int k = 0; k < columns; ++k) {
     const glm::dvec3 start = columnStart(k, grid.offset);
@@ -303,11 +332,10 @@ double meanColumnOpacity(const NoiseVolume& shape, const NoiseVolume& detail,
     for (int j = 0; j < grid.heights; ++j) {
       const float ph = heightFraction(j, grid.heights);
       const glm::dvec3 p = samplePosition(column, start, double(ph));
-      const glm::vec4 s = kept.shape(sampleNoise(shape, glm::vec3(p / column.shapeScaleM)));
-      const glm::vec3 d =
-          kept.detail(glm::vec3(sampleNoise(detail, glm::vec3(p / column.detailScaleM))));
+      const glm::vec4 s = noise.shape(p);
+      const glm::vec3 d = noise.detail(p);
       depth += cloudEdgeDensity(column.model == CloudModel::Lu2023
-                                    ? luCloudDensity(s, d, ph, cmc, threshold)
+                                    ? cumulusCloudDensity(s, d, ph, cmc, threshold, column.cumulus)
                                     : tangCloudDensity(s, d, ph, cover, column.type, threshold),
                                 column.edgeSharpness);
     }

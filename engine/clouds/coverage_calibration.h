@@ -41,6 +41,11 @@ struct CoverageColumn {
   // How much of the shape's G, B, A and of the detail the cloud keeps (cloudTypeTexture of the
   // type): the rest of each is the channel's mean over its volume, as the raymarch has it.
   float textureKeep = 1.0f;
+  // How much of the cloud is shaped as cumulus (cloudCumulusWeight of the type): the cumulus
+  // outline in the shape's R (cumulusShape), lu2023's profile and billows
+  // (cumulusCloudDensity). Above 0 the columns spread over the repeat of the outline's slower
+  // lookups, CLOUD_CUMULUS_REPEAT_SHAPES shape tiles a side, instead of one shape tile.
+  float cumulus = 0.0f;
 };
 
 // Thresholds for cover i / (kCoverageLutSize - 1).
@@ -83,8 +88,8 @@ float coverageThreshold(const CoverageLut& lut, float cover);
 glm::vec4 sampleNoise(const NoiseVolume& volume, glm::vec3 uvw);
 
 // Where meanColumnOpacity looks: `columns` columns whose starts follow a 3D low-discrepancy
-// (R3) sequence through the shape tile, shifted by `offset` (tile fractions), `heights`
-// midpoint samples over the cloud's range.
+// (R3) sequence through the shape tile (for cumulus, the tile of their lookups), shifted
+// by `offset` (tile fractions), `heights` midpoint samples over the cloud's range.
 struct OpacityGrid {
   int columns = 1024;
   int heights = 32;
@@ -92,7 +97,7 @@ struct OpacityGrid {
 };
 
 // The mean column opacity seen from above for a cell of uniform `cover` with the remap
-// `threshold`, straight through luCloudDensity / tangCloudDensity (the reference the fast
+// `threshold`, straight through cumulusCloudDensity / tangCloudDensity (the reference the fast
 // calibration is tested against).
 double meanColumnOpacity(const NoiseVolume& shape, const NoiseVolume& detail,
                          const CoverageColumn& column, float cover, float threshold,

@@ -88,6 +88,11 @@ float noiseKeep(float footprintM, float cellM) {
   return 1.0f - t * t * (3.0f - 2.0f * t);
 }
 
+// cloudFarChord (cloud_field.glsl): the far field's cloud chord in outline cells.
+float cloudFarChord(float cumulus) {
+  return glm::mix(float(CLOUD_FAR_MARKOV_CHORD), float(CLOUD_FAR_MARKOV_CHORD_CUMULUS), cumulus);
+}
+
 }  // namespace
 
 // cloudSampleAtLla (shaders/common/cloud_field.glsl) with no coarse check and
@@ -122,14 +127,18 @@ CloudFieldSample CloudField::sample(const glm::dvec3& enu, float footprintM) con
   const float profileCover = mIn.calibrated ? 1.0f : cover;
   // The far field: the clouds' mean where the sample resolves none of their outline.
   const float shapeCellM = 1.0f / params.shapeRepeatsPerM;
-  const float keepOutline = noiseKeep(footprintM, shapeCellM / 4.0f);
-  const float profile = mIn.tang ? tangTypeGradient(ph, type) : luGD(ph, profileCover);
+  // How much of the cloud is shaped as cumulus (cloudCumulusWeight): outline, profile, billows.
+  const float cumulus = mIn.cumulus ? cloudCumulusWeight(type) : 0.0f;
+  // cloudOutlineCell (cloud_field.glsl): R's cells, a sixth of the repeat for cumulus.
+  const float keepOutline = noiseKeep(footprintM, shapeCellM / glm::mix(4.0f, 6.0f, cumulus));
+  const float profile =
+      mIn.tang ? tangTypeGradient(ph, type) : cumulusGD(ph, profileCover, cumulus);
   float farDensity;
   if (mIn.calibrated) {
     const glm::vec2 far = farMeanDensity(layer, type, cover, ph);
     const float sigma = params.extinction * w.a;
     farDensity = sigma > 0.0f ? cloudFarExtinction(sigma * far.x, far.y,
-                                                   CLOUD_FAR_MARKOV_CHORD * shapeCellM / 4.0f) / sigma
+                                                   cloudFarChord(cumulus) * shapeCellM / 4.0f) / sigma
                               : 0.0f;
   } else {
     const float cellTau = params.extinction * profile * w.a * CLOUD_FAR_DENSITY *
@@ -153,6 +162,13 @@ CloudFieldSample CloudField::sample(const glm::dvec3& enu, float footprintM) con
     const glm::vec3 rolled = glm::vec3(params.rollOrigin) + offset -
                              params.rollCompression * glm::dot(offset, axis) * axis;
     shape = glm::mix(shape, sampleRepeat(mIn.shape, rolled * params.shapeRepeatsPerM), roll);
+  }
+  if (cumulus > 0.0f) {
+    const glm::vec3 quarter =
+        (glm::vec3(params.cumulusOrigin) + offset) *
+        (params.shapeRepeatsPerM / static_cast<float>(CLOUD_CUMULUS_REPEAT_SHAPES));
+    shape = cumulusShape(shape, sampleRepeat(mIn.shape, 2.0f * quarter),
+                         sampleRepeat(mIn.shape, quarter), params.shapeMean.r, cumulus);
   }
   const float typeKeep = cloudTypeTexture(type);
   const glm::vec3 keepShape = typeKeep * glm::vec3(noiseKeep(footprintM, shapeCellM / 8.0f),
@@ -185,7 +201,8 @@ CloudFieldSample CloudField::sample(const glm::dvec3& enu, float footprintM) con
     detail = glm::mix(detail, glm::vec3(sampleRepeat(mIn.detail, dq)), keepDetail);
   }
   const float density = mIn.tang ? tangCloudDensity(shape, detail, ph, cover, type, threshold)
-                                 : luCloudDensity(shape, detail, ph, profileCover, threshold);
+                                 : cumulusCloudDensity(shape, detail, ph, profileCover, threshold,
+                                                       cumulus);
   const float sharpness = glm::mix(1.0f, params.edgeSharpness, keepShape.x);
   s.density = glm::mix(farDensity, cloudEdgeDensity(density, sharpness), keepOutline) * w.a;
   return s;

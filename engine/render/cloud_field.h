@@ -36,6 +36,7 @@ struct CloudFieldInputs {
   bool tang = false;               // clouds.model tang2019 (CLOUD_TANG)
   bool calibrated = true;          // clouds.coverage calibrated (CLOUD_CALIBRATED)
   bool rolls = true;               // the map has stratocumulus rolls (CLOUD_ROLLS)
+  bool cumulus = true;             // the map has cumulus (CLOUD_CUMULUS, cloudCumulusWeight)
   GeoPosition camera;              // the ENU frame's origin (params.geo's)
   WeatherMap weather;              // the map the frame's textures hold
   NoiseVolume shape, detail;       // the baked noise (CloudNoise's CPU copies)

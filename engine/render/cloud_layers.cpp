@@ -77,12 +77,14 @@ CoverageTables CloudLayers::coverageTables(const Scene& scene, const WeatherMap&
       column.textureKeep = clouds::cloudTypeTexture(column.type);
       column.edgeSharpness =
           glm::mix(1.0f, static_cast<float>(c.edgeSharpness), column.textureKeep);
+      // And the cumulus' outline, profile and billows (cumulusShape, cumulusCloudDensity).
+      column.cumulus = clouds::cloudCumulusWeight(column.type);
       std::ostringstream key;
       key.precision(17);
       key << enumName(column.model) << '|' << layer << '|' << column.type << '|'
           << column.thicknessM << '|' << column.shapeScaleM << '|' << column.detailScaleM << '|'
           << column.extinction << '|' << column.profileCover << '|' << column.edgeSharpness << '|'
-          << column.textureKeep;
+          << column.textureKeep << '|' << column.cumulus;
       auto it = mLuts.find(key.str());
       if (it == mLuts.end()) {
         Calibration calibration;
@@ -112,8 +114,11 @@ CloudLayers::Frame CloudLayers::addTo(FrameGraph& graph, const Scene& scene, con
   f.coverage = coverageTables(scene, map);
   f.noiseMeans = {mNoise.shapeMean(), mNoise.detailMean()};
   f.maxCover = map.maxCover();
-  for (const glm::vec4& t : map.texels)
+  for (const glm::vec4& t : map.texels) {
     f.lowRolls = f.lowRolls || (t.r > 0.0f && clouds::cloudRollWeight(0, t.b) > 0.0f);
+    f.cumulus =
+        f.cumulus || ((t.r > 0.0f || t.g > 0.0f) && clouds::cloudCumulusWeight(t.b) > 0.0f);
+  }
   return f;
 }
 

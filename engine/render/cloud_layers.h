@@ -41,6 +41,7 @@ public:
     NoiseMeans noiseMeans;
     glm::vec2 maxCover{0.0f};
     bool lowRolls = false;  // some low cloud of the map has rolls (cloudRollWeight)
+    bool cumulus = false;   // some cloud of the map is cumulus (cloudCumulusWeight)
   };
   // Imports the noise and weather textures into `graph` (baking or loading the noise on first
   // use of a model) and returns them with the coverage tables for `scene`. Call only when

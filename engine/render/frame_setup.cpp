@@ -41,7 +41,7 @@ CloudFieldFrame cloudFieldFrame(FrameGraph& graph, CloudLayers& weather, const F
   c.texturesMs = msSince(start);
   c.params = cloudParams(setup.volumetric, setup.lighting, time, view, c.frame.maxCover,
                          c.frame.coverage, c.frame.noiseMeans);
-  c.variant = cloudVariant(setup.volumetric, c.frame.lowRolls);
+  c.variant = cloudVariant(setup.volumetric, c.frame.lowRolls, c.frame.cumulus);
   const Scene& scene = setup.cloudScene;
   c.key.settings = settingsRevision;
   c.key.mapRevision = weather.mapRevision();

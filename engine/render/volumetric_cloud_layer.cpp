@@ -263,6 +263,7 @@ CloudField VolumetricCloudLayer::field(const Scene& scene, const FrameSetup& set
     in.tang = field.variant.model == CloudModel::Tang2019;
     in.calibrated = field.variant.coverage == CloudCoverageMode::Calibrated;
     in.rolls = field.variant.rolls == CloudRolls::On;
+    in.cumulus = field.variant.cumulus == CloudCumulus::On;
     in.shape = mWeather.noise().shapeVolume();
     in.detail = mWeather.noise().detailVolume();
     in.curl = mWeather.noise().curlPlane();

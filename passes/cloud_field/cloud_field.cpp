@@ -80,7 +80,8 @@ std::vector<Binding> cloudTextureBindings(const CloudTextures& t) {
           Binding::of(VOLUMETRIC_CLOUDS_BINDING_WEATHER_COARSE, t.weatherCoarse, t.weatherSampler)};
 }
 
-CloudVariant cloudVariant(const VolumetricCloudsSettings& settings, bool lowRolls) {
+CloudVariant cloudVariant(const VolumetricCloudsSettings& settings, bool lowRolls,
+                          bool cumulus) {
   const CloudSettings& c = settings.clouds;
   CloudVariant v;
   v.frame = settings.topDown ? CloudFrame::TopDown : CloudFrame::Observer;
@@ -89,6 +90,7 @@ CloudVariant cloudVariant(const VolumetricCloudsSettings& settings, bool lowRoll
   v.integral = c.energyConserving ? CloudStepIntegral::Exact : CloudStepIntegral::Riemann;
   v.coverage = c.coverage;
   v.rolls = lowRolls ? CloudRolls::On : CloudRolls::Off;
+  v.cumulus = cumulus ? CloudCumulus::On : CloudCumulus::Off;
   v.quality = c.quality;
   v.light = c.quality == CloudQuality::Reference ? CloudLight::March : c.light;
   return v;
@@ -102,6 +104,7 @@ std::vector<ShaderDefine> cloudVariantDefines(const CloudVariant& v) {
           {"CLOUD_ENERGY_CONSERVING", flag(v.integral == CloudStepIntegral::Exact)},
           {"CLOUD_CALIBRATED", flag(v.coverage == CloudCoverageMode::Calibrated)},
           {"CLOUD_ROLLS", flag(v.rolls == CloudRolls::On)},
+          {"CLOUD_CUMULUS", flag(v.cumulus == CloudCumulus::On)},
           {"CLOUD_REFERENCE", flag(v.quality == CloudQuality::Reference)},
           {"CLOUD_LIGHT_VOLUME", flag(v.light == CloudLight::Volume)}};
 }
@@ -206,6 +209,11 @@ shared::CloudParams cloudParams(const VolumetricCloudsSettings& settings,
   const double compression = 1.0 - 1.0 / kRollStretch;
   const glm::dvec3 rolled = noise - compression * glm::dot(noise, axis) * axis;
   p.rollOrigin = glm::vec4(glm::vec3(glm::mod(rolled, shapeM)), 0.0f);
+  // Cumulus read the shape noise at a half and a quarter of its frequency too (cumulusOutline):
+  // their origin is reduced by whole repeats of the slowest, or the pattern would jump wherever
+  // shapeOrigin wraps.
+  p.cumulusOrigin =
+      glm::vec4(glm::vec3(glm::mod(noise, shapeM * CLOUD_CUMULUS_REPEAT_SHAPES)), 0.0f);
   p.rollAxis = glm::vec4(glm::vec3(axis), 0.0f);
   p.rollCompression = static_cast<float>(compression);
   // The short light steps whose samples may resolve the detail noise (CloudParams.

@@ -73,6 +73,9 @@ enum class CloudStepIntegral { Exact, Riemann };
 // some low cloud of the map is stratocumulus (cloudRollWeight). On lavapipe the lookup costs a
 // fifth of the pass wherever it is compiled in, even where no sample reads it.
 enum class CloudRolls { Off, On };
+// Whether the cumulus' two slower lookups of the shape noise are compiled in: only when some
+// cloud of the map is cumulus or convective (cloudCumulusWeight).
+enum class CloudCumulus { Off, On };
 
 // The cloud shaders' variant: the scene's discrete choices, compiled in as constants
 // (cloudVariantDefines), one pipeline per combination, so the compiler drops the unused model
@@ -87,6 +90,7 @@ struct CloudVariant {
   CloudStepIntegral integral = CloudStepIntegral::Exact;
   CloudCoverageMode coverage = CloudCoverageMode::Calibrated;
   CloudRolls rolls = CloudRolls::On;
+  CloudCumulus cumulus = CloudCumulus::On;
   CloudQuality quality = CloudQuality::Standard;
   CloudLight light = CloudLight::March;
 
@@ -96,7 +100,8 @@ struct CloudVariant {
 struct VolumetricCloudsSettings;
 // The variant of a frame: the scene's choices, the frame's kind, whether the map has rolls
 // (CloudLayers::Frame::lowRolls). The reference always marches its light.
-CloudVariant cloudVariant(const VolumetricCloudsSettings& settings, bool lowRolls);
+CloudVariant cloudVariant(const VolumetricCloudsSettings& settings, bool lowRolls,
+                          bool cumulus);
 // The GLSL defines that compile `v` (cloud_field.glsl and volumetric_clouds.comp read them).
 std::vector<ShaderDefine> cloudVariantDefines(const CloudVariant& v);
 

@@ -16,12 +16,13 @@
 // combination, generated from one C++ CloudVariant (passes/volumetric_clouds,
 // cloudVariantDefines) whose fields are enums: CLOUD_TOPDOWN (the frame), CLOUD_TANG (the
 // model), CLOUD_DUAL_LOBE (the phase), CLOUD_ENERGY_CONSERVING (the step integral),
-// CLOUD_CALIBRATED (the coverage), CLOUD_ROLLS (whether the map has stratocumulus rolls) and,
-// in volumetric_clouds.comp, CLOUD_REFERENCE and CLOUD_LIGHT_VOLUME. The compiler then drops
+// CLOUD_CALIBRATED (the coverage), CLOUD_ROLLS (whether the map has stratocumulus rolls),
+// CLOUD_CUMULUS (whether it has cumulus, whose sizes spread: cloudCumulusWeight) and, in
+// volumetric_clouds.comp, CLOUD_REFERENCE and CLOUD_LIGHT_VOLUME. The compiler then drops
 // the unused model and lookups, which on lavapipe (running both sides of every branch) no
 // test at run time can. Nothing continuous is among them: a slider never compiles a pipeline.
 // Standing alone (the shader tests compile every file on its own) the file takes the default
-// scene's choices, with the rolls' lookup compiled in.
+// scene's choices, with the rolls' and the cumulus sizes' lookups compiled in.
 #ifndef CLOUD_TOPDOWN
 #define CLOUD_TOPDOWN 0
 #endif
@@ -39,6 +40,9 @@
 #endif
 #ifndef CLOUD_ROLLS
 #define CLOUD_ROLLS 1
+#endif
+#ifndef CLOUD_CUMULUS
+#define CLOUD_CUMULUS 1
 #endif
 
 // cloudSampleAtLla's `noise`: which noise textures a sample may read at all. Fewer only where
@@ -149,6 +153,27 @@ float noiseKeep(float footprintM, float cellM) {
 // clumping, are in volumetric_clouds_shared.h: the CPU twin (engine/render/cloud_field.cpp)
 // reads them too.
 
+// The outline's cell for a cloud of cumulus weight w: R's, a quarter of the shape repeat
+// `shapeCellM`, for cellular cloud; a sixth for cumulus, whose smallest clouds
+// (cumulusOutline's fine population, G's cells) are an eighth. A pixel wider than that sees
+// the clouds' mean (the far field). At R's cell the small clouds of a field at the horizon
+// were hit or missed at random from pixel to pixel: 4.9 times the variance between
+// neighbours of a supersampled render (CloudLookTest.TheHorizonBandIsNoNoisierThanA
+// SupersampledRender, 3.5 allowed); a sixth gives 3.0, a fifth 4.0. At G's own eighth, 1.6,
+// but the mean then stood for clouds a still resolves: the sunset still backlit by a 3 degree
+// sun fell from 45.6 to 34.7 dB against the reference march (38.8 at a sixth;
+// CloudStills.ComeWithin35DbOfTheReference).
+float cloudOutlineCell(float shapeCellM, float w) {
+  return shapeCellM / mix(4.0, 6.0, w);
+}
+
+// The far field's cloud chord (cloudFarExtinction), in outline cells, for a cloud of cumulus
+// weight w: CLOUD_FAR_MARKOV_CHORD for cellular cloud, CLOUD_FAR_MARKOV_CHORD_CUMULUS for
+// cumulus, whose many small clouds (cumulusOutline) are shorter along a path.
+float cloudFarChord(float w) {
+  return mix(CLOUD_FAR_MARKOV_CHORD, CLOUD_FAR_MARKOV_CHORD_CUMULUS, w);
+}
+
 // The cloud at point p, whose latitude, longitude (degrees) and altitude are lla, seen by a
 // sample `footprintM` wide (0: full detail). Returns false where no cloud can be (outside
 // both layers, outside the weather region, or, with `coarseCheck`, where the coarse map has
@@ -215,8 +240,14 @@ bool cloudSampleAtLla(vec3 p, vec3 lla, float footprintM, bool coarseCheck, int 
   // mode keeps CMc everywhere. engine/clouds/coverage_calibration.h calibrates the same way.
   float profileCover = CLOUD_CALIBRATED != 0 ? 1.0 : cover;
   float shapeCellM = 1.0 / params.shapeRepeatsPerM;
-  float keepOutline = noiseKeep(footprintM, shapeCellM / 4.0);
-  float profile = tang ? tangTypeGradient(s.ph, type) : luGD(s.ph, profileCover);
+  // How much of the cloud is shaped as cumulus (cloudCumulusWeight): its outline, profile and
+  // billows. 0 where the map has none (the variant without the lookups).
+  float cumulus = CLOUD_CUMULUS != 0 ? cloudCumulusWeight(type) : 0.0;
+  // The outline is resolved down to R's cells (a quarter of the repeat), a cumulus' down to
+  // G's (an eighth: cumulusOutline's smallest clouds), where the far field takes over
+  // (cloudOutlineCell).
+  float keepOutline = noiseKeep(footprintM, cloudOutlineCell(shapeCellM, cumulus));
+  float profile = tang ? tangTypeGradient(s.ph, type) : cumulusGD(s.ph, profileCover, cumulus);
   s.outline = keepOutline;
   float farDensity;
   if (CLOUD_CALIBRATED != 0) {
@@ -225,7 +256,7 @@ bool cloudSampleAtLla(vec3 p, vec3 lla, float footprintM, bool coarseCheck, int 
     vec2 far = farMeanDensity(layer, type, cover, s.ph);
     float sigma = params.extinction * w.a;
     farDensity = sigma > 0.0 ? cloudFarExtinction(sigma * far.x, far.y,
-                                                  CLOUD_FAR_MARKOV_CHORD * shapeCellM / 4.0) / sigma
+                                                  cloudFarChord(cumulus) * shapeCellM / 4.0) / sigma
                              : 0.0;
   } else {
     float cellTau = params.extinction * profile * w.a * CLOUD_FAR_DENSITY * CLOUD_FAR_CHORD *
@@ -248,6 +279,17 @@ bool cloudSampleAtLla(vec3 p, vec3 lla, float footprintM, bool coarseCheck, int 
     vec3 rolled = params.rollOrigin.xyz + offset -
                   params.rollCompression * dot(offset, params.rollAxis.xyz) * params.rollAxis.xyz;
     shape = mix(shape, textureLod(shapeNoise, rolled * params.shapeRepeatsPerM, 0.0), roll);
+  }
+  // Cumulus take their outline from the shape noise at three scales (cumulusOutline), so their
+  // sizes range over a decade; the other types keep R's cells. The slower lookups have their
+  // own origin, reduced by whole repeats of theirs (CLOUD_CUMULUS_REPEAT_SHAPES shape repeats).
+  // Read from the texture as it is, before the level of detail below: R is the outline, which
+  // stays resolved until the far field takes over (keepOutline).
+  if (cumulus > 0.0) {
+    vec3 quarter = (params.cumulusOrigin.xyz + offset) *
+                   (params.shapeRepeatsPerM / float(CLOUD_CUMULUS_REPEAT_SHAPES));
+    shape = cumulusShape(shape, textureLod(shapeNoise, 2.0 * quarter, 0.0),
+                         textureLod(shapeNoise, quarter, 0.0), params.shapeMean.r, cumulus);
   }
   // Shape channels G, B, A are Worley fbm at 8, 16 and 32 cells a repeat (docs/cloud-noise.md);
   // R (4 cells) stays: it is the cloud's outline, and a metre-wide pixel at 100 km still
@@ -291,7 +333,7 @@ bool cloudSampleAtLla(vec3 p, vec3 lla, float footprintM, bool coarseCheck, int 
     detail = mix(detail, textureLod(detailNoise, dq, 0.0).rgb, keepDetail);
   }
   float density = tang ? tangCloudDensity(shape, detail, s.ph, cover, type, threshold)
-                       : luCloudDensity(shape, detail, s.ph, profileCover, threshold);
+                       : cumulusCloudDensity(shape, detail, s.ph, profileCover, threshold, cumulus);
   // The boundary can be no sharper than the sample resolves: the gain falls to 1 as the
   // shape's medium octave (G) fades (and, with it, for stratiform cloud).
   float sharpness = mix(1.0, params.edgeSharpness, keepShape.x);

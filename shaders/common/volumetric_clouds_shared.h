@@ -60,6 +60,15 @@
 // (CloudFieldCpu.TheFarFieldLetsALowSunThroughAsTheResolvedCloudsDo) is matched within 0.06
 // by 0.7; 0.1 let through 0.07 against 0.25 at 1 degree, 1.0 let through 0.37.
 #define CLOUD_FAR_MARKOV_CHORD 0.7
+// The same for cumulus (cloudCumulusWeight 1; cloudFarChord mixes by the weight): their sizes
+// spread over a decade (cumulusOutline), most of them far smaller than the cell. Measured the
+// same way: at 1 degree from cloud 0.248 against the resolved 0.261, every path within 0.025;
+// 0.7 let through 0.342.
+#define CLOUD_FAR_MARKOV_CHORD_CUMULUS 0.45
+
+// Cumulus sizes (cumulusOutline, cloud_density.glsl): the shape noise is also read at a half and
+// a quarter of its frequency, so those lookups repeat every this many shape repeats.
+#define CLOUD_CUMULUS_REPEAT_SHAPES 4
 
 SKY_SHARED_BEGIN
 
@@ -145,6 +154,8 @@ struct CloudParams {
   vec4 rollOrigin;    // xyz: shapeOrigin in the rolls' frame (shortened along rollAxis), reduced
                       // by whole repeats likewise
   vec4 rollAxis;      // xyz: unit ECEF direction the stratocumulus rolls run along (the wind's)
+  vec4 cumulusOrigin;  // xyz: for the cumulus sizes' slower lookups (repeat
+                      // CLOUD_CUMULUS_REPEAT_SHAPES / shapeRepeatsPerM), reduced likewise
   vec4 sunDirection;  // xyz: unit direction to the sun (ENU)
   vec4 moonDirection; // xyz: to the moon
   CloudLayerLight sunAtLow;   // the sun's illuminance through the air in the low layer
@@ -165,7 +176,7 @@ SKY_SHARED_END
 
 #ifdef __cplusplus
 static_assert(sizeof(sky::shared::CloudParams) ==
-                  64 + 64 + 16 + 10 * 16 + 21 * 16 + 32 + CLOUD_COVERAGE_LUT_VEC4S * 16 +
+                  64 + 64 + 16 + 10 * 16 + 22 * 16 + 32 + CLOUD_COVERAGE_LUT_VEC4S * 16 +
                       CLOUD_FAR_MEAN_VEC4S * 16,
               "std140 layout of CloudParams");
 #endif

@@ -47,7 +47,10 @@ void CloudFieldCpu::expectFieldMatchesExport(const Scene& scene) {
         // The CPU's geography is double, the GPU's float, and their filtering differs in the
         // last bits; the cloud's edge (clouds.edge_sharpness) turns that into a few
         // hundredths where it passes between the two. Measured: 27 of 22,400 voxels off by
-        // more than this (0.12 %), and 50 with Tang's model and rolls, the worst 0.02.
+        // more than this (0.12 %), and 50 with Tang's model and rolls, the worst 0.02. The
+        // cumulus' flat base (cumulusGD, issue 46) rises from nothing to most of its density
+        // over the lowest few tens of metres, where the GPU's float altitude moves it: 161
+        // voxels (0.7 %), every one in the five lowest layers of voxels, the worst 0.044.
         far += err > 0.01 + 0.02 * gpu;
       }
   const size_t voxels = grid.values.size();
@@ -56,7 +59,7 @@ void CloudFieldCpu::expectFieldMatchesExport(const Scene& scene) {
   ASSERT_GT(cloudyGpu, voxels / 50) << "the box should hold cloud";
   EXPECT_NEAR(sumCpu / sumGpu, 1.0, 0.002);
   EXPECT_NEAR(double(cloudyCpu), double(cloudyGpu), 0.01 * double(cloudyGpu));
-  EXPECT_LE(far, voxels / 200) << "voxels off by more than 0.01 + 2 %";
+  EXPECT_LE(far, voxels / 100) << "voxels off by more than 0.01 + 2 %";
   EXPECT_LT(worst, 0.05);
 }
 

@@ -157,4 +157,14 @@ void main() {
   put(23, vec4(cloudRollWeight(0, typeD), cloudRollWeight(1, typeD),
                cloudPhaseSkyLight(r0.xyz - 0.5, 10.0 * r2.x, r1.w).x,
                cloudFarExtinction(0.02 * r1.x, 1.1 * r2.y, 50.0 + 1000.0 * r0.w)));
+
+  // --- Cumulus: blobs and size fields over [0, 1] and [-0.6, 0.6] (every population wins
+  // somewhere, and the selector saturates at both ends), weights 0..1 with both ends held ---
+  vec4 cuShape = cumulusShape(shape, vec4(r1.zw, r2.xy), vec4(r2.zw, r0.xy), 0.3 + 0.4 * r1.y,
+                              r2.w);
+  put(25, vec4(cloudCumulusWeight(typeD), cumulusOutline(r0.x, r0.z, r1.x, 1.2 * r1.y - 0.6),
+               cuShape.r, cuShape.g));
+  float wCu = clamp(1.4 * r1.w - 0.2, 0.0, 1.0);
+  put(26, vec4(cumulusGD(ph, cmc, wCu), cumulusNDmod(ndfbm, cmc, ph, wCu),
+               cumulusCloudDensity(shape, detail, ph, cmc, threshold, wCu), wCu));
 }

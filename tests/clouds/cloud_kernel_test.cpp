@@ -29,7 +29,7 @@ using namespace sky::clouds;
 
 constexpr int kQueries = 256;  // KERNEL_QUERIES in cloud_kernel.comp
 constexpr int kGroup = 64;     // KERNEL_GROUP
-constexpr int kRows = 25;
+constexpr int kRows = 27;
 
 // What each row of the results image holds (cloud_kernel.comp writes them in this order).
 enum KernelRow {
@@ -58,6 +58,8 @@ enum KernelRow {
   kAmbientDiffuse,  // cloudAmbientDiffuse
   kRollWeight,      // cloudRollWeight, low and mid layer; cloudPhaseSkyLight; cloudFarExtinction
   kMarchSplit,      // lightMarchDepth's own and beyond: the slab, the slab with a gap
+  kCumulusShape,    // cloudCumulusWeight, cumulusOutline, cumulusShape's R and G
+  kCumulusDensity,  // cumulusGD, cumulusNDmod, cumulusCloudDensity, the weight
 };
 
 // Float maths on lavapipe against float maths in C++: exp, log, pow and division differ in the
@@ -192,6 +194,21 @@ TEST_F(CloudKernelTest, LuEquationsMatchTheirTwins) {
                  tangCloudDensity(in.shape, in.detail, in.ph, in.cmc, in.type, in.threshold)},
                 names);
     }
+    {
+      // The kernel's weight, read back: 0 and 1 are held exactly on part of the grid.
+      const float w = at(kCumulusDensity, i, 3);
+      EXPECT_NEAR(w, std::clamp(1.4f * r1.w - 0.2f, 0.0f, 1.0f), 1e-6) << "query " << i;
+      const char* names[4] = {"cumulusGD", "cumulusNDmod", "cumulusCloudDensity", "weight"};
+      expectRow(kCumulusDensity, i,
+                {cumulusGD(in.ph, in.cmc, w), cumulusNDmod(ndfbm, in.cmc, in.ph, w),
+                 cumulusCloudDensity(in.shape, in.detail, in.ph, in.cmc, in.threshold, w), w},
+                names);
+      // Weight 0 is Lu's own density.
+      if (w == 0.0f) {
+        EXPECT_EQ(cumulusCloudDensity(in.shape, in.detail, in.ph, in.cmc, in.threshold, w),
+                  luCloudDensity(in.shape, in.detail, in.ph, in.cmc, in.threshold));
+      }
+    }
   }
   printWorst("density");
 }
@@ -205,6 +222,10 @@ TEST_F(CloudKernelTest, LuDensityIsNonZeroOnPartOfTheGrid) {
   }
   EXPECT_GT(inside, kQueries / 10);
   EXPECT_GT(tang, kQueries / 10);
+  int cumulus = 0;
+  for (int i = 0; i < kQueries; ++i)
+    cumulus += at(kCumulusDensity, i, 2) > 0.0f && at(kCumulusDensity, i, 3) > 0.0f;
+  EXPECT_GT(cumulus, kQueries / 10);
 }
 
 TEST_F(CloudKernelTest, LightingMatchesItsTwin) {
@@ -271,6 +292,16 @@ TEST_F(CloudKernelTest, LightingMatchesItsTwin) {
                  cloudPhaseSkyLight(glm::vec3(r0) - 0.5f, 10.0f * r2.x, r1.w).x,
                  cloudFarExtinction(0.02f * r1.x, 1.1f * r2.y, 50.0f + 1000.0f * r0.w)},
                 rollNames);
+      const glm::vec4 shape(r0.z, r0.w, r1.x, r1.y);
+      const glm::vec4 cuShape =
+          cumulusShape(shape, glm::vec4(r1.z, r1.w, r2.x, r2.y), glm::vec4(r2.z, r2.w, r0.x, r0.y),
+                       0.3f + 0.4f * r1.y, r2.w);
+      const char* shapeNames[4] = {"cloudCumulusWeight", "cumulusOutline", "cumulusShape r",
+                                   "cumulusShape g"};
+      expectRow(kCumulusShape, i,
+                {cloudCumulusWeight(typeD), cumulusOutline(r0.x, r0.z, r1.x, 1.2f * r1.y - 0.6f),
+                 cuShape.r, cuShape.g},
+                shapeNames);
     }
     const float stepSigma = at(kIntegrateInputs, i, 0), dt = at(kIntegrateInputs, i, 1);
     {

@@ -284,8 +284,11 @@ TEST(SkylayersApi, TheSunBehindACloudIsDimmedByIt) {
 TEST(SkylayersApi, AQuerysTransmittanceAlongAPixelsRayIsThatPixelsCloudCoverage) {
   // Looking up into the default scene's cumulus (500 m up, the layer 1.5-3.5 km): every ray
   // leaves the layer within 14 km.
-  skylayers::Sky sky =
-      defaultSky({"camera.pitch=30", "camera.vertical_fov=30", "camera.heading=0"});
+  // No grain filter: it mixes each pixel with its neighbours (cloud_denoise), where the query
+  // follows the pixel's centre ray alone; at the cumulus' many small clouds' edges that put
+  // 303 pixels more than 0.1 off.
+  skylayers::Sky sky = defaultSky(
+      {"camera.pitch=30", "camera.vertical_fov=30", "camera.heading=0", "clouds.denoise=false"});
   // 96 x 54: pixels of 10 m at 1.5 km, so the march resolves most of the noise, as the query
   // does (at 32 x 18 the march's level of detail fades the fine octaves to their mean and its
   // coverage came out 0.05 higher).
@@ -319,10 +322,12 @@ TEST(SkylayersApi, AQuerysTransmittanceAlongAPixelsRayIsThatPixelsCloudCoverage)
       sumA / pixels, sumQ / pixels, sumDiff / pixels, off, pixels, cloudy);
   ASSERT_GT(cloudy, 20) << "the view should hold clouds";
   // Measured: mean A 0.4415 against 0.4424, per pixel 0.005 apart on average, 37 of 5,184
-  // pixels more than 0.1 apart (cloud edges the march's longer far steps cross).
+  // pixels more than 0.1 apart (cloud edges the march's longer far steps cross). Cumulus
+  // whose sizes spread over a decade (issue 46) have twice as many clouds and edges in view:
+  // 0.5483 against 0.5546, 0.0115 apart, 162 pixels (3.1 %) off.
   EXPECT_NEAR(sumA / pixels, sumQ / pixels, 0.01);
   EXPECT_LT(sumDiff / pixels, 0.015);
-  EXPECT_LE(off, int(0.02 * pixels));
+  EXPECT_LE(off, int(0.05 * pixels));
 }
 
 TEST(SkylayersApi, ThePerceptionLayersAreTheQueriesAnswers) {
@@ -345,7 +350,10 @@ TEST(SkylayersApi, ThePerceptionLayersAreTheQueriesAnswers) {
       const skylayers::GeoPoint far = sky.pixelPoint(x + 0.5, y + 0.5, 15000.0);
       const skylayers::Transmittance t = sky.transmittance(camera, far);
       const double tau = clouds.at(x, y, "optical_depth");
-      EXPECT_NEAR(tau, t.cloudOpticalDepth, 0.05 + 0.05 * t.cloudOpticalDepth) << x << "," << y;
+      // Within 0.05 + 10 %, as Perception.OpticalDepthAndHitDistanceAreTheQueriesField and
+      // for its reason (the march's steps through billowed cumulus): 1.65 against 1.83 at the
+      // worst pixel.
+      EXPECT_NEAR(tau, t.cloudOpticalDepth, 0.05 + 0.1 * t.cloudOpticalDepth) << x << "," << y;
       const double hit = clouds.at(x, y, "distance");
       const double first = sky.firstCloud(camera, far);
       if (t.cloudOpticalDepth > 0.12) {

@@ -67,7 +67,11 @@ TEST_F(Perception, OpticalDepthAndHitDistanceAreTheQueriesField) {
       const double length = rayLength(field, d, top + 100.0);
       const double tau = field.cloudOpticalDepth(glm::dvec3(0.0), d * length, 5.0);
       const double gpu = channel(f, "clouds", "optical_depth", x, y);
-      EXPECT_NEAR(gpu, tau, 0.05 + 0.05 * tau) << "pixel " << x << "," << y;
+      // Within 0.05 + 10 %: past the hit the perception march takes Lu's steps (tens of
+      // metres), the query 5 m ones, and the cumulus' billows at full strength (issue 46,
+      // cumulusNDmod) vary the density within such a step. Measured: the worst of 45 pixels
+      // 8.1 % of (0.05 + tau) apart (2.09 against 2.28); within 5 % before the billows.
+      EXPECT_NEAR(gpu, tau, 0.05 + 0.1 * tau) << "pixel " << x << "," << y;
       worst = std::max(worst, std::abs(gpu - tau) / (0.05 + tau));
       ++compared;
       // The hit: where the optical depth passes a tenth; none where it never does (away from
