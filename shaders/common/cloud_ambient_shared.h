@@ -70,8 +70,10 @@ SKY_SHARED_END
 // field", "The sky that other clouds hide"): a 40 % cumulus field (cover 0.24 around the
 // camera) with a 3 degree sun behind the camera went from 12 % to 0.3 % brighter than Cycles
 // (on the cumulus shapes' smaller clouds from 27 % to 15 %, and the near clouds in the shadow
-// of others, the darkest tenth, from 1.66 to 1.37 times Cycles' light). k = 0.5 and 1 gave the
-// same within a point and the deck (cover 0.56) 14.6 % and 16.6 % too bright, k = 2 there 18 %.
+// of others, the darkest tenth, from 1.66 to 1.37 times Cycles' light). Held fixed over the
+// frames, k = 0.5 and 1 gave the field the same within a point and the deck (cover 0.56) 14.6 %
+// and 16.6 % too bright, k = 2 there 18 %; 4 x the cover, the deck 18.3 % and the field and
+// the sunset's lit hue (SunsetLookTest) the same.
 // The sky's mean as the rest: each ring's own mean (which keeps zenith and horizon apart)
 // left the field 20 % too bright. The ground below the horizon is left as it is: a cloud's
 // base sees it past the layer, and hiding it behind the sky's mean lit the deck 32 % too
