@@ -167,4 +167,10 @@ void main() {
   float wCu = clamp(1.4 * r1.w - 0.2, 0.0, 1.0);
   put(26, vec4(cumulusGD(ph, cmc, wCu), cumulusNDmod(ndfbm, cmc, ph, wCu),
                cumulusCloudDensity(shape, detail, ph, cmc, threshold, wCu), wCu));
+
+  // --- The cloud behind a lit face: depths toward the light 0..100, behind it 0..100, the
+  // faces (either depth 0) and a cloud that goes on past the probe ---
+  float tauB = 100.0 * r0.x * r0.x;
+  put(27, vec4(diffuseBehindShare(tauD, tauB, gD), diffuseBehindShare(0.0, tauB, gD),
+               diffuseBehindShare(tauD, 0.0, gD), diffuseBehindShare(0.0, 1.0e6, gD)));
 }

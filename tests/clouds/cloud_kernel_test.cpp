@@ -29,7 +29,7 @@ using namespace sky::clouds;
 
 constexpr int kQueries = 256;  // KERNEL_QUERIES in cloud_kernel.comp
 constexpr int kGroup = 64;     // KERNEL_GROUP
-constexpr int kRows = 27;
+constexpr int kRows = 28;
 
 // What each row of the results image holds (cloud_kernel.comp writes them in this order).
 enum KernelRow {
@@ -60,6 +60,7 @@ enum KernelRow {
   kMarchSplit,      // lightMarchDepth's own and beyond: the slab, the slab with a gap
   kCumulusShape,    // cloudCumulusWeight, cumulusOutline, cumulusShape's R and G
   kCumulusDensity,  // cumulusGD, cumulusNDmod, cumulusCloudDensity, the weight
+  kBehindShare,     // diffuseBehindShare inside, at the lit face, at the far face, thick
 };
 
 // Float maths on lavapipe against float maths in C++: exp, log, pow and division differ in the
@@ -450,4 +451,29 @@ TEST_F(CloudKernelTest, EnergyConservingStepIsExactForAnyStepLength) {
 }
 
 }  // namespace
+TEST_F(CloudKernelTest, ALitFaceKeepsTheTwoStreamReflectanceOfTheCloudBehindIt) {
+  // diffuseBehindShare (cloud_lighting.glsl) against the two-stream solution for a
+  // conservative slab of optical depth T (Bohren & Clothiaux 2006, 6.3): the lit face keeps the
+  // reflectance cT / (1 + cT), c = 3/4 (1 - g), of a thick slab's diffuse light, the far face
+  // all of it (diffuseTransmittance already dims it), and linearly between; a cloud still
+  // there at the probe's end counts as thick.
+  int thin = 0;
+  for (int i = 0; i < kQueries; ++i) {
+    const glm::vec4 r0 = row(kInputs0, i), r1 = row(kInputs1, i), r2 = row(kInputs2, i);
+    const double tau = 100.0 * r2.x * r2.x, behind = 100.0 * r0.x * r0.x;
+    const double g = -0.5 + 1.4 * r1.y, c = 0.75 * (1.0 - g);
+    const auto reflectance = [&](double t) { return c * t / (1.0 + c * t); };
+    const double total = tau + behind;
+    const double inside =
+        total > 0.0 ? reflectance(total) + (1.0 - reflectance(total)) * tau / total : 1.0;
+    const double litFace = behind > 0.0 ? reflectance(behind) : 1.0;
+    const char* names[4] = {"inside", "lit face", "far face", "thick"};
+    expectRow(kBehindShare, i,
+              glm::vec4(float(inside), float(litFace), 1.0f, float(reflectance(1.0e6))), names,
+              2e-4);
+    thin += behind > 0.0 && reflectance(behind) < 0.5;
+  }
+  EXPECT_GT(thin, 10) << "the grid holds clouds thin enough to lose half their light";
+}
+
 }  // namespace sky::test
