@@ -350,9 +350,9 @@ TEST(SkylayersApi, ThePerceptionLayersAreTheQueriesAnswers) {
       const skylayers::GeoPoint far = sky.pixelPoint(x + 0.5, y + 0.5, 15000.0);
       const skylayers::Transmittance t = sky.transmittance(camera, far);
       const double tau = clouds.at(x, y, "optical_depth");
-      // Within 0.05 + 10 %, as Perception.OpticalDepthAndHitDistanceAreTheQueriesField (its
-      // comment: a cloud edge under the billows the two sample differently, not the step):
-      // 1.65 against 1.83 at the worst pixel.
+      // Within 0.05 + 10 %, as Perception.OpticalDepthAndHitDistanceAreTheQueriesField and
+      // for its reason (the march's steps through billowed cumulus): 1.65 against 1.83 at the
+      // worst pixel.
       EXPECT_NEAR(tau, t.cloudOpticalDepth, 0.05 + 0.1 * t.cloudOpticalDepth) << x << "," << y;
       const double hit = clouds.at(x, y, "distance");
       const double first = sky.firstCloud(camera, far);
