@@ -88,6 +88,11 @@ float noiseKeep(float footprintM, float cellM) {
   return 1.0f - t * t * (3.0f - 2.0f * t);
 }
 
+// cloudOutlineCell (cloud_field.glsl): where the far field takes over the outline.
+float cloudOutlineCell(float shapeCellM, float cumulus) {
+  return shapeCellM / glm::mix(4.0f, 6.0f, cumulus);
+}
+
 // cloudFarChord (cloud_field.glsl): the far field's cloud chord in outline cells.
 float cloudFarChord(float cumulus) {
   return glm::mix(float(CLOUD_FAR_MARKOV_CHORD), float(CLOUD_FAR_MARKOV_CHORD_CUMULUS), cumulus);
@@ -129,8 +134,7 @@ CloudFieldSample CloudField::sample(const glm::dvec3& enu, float footprintM) con
   const float shapeCellM = 1.0f / params.shapeRepeatsPerM;
   // How much of the cloud is shaped as cumulus (cloudCumulusWeight): outline, profile, billows.
   const float cumulus = mIn.cumulus ? cloudCumulusWeight(type) : 0.0f;
-  // cloudOutlineCell (cloud_field.glsl): R's cells, a sixth of the repeat for cumulus.
-  const float keepOutline = noiseKeep(footprintM, shapeCellM / glm::mix(4.0f, 6.0f, cumulus));
+  const float keepOutline = noiseKeep(footprintM, cloudOutlineCell(shapeCellM, cumulus));
   const float profile =
       mIn.tang ? tangTypeGradient(ph, type) : cumulusGD(ph, profileCover, cumulus);
   float farDensity;

@@ -243,9 +243,8 @@ bool cloudSampleAtLla(vec3 p, vec3 lla, float footprintM, bool coarseCheck, int 
   // How much of the cloud is shaped as cumulus (cloudCumulusWeight): its outline, profile and
   // billows. 0 where the map has none (the variant without the lookups).
   float cumulus = CLOUD_CUMULUS != 0 ? cloudCumulusWeight(type) : 0.0;
-  // The outline is resolved down to R's cells (a quarter of the repeat), a cumulus' down to
-  // G's (an eighth: cumulusOutline's smallest clouds), where the far field takes over
-  // (cloudOutlineCell).
+  // The outline is resolved down to R's cells (a quarter of the repeat), a cumulus' down to a
+  // sixth of it, where the far field takes over (cloudOutlineCell).
   float keepOutline = noiseKeep(footprintM, cloudOutlineCell(shapeCellM, cumulus));
   float profile = tang ? tangTypeGradient(s.ph, type) : cumulusGD(s.ph, profileCover, cumulus);
   s.outline = keepOutline;
