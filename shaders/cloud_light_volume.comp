@@ -57,16 +57,18 @@ void main() {
   for (int i = 0; i < 2; ++i) {
     if ((i == 0 ? params.sunMarched : params.moonMarched) == 0.0) continue;
     vec3 L = i == 0 ? params.sunDirection.xyz : params.moonDirection.xyz;
-    // The whole reach, every short step split CLOUD_LIGHT_VOLUME_SPLIT ways and the long step
-    // in twice as many parts, then the far step to where the path leaves the shells.
-    float reach = lightMarchReach(distance);
+    // Every short step split CLOUD_LIGHT_VOLUME_SPLIT ways, the long step in the view march's
+    // parts over the clouds it resolves (longer parts miss the small clouds and brighten a low
+    // sun's light), then the far step to where the path leaves the shells.
+    float longEnd = CLOUD_LIGHT_RESOLVED_REACH * distance;
     float exitM = cloudShellExit(params.geo.origin.w, h, dot(L, geoUp(params.geo, p)),
                                  params.shellBaseM, params.shellTopM);
-    float farEnd = clamp(exitM, reach, max(CLOUD_LIGHT_FAR_REACH_M, reach));
+    float farEnd = clamp(exitM, longEnd, max(CLOUD_LIGHT_FAR_REACH_M, longEnd));
     CloudLightPath path = CloudLightPath(
         p, L, latLonLine(params.geo, p, latLon, L, lightLongStepDistance(distance)), footprintM,
-        offset, distance, steps, CLOUD_LIGHT_VOLUME_SPLIT, steps, reach,
-        2 * CLOUD_LIGHT_VOLUME_SPLIT, farEnd, cloudLightFarParts(reach, farEnd));
+        offset, distance, steps, CLOUD_LIGHT_VOLUME_SPLIT, steps, longEnd,
+        cloudLightLongParts(distance, longEnd, CLOUD_LIGHT_LONG_PART_M), farEnd,
+        cloudLightFarParts(longEnd, farEnd));
     tau[i] = params.extinction * lightMarchDensity(path);
   }
   imageStore(lightVolume, id, vec4(tau, 0.0, 0.0));

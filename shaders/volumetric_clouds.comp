@@ -149,9 +149,10 @@ int cloudLightStepsFor(float footprintM, float distanceM) {
 }
 
 // The light path from a cloud sample at p (latitude and longitude latLon, altitude h) toward
-// L. Its long step ends where the path leaves the shells, if that comes before the march's
-// reach: past there is no cloud, and the parts left are spent where the cloud is. A low sun's
-// path runs through the layer for kilometres and takes the most parts, a high sun's few.
+// L. Its long step ends where the path leaves the shells, if that comes before the clouds it
+// resolves end (CLOUD_LIGHT_RESOLVED_REACH; the reference's reach): past there is no cloud,
+// and the parts left are spent where the cloud is. A low sun's path runs through the layer
+// for kilometres and takes the most parts, a high sun's few.
 // `longShare` marches of one pixel share the long step: each reads it in parts that many
 // times longer (CloudRay.longShare).
 CloudLightPath cloudLightPath(vec3 p, vec2 latLon, float h, vec3 L, float footprintM,
@@ -159,7 +160,9 @@ CloudLightPath cloudLightPath(vec3 p, vec2 latLon, float h, vec3 L, float footpr
   float distance = params.lightDistanceM;
   float exitM = cloudShellExit(params.geo.origin.w, h, dot(L, geoUp(params.geo, p)),
                                params.shellBaseM, params.shellTopM);
-  float longEnd = clamp(exitM, distance, lightMarchReach(distance));
+  float resolved = CLOUD_REFERENCE != 0 ? lightMarchReach(distance)
+                                         : CLOUD_LIGHT_RESOLVED_REACH * distance;
+  float longEnd = clamp(exitM, distance, resolved);
   float farEnd = clamp(exitM, longEnd, max(CLOUD_LIGHT_FAR_REACH_M, longEnd));
   return CloudLightPath(p, L, latLonLine(params.geo, p, latLon, L, lightLongStepDistance(distance)),
                         footprintM, offset, distance, cloudLightStepsFor(footprintM, distance),

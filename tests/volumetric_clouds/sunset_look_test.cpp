@@ -114,7 +114,13 @@ TEST_F(SunsetLookTest, CloudsLitByASettingSunAreOrangeNotOchre) {
   // this view at our exposure, though, Cycles' show 28.3 degrees on the field and ours 29.6:
   // ours are 23 % brighter there, and AgX takes brighter orange further toward yellow
   // (docs/cloud-model.md, "How much of the 3 degree behind error is Cycles' own noise").
-  // Tolerance: 31, half a degree over today's; and the ACES view no less yellow than AgX's.
+  // The light march's long step in 125 m parts, not 400 m (docs/cloud-model.md, "The long
+  // step's parts"), took off the partly shadowed clouds the sunlight that 400 m parts let
+  // through the small clouds they stepped over: the view's lit quarter 9 % darker, with less
+  // of the low sun's own red-orange in it beside the sky's yellower light, and 30.8 (32.1)
+  // here, 30.7 at 640x360: the light nearer Cycles', the display's hue a little further from
+  // the goal. Tolerance:
+  // 31.3, half a degree over today's; and the ACES view no less yellow than AgX's.
   const Scene scene = peerAtLowSun(3.0, 180.0, 10.0);
   const RenderedFrame frame = render(scene);
   const double agx = litCloudHue(show(scene, frame));
@@ -123,7 +129,7 @@ TEST_F(SunsetLookTest, CloudsLitByASettingSunAreOrangeNotOchre) {
   const double acesHue = litCloudHue(show(aces, frame));
   std::printf("sun 3 deg behind: lit clouds' display hue %.1f (AgX), %.1f (ACES 1.0)\n", agx,
               acesHue);
-  EXPECT_LE(agx, 31.0);
+  EXPECT_LE(agx, 31.3);
   EXPECT_GT(agx, 10.0) << "orange, not red or magenta";
   EXPECT_GE(acesHue, agx) << "the view keeps the hue that ACES skews toward yellow";
 }
