@@ -29,8 +29,8 @@
 // 6 km on the mean gives the light of marching the clouds (a shader copy reading them in 50 m
 // parts there: the field's sunlight 0.071 against 0.070); taken from nearer it leaves the
 // 3 degree field brighter than marching on (100 m parts: +5.9 % to 6 km, +8.1 % to 3 km,
-// +10.6 % to 2.4 km), but costs a fifth as many reads. 3 km keeps the frame at sunset at
-// about the cost it had.
+// +10.6 % to 2.4 km), but costs a third as many reads as 100 m parts to 6 km. 3 km keeps
+// the frame at sunset at about the cost it had.
 #define CLOUD_LIGHT_RESOLVED_REACH 2.5
 // The reference march's parts (clouds.quality reference): its long step runs on to
 // 5 light_distance_m (lightMarchReach) in parts of this length. On that field its clouds'

@@ -119,8 +119,8 @@ TEST_F(SunsetLookTest, CloudsLitByASettingSunAreOrangeNotOchre) {
   // through the small clouds they stepped over: the view's lit quarter 9 % darker, with less
   // of the low sun's own red-orange in it beside the sky's yellower light, and 30.8 (32.1)
   // here, 30.7 at 640x360: the light nearer Cycles', the display's hue a little further from
-  // the goal. Tolerance:
-  // 31.3, half a degree over today's; and the ACES view no less yellow than AgX's.
+  // the goal. Tolerance: 31.3, half a degree over today's; and the ACES view no less yellow
+  // than AgX's.
   const Scene scene = peerAtLowSun(3.0, 180.0, 10.0);
   const RenderedFrame frame = render(scene);
   const double agx = litCloudHue(show(scene, frame));
