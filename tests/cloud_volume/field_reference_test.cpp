@@ -148,6 +148,13 @@ TEST_F(FieldLook, OurCloudToSkyRatiosAndHuesAreWithinTheGoalsOfCycles) {
     EXPECT_NEAR(std::remainder(ours.litHueDeg - hue, 360.0), 0.0,
                 ref["goals"]["hue_within_deg"].get<double>())
         << name;
+    // A 3 degree sun's path crosses kilometres of small clouds before it leaves the layer: the
+    // light march's long step must read them, not step over them (cloud_light_march_shared.h,
+    // CLOUD_LIGHT_LONG_PART_M). In 400 m parts these two views were +15.1 % and +17.1 %; in
+    // 125 m parts to 3 km they are +8.3 % and +9.8 %. Tolerance: 12 %.
+    if (name == "field_sun3_away" || name == "field_deck_sunset") {
+      EXPECT_NEAR(ours.ratio / cycles, 1.0, 0.12) << name << ": the long step's parts";
+    }
   }
 }
 
