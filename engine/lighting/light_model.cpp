@@ -205,6 +205,15 @@ double luminance(const glm::dvec3& rgb) {
   return 0.2126 * rgb.r + 0.7152 * rgb.g + 0.0722 * rgb.b;
 }
 
+LayerIlluminance illuminanceAcrossLayer(const glm::vec3& aboveAtmosphere, double elevationDeg,
+                                        double radiusDeg, double baseM, double topM,
+                                        double turbidity) {
+  const auto at = [&](double altitudeM) {
+    return illuminanceAtAltitude(aboveAtmosphere, elevationDeg, radiusDeg, altitudeM, turbidity);
+  };
+  return {at(baseM), at(0.5 * (baseM + topM)), at(topM)};
+}
+
 glm::vec3 illuminanceAtAltitude(const glm::vec3& aboveAtmosphere, double elevationDeg,
                                 double radiusDeg, double altitudeM, double turbidity) {
   const double h = std::max(altitudeM, 0.0);

@@ -155,4 +155,14 @@ double luminance(const glm::dvec3& rgb);
 glm::vec3 illuminanceAtAltitude(const glm::vec3& aboveAtmosphere, double elevationDeg,
                                 double radiusDeg, double altitudeM, double turbidity);
 
+// The same at a cloud layer's base, middle and top: the raymarch lights a sample with the
+// light at its own altitude, log-quadratic through these three (volumetric_clouds.comp
+// keyLightAt), and export-volume hands them to the path tracer.
+struct LayerIlluminance {
+  glm::vec3 base, middle, top;
+};
+LayerIlluminance illuminanceAcrossLayer(const glm::vec3& aboveAtmosphere, double elevationDeg,
+                                        double radiusDeg, double baseM, double topM,
+                                        double turbidity);
+
 }  // namespace sky::light

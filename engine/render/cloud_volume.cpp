@@ -211,6 +211,22 @@ CloudVolume makeCloudVolume(const Scene& cloudScene, const LightingState& lighti
     m[n + "_angular_radius_deg"] = bodies[i]->angularRadiusDeg;
     m[n + "_elevation_deg"] = bodies[i]->elevationDeg;
     m[n + "_azimuth_deg"] = bodies[i]->azimuthDeg;
+    // And at each layer's base, middle and top: the raymarch lights a sample with the light at
+    // its own altitude (log-quadratic through these three, volumetric_clouds.comp keyLightAt),
+    // so a low sun lights a layer's base with less and redder light than its top. A path
+    // tracer whose sun lamp has one illuminance sees none of that (render_cycles.py gives its
+    // lamp the same profile from these).
+    const std::pair<const char*, const CloudLayerSettings*> layers[2] = {{"low", &c.low},
+                                                                         {"mid", &c.mid}};
+    for (const auto& [layer, l] : layers) {
+      const light::LayerIlluminance across = light::illuminanceAcrossLayer(
+          glm::vec3(*space[i]), bodies[i]->elevationDeg, bodies[i]->angularRadiusDeg, l->baseM,
+          l->topM, cloudScene.lighting.turbidity);
+      const std::string key = n + "_illuminance_" + layer + "_";
+      m[key + "base"] = glm::dvec3(across.base);
+      m[key + "middle"] = glm::dvec3(across.middle);
+      m[key + "top"] = glm::dvec3(across.top);
+    }
   }
   // The sky light the raymarch's ambient term uses: radiance from the upper hemisphere and
   // from the ground below, the sun's and the moon's palettes together.

@@ -266,12 +266,10 @@ shared::CloudParams cloudParams(const VolumetricCloudsSettings& settings,
   // lights their bases with less and redder light than their tops.
   const double turbidity = settings.turbidity;
   auto through = [&](const BodyLight& body, const glm::vec4& space, const CloudLayerSettings& l) {
-    auto at = [&](double altitudeM) {
-      return glm::vec4(light::illuminanceAtAltitude(glm::vec3(space), body.elevationDeg,
-                                                    body.angularRadiusDeg, altitudeM, turbidity),
-                       0.0f);
-    };
-    return shared::CloudLayerLight{at(l.baseM), at(0.5 * (l.baseM + l.topM)), at(l.topM)};
+    const light::LayerIlluminance e = light::illuminanceAcrossLayer(
+        glm::vec3(space), body.elevationDeg, body.angularRadiusDeg, l.baseM, l.topM, turbidity);
+    return shared::CloudLayerLight{glm::vec4(e.base, 0.0f), glm::vec4(e.middle, 0.0f),
+                                   glm::vec4(e.top, 0.0f)};
   };
   const BodyLight* bodies[2] = {&lighting.sun, &lighting.moon};
   const glm::vec4* space[2] = {&lighting.gpu.sunSpace, &lighting.gpu.moonSpace};

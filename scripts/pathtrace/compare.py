@@ -324,6 +324,8 @@ def main():
     p.add_argument("--reference", type=pathlib.Path,
                    help="write the field scenes' Cycles numbers here (tests/data/pathtrace/field_cycles.json)")
     p.add_argument("--samples", type=int, help="Cycles' samples per pixel, for --reference")
+    p.add_argument("--sun-profile", choices=("layers", "flat"), default="layers",
+                   help="the Cycles renders' sun (render_cycles.py --sun-profile), for --reference")
     p.add_argument("scenes", nargs="+")
     args = p.parse_args()
     fields = [s for s in args.scenes if s.startswith("field_")]
@@ -331,7 +333,7 @@ def main():
     field_results = [field_compare.compare_field(args.dir, s, args.images, write_png) for s in fields]
     (args.dir / "results.json").write_text(json.dumps(results + field_results, indent=2) + "\n")
     if args.reference and field_results:
-        args.reference.write_text(json.dumps(field_compare.reference(field_results, args.samples), indent=2) + "\n")
+        args.reference.write_text(json.dumps(field_compare.reference(field_results, args.samples, args.sun_profile), indent=2) + "\n")
     table = "\n".join(t for t in (markdown(results) if results else "",
                                   field_compare.markdown(field_results) if field_results else "") if t)
     (args.dir / "results.md").write_text(table)

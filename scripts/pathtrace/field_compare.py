@@ -437,7 +437,7 @@ def markdown(results):
     return "\n".join(lines) + "\n"
 
 
-def reference(results, samples):
+def reference(results, samples, sun_profile="layers"):
     """The committed Cycles numbers (tests/data/pathtrace/field_cycles.json) later tests hold our
     ratios against: per scene, each world's cloud-to-sky ratio and lit hue, the compared
     region, and ours when they were made."""
@@ -461,7 +461,10 @@ def reference(results, samples):
                     "pixels, over the pixels above the horizon whose ray leaves the cloud layer "
                     "inside range_box_m (docs/cloud-model.md, 'A path-traced field'; "
                     "scripts/pathtrace/field_compare.py). cycles_sky: lit by our sky and sun; "
-                    "cycles_nishita: by Blender's Nishita sky and our sun.",
+                    "cycles_nishita: by Blender's Nishita sky and our sun. sun_profile layers: "
+                    "the sun's light at each altitude is the raymarch's (scripts/pathtrace/"
+                    "sun_profile.py); flat: one illuminance, the layer middle's.",
+            "sun_profile": sun_profile,
             "goals": {"ratio_within": GOAL_RATIO, "error_at_most": GOAL_ERROR,
                       "hue_within_deg": GOAL_HUE_DEG},
             "samples": samples, "scenes": scenes}

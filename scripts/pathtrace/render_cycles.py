@@ -17,7 +17,11 @@ Everything comes from the grid's metadata, so the scene is the one skyrender ren
 - the sun: a sun lamp in the grid's sun direction with the sun's angular size and the
   illuminance the raymarch uses at the clouds. skyrender's units have illuminance 1 = pi x
   radiance 1 (shaders/common/lighting_shared.h); Cycles' sun strength is irradiance, and a
-  white diffuse surface under strength S has radiance S / pi, so strength = pi x illuminance;
+  white diffuse surface under strength S has radiance S / pi, so strength = pi x illuminance.
+  The raymarch lights each altitude of a layer with the sun's light through the air down to
+  it (a 3 degree sun: a third of the middle's at the base, 1.7 times at the top); the lamp
+  takes the top's light and sheets of air that only the sun's shadow rays see take it down to
+  each altitude's (sun_profile.py; --sun-profile flat: the middle's everywhere, as before);
 - the sky: with --world, our own sky: an equirectangular EXR that skyrender rendered of the
   same scene with no clouds and no sun or moon disc (compare.sh: `camera.projection:
   equirectangular`, heading 90 so the image's centre is east, Blender's +x), the ground below
@@ -43,11 +47,15 @@ denoising, no clamping, fixed seed.
 """
 import argparse
 import math
+import os
 import sys
 
 import bpy
 import mathutils
 import pyopenvdb
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from sun_profile import sun_profile  # noqa: E402  (beside this script; Blender runs it by path)
 
 
 def parse_args():
@@ -67,6 +75,11 @@ def parse_args():
     p.add_argument("--lights", choices=("both", "sun", "sky", "ground"), default="both",
                    help="which light sources shine: both, the sun lamp only, the world only, "
                         "the world below the horizontal only")
+    p.add_argument("--sun-profile", choices=("layers", "flat"), default="layers",
+                   help="layers: the sun's light through the air at each altitude of the layer, "
+                        "as the raymarch takes it (the default); flat: one illuminance, the "
+                        "layer middle's, everywhere (the reference before issue 46's ninth "
+                        "session)")
     p.add_argument("--step-rate", type=float, default=1.0,
                    help="Cycles' volume step as a fraction of the voxel (checks the marching's bias)")
     p.add_argument("--world-only", action="store_true",
@@ -109,6 +122,73 @@ def volume_material(m, grid="density"):
     out = nt.nodes.new("ShaderNodeOutputMaterial")
     nt.links.new(mix.outputs[0], out.inputs["Volume"])
     return mat
+
+
+def air_sheet(scene, name, z0, z1, half, sigma):
+    """A box from z0 to z1, half metres wide each way, of air that absorbs sigma (RGB, per
+    metre) along shadow rays only (sun_profile.py): its object is visible to shadow rays
+    alone, and its density is gated by Light Path's Is Shadow Ray besides."""
+    mesh = bpy.data.meshes.new(name)
+    verts = [(x, y, z) for z in (z0, z1) for y in (-half, half) for x in (-half, half)]
+    faces = [(0, 2, 3, 1), (4, 5, 7, 6), (0, 1, 5, 4), (2, 6, 7, 3), (0, 4, 6, 2), (1, 3, 7, 5)]
+    mesh.from_pydata(verts, [], faces)
+    mesh.update()
+    mat = bpy.data.materials.new(name)
+    mat.use_nodes = True
+    mat.cycles.homogeneous_volume = True
+    nt = mat.node_tree
+    nt.nodes.clear()
+    density = max(sigma)
+    absorb = nt.nodes.new("ShaderNodeVolumeAbsorption")
+    # Cycles: sigma_a = density x (1 - colour), per channel.
+    absorb.inputs["Color"].default_value = tuple(1.0 - c / density for c in sigma) + (1.0,)
+    path = nt.nodes.new("ShaderNodeLightPath")
+    gate = nt.nodes.new("ShaderNodeMath")
+    gate.operation = "MULTIPLY"
+    gate.inputs[1].default_value = density
+    nt.links.new(path.outputs["Is Shadow Ray"], gate.inputs[0])
+    nt.links.new(gate.outputs[0], absorb.inputs["Density"])
+    out = nt.nodes.new("ShaderNodeOutputMaterial")
+    nt.links.new(absorb.outputs[0], out.inputs["Volume"])
+    mesh.materials.append(mat)
+    obj = bpy.data.objects.new(name, mesh)
+    obj.visible_camera = False
+    obj.visible_diffuse = False
+    obj.visible_glossy = False
+    obj.visible_transmission = False
+    obj.visible_volume_scatter = False
+    obj.visible_shadow = True
+    scene.collection.objects.link(obj)
+    return obj
+
+
+def render(scene, path):
+    scene.render.filepath = path
+    bpy.ops.render.render(write_still=True)
+
+
+def add_images(sun, sky, out):
+    """out = the sun's render plus the sky's (RGB: the light each sends; A: the cloud's
+    opacity, the same cloud in both, so their mean), and the two parts removed."""
+    import os
+    import numpy as np
+    import OpenImageIO as oiio
+    a, b = oiio.ImageBuf(sun), oiio.ImageBuf(sky)
+    pa, pb = a.get_pixels(oiio.FLOAT), b.get_pixels(oiio.FLOAT)
+    if pa is None or pb is None or pa.shape != pb.shape:
+        raise SystemExit(f"error: cannot add {sun} and {sky}: {a.geterror() or b.geterror()}")
+    total = pa + pb
+    total[..., 3] = 0.5 * (pa[..., 3] + pb[..., 3])
+    spec = a.spec()
+    spec.set_format(oiio.FLOAT)
+    result = oiio.ImageBuf(spec)
+    result.set_pixels(oiio.ROI(0, spec.width, 0, spec.height, 0, 1, 0, spec.nchannels),
+                      np.ascontiguousarray(total, dtype=np.float32))
+    if not result.write(out + ".part.exr", "float"):
+        raise SystemExit(f"error: cannot write {out}: {result.geterror()}")
+    os.replace(out + ".part.exr", out)
+    os.remove(sun)
+    os.remove(sky)
 
 
 def black_world():
@@ -253,10 +333,23 @@ def main():
             scene.collection.objects.link(obj)
 
     # The sun: its lamp shines along its local -z, so +z points at the sun.
+    sheets, sun_objects = [], []
     if args.lights in ("both", "sun"):
-        e = m["sun_illuminance"]
+        metas = [g for path in args.vdb for g in grids(path).values()]
+        e, sheets = sun_profile(m, metas, args.sun_profile == "flat")
+        if sheets:
+            # Wide enough for the sun's path from the lowest sheet to the highest, past every box.
+            reach = max(abs(float(c)) for g in metas for k in ("box_min_m", "box_max_m")
+                        for c in g[k][:2])
+            rise = sheets[-1][1] - sheets[0][0]
+            half = 2.0 * reach + rise / math.tan(math.radians(float(m["sun_elevation_deg"]))) + 1.0e4
+            for k, (z0, z1, sigma) in enumerate(sheets):
+                if max(sigma) > 0.0:
+                    sun_objects.append(air_sheet(scene, f"sun_air_{k}", z0, z1, half, sigma))
         peak = max(e)
         light = bpy.data.lights.new("sun", "SUN")
+        # With sheets the sun reaches the clouds through shadow rays alone (sun_profile.py).
+        light.cycles.use_multiple_importance_sampling = not sheets
         light.energy = math.pi * peak
         light.color = tuple(c / peak for c in e) if peak > 0 else (1.0, 1.0, 1.0)
         light.angle = 2.0 * math.radians(m["sun_angular_radius_deg"])
@@ -264,6 +357,7 @@ def main():
         sun.rotation_mode = "QUATERNION"
         sun.rotation_quaternion = mathutils.Vector(m["sun_direction"]).to_track_quat("Z", "Y")
         scene.collection.objects.link(sun)
+        sun_objects.append(sun)
     if args.world and args.nishita:
         sys.exit("error: --world and --nishita are two worlds: give one")
     if args.lights == "sun":
@@ -312,7 +406,10 @@ def main():
     c.diffuse_bounces = 0
     c.glossy_bounces = 0
     c.transmission_bounces = 0
-    c.transparent_max_bounces = 8
+    # Cycles counts a shadow ray's crossings of volume bounds as transparent hits and takes a
+    # ray with more than this many as blocked: the field's nested boxes and shadow exports,
+    # and two faces of each of the sun's air sheets (sun_profile.py).
+    c.transparent_max_bounces = 64 + 2 * len(sheets)
     c.sample_clamp_direct = 0.0
     c.sample_clamp_indirect = 0.0
     c.volume_step_rate = args.step_rate
@@ -324,12 +421,23 @@ def main():
     scene.render.image_settings.color_depth = "32"
     scene.render.image_settings.color_mode = "RGBA"
     scene.render.image_settings.exr_codec = "ZIP"
-    scene.render.filepath = args.out
-    bpy.ops.render.render(write_still=True)
+    if sheets and args.lights == "both" and not args.world_only:
+        # The sun through its sheets under a black world, then the world alone (sun_profile.py).
+        sky = scene.world
+        scene.world = black_world()
+        render(scene, args.out + ".sun.exr")
+        scene.world = sky
+        for obj in sun_objects:
+            obj.hide_render = True
+        render(scene, args.out + ".sky.exr")
+        add_images(args.out + ".sun.exr", args.out + ".sky.exr", args.out)
+    else:
+        render(scene, args.out)
     world = "none" if args.lights == "sun" else (
         args.world or ("Nishita" if args.nishita else "constant ambient"))
+    profile = f"sun through {len(sheets)} air sheets" if sheets else "flat sun"
     print(f"wrote {args.out} ({width}x{height}, {args.samples} samples, {args.bounces} bounces, "
-          f"lights {args.lights}, world {world})")
+          f"lights {args.lights}, world {world}, {profile})")
 
 
 main()

@@ -134,6 +134,15 @@ TEST_F(CloudVolumeExport, TinyGridRoundTripsThroughOpenVdb) {
   // Noon in June at 47 N: the sun high, its light at the clouds a few units strong.
   EXPECT_GT(number("sun_elevation_deg"), 60.0);
   EXPECT_GT(vector("sun_illuminance").g, 1.0);
+  // Each layer's light at its base, middle and top (the path tracer's lamp takes that profile):
+  // the middle of the layer the grid lies in is the one above, and the air dims the base most.
+  const std::string layer = number("light_altitude_m") > number("low_top_m") ? "mid" : "low";
+  EXPECT_LT(glm::length(vector("sun_illuminance_" + layer + "_middle") - vector("sun_illuminance")),
+            1e-6);
+  for (const std::string l : {"low", "mid"}) {
+    EXPECT_LT(vector("sun_illuminance_" + l + "_base").b, vector("sun_illuminance_" + l + "_middle").b);
+    EXPECT_LT(vector("sun_illuminance_" + l + "_middle").b, vector("sun_illuminance_" + l + "_top").b);
+  }
   EXPECT_EQ(number("voxel_m"), 100.0);
 }
 
