@@ -21,6 +21,10 @@
 #   SKYRENDER  the skyrender binary (default: build/release/apps/skyrender/skyrender)
 #   SAMPLES    Cycles samples per pixel (default 512); BOUNCES volume bounces (default 128)
 #   SEED       Cycles' seed (default 1)
+#   SUN_PROFILE  layers (default): Cycles' sun takes the raymarch's light at each altitude
+#              of the layer (sun_profile.py; the sun and the sky rendered apart and added,
+#              about twice the time, the field's views 5-6 x); flat: the layer middle's light
+#              everywhere (the reference before 2026-12-08)
 #   WORLD      sky (default): Cycles' world is our sky; constant: the palette's ambient_top
 #              above the horizon and ambient_bottom below (the world before issue 30)
 #   WORLD_AT   cloud (default): our sky as seen from the middle of the cloud layer (the
@@ -54,6 +58,7 @@ SKYRENDER="${SKYRENDER:-build/release/apps/skyrender/skyrender}"
 SAMPLES="${SAMPLES:-512}"
 BOUNCES="${BOUNCES:-128}"
 SEED="${SEED:-1}"
+SUN_PROFILE="${SUN_PROFILE:-layers}"
 WORLD="${WORLD:-sky}"
 WORLD_AT="${WORLD_AT:-cloud}"
 SPLIT=" ${SPLIT:-} "
@@ -61,6 +66,7 @@ OUT="${OUT:-out/pathtrace}"
 IMAGES="${IMAGES:-docs/images/pathtrace}"
 NICE="${NICE:-10}"
 [ -x "$SKYRENDER" ] || { echo "error: $SKYRENDER: no such binary (build it: scripts/build.sh release skyrender, or set SKYRENDER)" >&2; exit 2; }
+case "$SUN_PROFILE" in layers|flat) ;; *) echo "error: SUN_PROFILE=$SUN_PROFILE (expected layers or flat)" >&2; exit 2 ;; esac
 case "$WORLD" in sky|constant) ;; *) echo "error: WORLD=$WORLD (expected sky or constant)" >&2; exit 2 ;; esac
 case "$WORLD_AT" in cloud|camera) ;; *) echo "error: WORLD_AT=$WORLD_AT (expected cloud or camera)" >&2; exit 2 ;; esac
 
@@ -143,7 +149,8 @@ field() {
     "${WORLD_SIZE[@]}" --set camera.projection=equirectangular --set camera.heading=90
   nice -n "$NICE" "$SKYRENDER" render "$scene" --out "$OUT" --name "${s}_clear" "${CLEAR[@]}" "${at[@]}" \
     "${SIZE_SET[@]}"
-  local common=(--vdb "$OUT/$s.vdb" "${shadow[@]}" --samples "$SAMPLES" --bounces "$BOUNCES" --seed "$SEED")
+  local common=(--vdb "$OUT/$s.vdb" "${shadow[@]}" --samples "$SAMPLES" --bounces "$BOUNCES" --seed "$SEED"
+                --sun-profile "$SUN_PROFILE")
   if [[ "$FIELD_WORLDS" == *" sky "* ]]; then
     cycles "$OUT/${s}_world_check.log" --vdb "$OUT/$s.vdb" --out "$OUT/${s}_world_check.exr" \
       --world "$OUT/${s}_world.exr" --world-only --samples 16
@@ -183,7 +190,8 @@ for s in "${scenes[@]}"; do
     cycles "$OUT/${s}_world_check.log" --vdb "$OUT/$s.vdb" --out "$OUT/${s}_world_check.exr" \
       "${world[@]}" --world-only --samples 16
   fi
-  common=(--vdb "$OUT/$s.vdb" --samples "$SAMPLES" --bounces "$BOUNCES" --seed "$SEED" "${world[@]}")
+  common=(--vdb "$OUT/$s.vdb" --samples "$SAMPLES" --bounces "$BOUNCES" --seed "$SEED" "${world[@]}"
+          --sun-profile "$SUN_PROFILE")
   cycles "$OUT/${s}_cycles.log" "${common[@]}" --out "$OUT/${s}_cycles.exr"
   if [[ "$SPLIT" == *" $s "* ]]; then
     for lights in sun sky; do
@@ -214,5 +222,5 @@ if [ "${PEER:-0}" = 1 ]; then
 fi
 [ ${#scenes[@]} -gt 0 ] || exit 0
 reference=()
-[ -z "${FIELD_REFERENCE:-}" ] || reference=(--reference "$FIELD_REFERENCE" --samples "$SAMPLES")
+[ -z "${FIELD_REFERENCE:-}" ] || reference=(--reference "$FIELD_REFERENCE" --samples "$SAMPLES" --sun-profile "$SUN_PROFILE")
 /usr/bin/python3 scripts/pathtrace/compare.py --dir "$OUT" --images "$IMAGES" "${reference[@]}" "${scenes[@]}"
