@@ -99,7 +99,6 @@ def sun_profile(m, metas, flat):
     return top, sheets
 
 
-
 def slant_light(top, sheets, z, sin_e):
     """The light the sheets leave at z (the grid's frame): the lamp's, dimmed along the sun's
     slanted path up through every sheet above z."""
